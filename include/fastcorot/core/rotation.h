@@ -1,0 +1,36 @@
+// Rotation extraction for the corotational method (SPEC.md, "Rotation"): the QR frame of two edge
+// vectors, and the orthogonal polar factor of a 3×3 matrix computed exactly as SOFA computes it,
+// so that our rotations agree with SOFA's to round-off.
+#pragma once
+
+#include "fastcorot/core/types.h"
+
+namespace fastcorot {
+
+// Orthonormal frame whose rows are x = a/|a|, z = (x × b)/|x × b|, y = z × x (SOFA's
+// computeQRRotation). Undefined (non-finite) when a = 0 or b is parallel to a.
+template <class Real>
+Mat3<Real> qr_frame(const Vec3<Real>& a, const Vec3<Real>& b);
+
+// Convergence tolerance SOFA uses for the polar factor: 1e-8 in double, 1e-6 in float.
+template <class Real>
+constexpr Real polar_tolerance() {
+  return sizeof(Real) >= sizeof(double) ? Real(1e-8) : Real(1e-6);
+}
+
+// Orthogonal factor Q of the polar decomposition M = Q S (S symmetric), by Higham's scaled Newton
+// iteration X <- (gamma X + X^-T / gamma) / 2 with the (1,inf)-norm scaling of Shoemake's code
+// (Vega's PolarDecomposition, which SOFA uses), stopped when the 1-norm of the update is at most
+// `tolerance` times the 1-norm of the new iterate. For det M < 0 the iteration converges to an
+// orthogonal matrix of determinant -1 (a reflection), as in SOFA; we keep that for compatibility.
+// A singular iterate stops the iteration (as in SOFA) and the current iterate is returned; callers
+// that need a rotation should check the determinant of M first. At most 100 iterations (Newton
+// converges quadratically; the cap only guards against non-finite input).
+template <class Real>
+Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance = polar_tolerance<Real>());
+
+// The polar factor of the matrix whose rows are a, b and c (SOFA's `polar2` frame of three edges).
+template <class Real>
+Mat3<Real> polar_frame(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c);
+
+}  // namespace fastcorot

@@ -1,0 +1,58 @@
+// One corotational linear tetrahedron, as free functions of its four rest points p0..p3 and four
+// current points x0..x3, with no mesh or scene: rest data, rotation, forces, energy and the 3×3
+// stiffness blocks of SPEC.md. The force field applies these over a mesh; tests and other codes can
+// call them on a single element. Forces are in world coordinates; the per-element rotation R maps
+// the rest frame to the world.
+#pragma once
+
+#include "fastcorot/core/lame.h"
+#include "fastcorot/core/types.h"
+#include "fastcorot/fem/rotation_method.h"
+
+#include <array>
+
+namespace fastcorot {
+
+template <class Real>
+using TetPoints = std::array<Vec3<Real>, 4>;
+
+// What an element keeps from its rest state (SPEC.md, "Rest state").
+template <class Real>
+struct TetrahedronRest {
+  std::array<Vec3<Real>, 4> shape;  // s_j: gradient of the barycentric coordinate of vertex j
+  Real volume;                      // V = -dot(p1-p0, (p2-p0) × (p3-p0)) / 6 (SOFA's sign)
+  Real mu;                          // mu |V|
+  Real lambda;                      // lambda |V|
+  Mat3<Real> rest_rotation;         // R0 for qr and polar2, identity otherwise
+};
+
+// Rest data of the element with rest points p. The caller checks that V is not (near) zero.
+template <class Real>
+TetrahedronRest<Real> tetrahedron_rest(const TetPoints<Real>& p, const LameParameters<Real>& lame,
+                                       RotationMethod method);
+
+// D_j = (lambda' + mu') s_j s_j^T + mu' (s_j . s_j) I.
+template <class Real>
+Mat3<Real> vertex_block(const TetrahedronRest<Real>& rest, int j);
+
+// L_e = lambda' s_l s_k^T + mu' s_k s_l^T + mu' (s_l . s_k) I for local edge e = (k, l).
+template <class Real>
+Mat3<Real> edge_block(const TetrahedronRest<Real>& rest, int e);
+
+// Rotation R (rest frame → world) of the element at current points x.
+template <class Real>
+Mat3<Real> tetrahedron_rotation(const TetrahedronRest<Real>& rest, const TetPoints<Real>& x,
+                                RotationMethod method);
+
+// Forces on the four vertices (world frame) for rotation R: g_l += L_e u_e, g_k -= L_e^T u_e in
+// the rest frame with u_e = R^T d_e - (p_l - p_k); f_j = R g_j.
+template <class Real>
+TetPoints<Real> tetrahedron_force(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
+                                  const TetPoints<Real>& x, const Mat3<Real>& rotation);
+
+// Energy U = -1/2 sum_j u_j . g_j with u_j = R^T (x_j - x0) - (p_j - p0), for rotation R.
+template <class Real>
+Real tetrahedron_energy(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
+                        const TetPoints<Real>& x, const Mat3<Real>& rotation);
+
+}  // namespace fastcorot

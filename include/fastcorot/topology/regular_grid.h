@@ -1,0 +1,51 @@
+// A regular grid of hexahedral cells split into tetrahedra, numbered exactly as SOFA numbers them:
+// points in RegularGridTopology order and tetrahedra in Hexa2TetraTopologicalMapping order (with or
+// without its `swapping` option). Scenes use it for RegularGridTopology; tests and benchmarks use it
+// to build named meshes such as the 40×10×10 cantilever beam.
+#pragma once
+
+#include "fastcorot/core/types.h"
+
+#include <array>
+#include <vector>
+
+namespace fastcorot {
+
+// SOFA's RegularGridTopology: n = (nx, ny, nz) points per axis (each >= 2 for a grid of cells),
+// spanning the box [min, max]. Point (i, j, k) has index i + nx * (j + ny * k) and position
+// min + (i * (max-min).x / (nx-1), ...) per axis.
+struct RegularGrid {
+  std::array<Index, 3> n{2, 2, 2};
+  Vec3<double> min{0.0, 0.0, 0.0};
+  Vec3<double> max{1.0, 1.0, 1.0};
+
+  Index num_points() const { return n[0] * n[1] * n[2]; }
+  Index num_cells() const { return (n[0] - 1) * (n[1] - 1) * (n[2] - 1); }
+};
+
+// Throws fastcorot::Error when a count is below 2, min/max are not finite, min equals max along an
+// axis, or the point or tetrahedron count does not fit in Index. (A count of 1 or a zero extent
+// along an axis makes a flat grid, which no tetrahedral mesh can use; max < min is accepted, as
+// SOFA accepts it, and mirrors the grid.)
+void validate(const RegularGrid& grid);
+
+// #points positions in RegularGridTopology order, evaluated in Real exactly as SOFA evaluates them
+// in its own scalar (step = (max-min)/(n-1), point = min + step.x*i + step.y*j + step.z*k), so
+// Real = double reproduces SOFA's double build bitwise. Validates the grid first.
+template <class Real>
+std::vector<Vec3<Real>> grid_points(const RegularGrid& grid);
+
+// The eight corner point indices of cell (i, j, k), in SOFA's hexahedron vertex order: bottom face
+// (k) counter-clockwise seen from +z starting at point (i, j, k), then the top face (k+1) the same
+// way: (i,j,k) (i+1,j,k) (i+1,j+1,k) (i,j+1,k), then the same four at k+1. Throws fastcorot::Error
+// when the cell is outside 0 <= i < nx-1 (and likewise for j, k).
+std::array<Index, 8> grid_cell_corners(const RegularGrid& grid, Index i, Index j, Index k);
+
+// Tetrahedra of Hexa2TetraTopologicalMapping applied to the grid's hexahedra (cells in SOFA's
+// hexahedron order, x fastest): 6 per cell, tetrahedra 6c..6c+5 from cell c, all positively
+// oriented when min < max, and a conforming mesh. `swapping` as SOFA's attribute of that name:
+// cell (i, j, k) is mirrored along x when i is even, along y when j is odd and along z when k is
+// odd before it is split. The tables and their sources are in regular_grid.cpp. Validates first.
+std::vector<Tetrahedron> grid_tetrahedra(const RegularGrid& grid, bool swapping);
+
+}  // namespace fastcorot

@@ -1,0 +1,85 @@
+#include "fastcorot/core/rotation.h"
+
+#include <cmath>
+
+namespace fastcorot {
+
+template <class Real>
+Mat3<Real> qr_frame(const Vec3<Real>& a, const Vec3<Real>& b) {
+  const Vec3<Real> x = a.normalized();
+  const Vec3<Real> z = x.cross(b).normalized();
+  const Vec3<Real> y = z.cross(x);
+  Mat3<Real> frame;
+  frame.row(0) = x.transpose();
+  frame.row(1) = y.transpose();
+  frame.row(2) = z.transpose();
+  return frame;
+}
+
+namespace {
+
+// Maximum absolute column sum.
+template <class Real>
+Real one_norm(const Mat3<Real>& m) {
+  return m.cwiseAbs().colwise().sum().maxCoeff();
+}
+
+// Maximum absolute row sum.
+template <class Real>
+Real inf_norm(const Mat3<Real>& m) {
+  return m.cwiseAbs().rowwise().sum().maxCoeff();
+}
+
+}  // namespace
+
+template <class Real>
+Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
+  // The iteration runs on the transpose, as Shoemake's code does; the rows of the cofactor matrix
+  // are cross products of the iterate's rows, and its first row dotted with the iterate's first
+  // row is the determinant. Keeping this exact sequence of operations keeps us within a few ulps
+  // of SOFA.
+  Mat3<Real> mk = m.transpose();
+  Real mk_one = one_norm(mk);
+  Real mk_inf = inf_norm(mk);
+  constexpr int max_iterations = 100;
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    Mat3<Real> cofactor;
+    cofactor.row(0) = mk.row(1).cross(mk.row(2));
+    cofactor.row(1) = mk.row(2).cross(mk.row(0));
+    cofactor.row(2) = mk.row(0).cross(mk.row(1));
+    const Real det = mk.row(0).dot(cofactor.row(0));
+    if (det == Real(0)) break;
+    const Real cofactor_one = one_norm(cofactor);
+    const Real cofactor_inf = inf_norm(cofactor);
+    const Real gamma =
+        std::sqrt(std::sqrt((cofactor_one * cofactor_inf) / (mk_one * mk_inf)) / std::abs(det));
+    const Real g1 = gamma * Real(0.5);
+    const Real g2 = Real(0.5) / (gamma * det);
+    const Mat3<Real> next = g1 * mk + g2 * cofactor;
+    const Real change_one = one_norm<Real>(mk - next);
+    mk = next;
+    mk_one = one_norm(mk);
+    mk_inf = inf_norm(mk);
+    // Negated so that a NaN stops the loop as SOFA's do-while does.
+    if (!(change_one > mk_one * tolerance)) break;
+  }
+  return mk.transpose();
+}
+
+template <class Real>
+Mat3<Real> polar_frame(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c) {
+  Mat3<Real> rows;
+  rows.row(0) = a.transpose();
+  rows.row(1) = b.transpose();
+  rows.row(2) = c.transpose();
+  return polar_factor(rows);
+}
+
+template Mat3<float> qr_frame(const Vec3<float>&, const Vec3<float>&);
+template Mat3<double> qr_frame(const Vec3<double>&, const Vec3<double>&);
+template Mat3<float> polar_factor(const Mat3<float>&, float);
+template Mat3<double> polar_factor(const Mat3<double>&, double);
+template Mat3<float> polar_frame(const Vec3<float>&, const Vec3<float>&, const Vec3<float>&);
+template Mat3<double> polar_frame(const Vec3<double>&, const Vec3<double>&, const Vec3<double>&);
+
+}  // namespace fastcorot

@@ -1,0 +1,110 @@
+#include "fastcorot/core/rotation.h"
+
+#include <Eigen/SVD>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace fastcorot {
+namespace {
+
+Mat3<double> axis_rotation(double angle, Vec3<double> axis) {
+  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
+}
+
+TEST(QrFrame, RestFrameOfSpecExampleTetrahedron) {
+  // SPEC.md example: points (0,0,0) (1,0,0) (0,1,0) (0,0,1), tetrahedron (2,3,1,0), so
+  // p0 = (0,1,0), p1 = (0,0,1), p2 = (1,0,0). By hand: x = (0,-1,1)/√2, x × (p2-p0) ∝ (1,1,1),
+  // z = (1,1,1)/√3, y = z × x = (2,-1,-1)/√6.
+  const Vec3<double> p0(0, 1, 0), p1(0, 0, 1), p2(1, 0, 0);
+  const Mat3<double> frame = qr_frame<double>(p1 - p0, p2 - p0);
+  const double r2 = std::sqrt(2.0), r3 = std::sqrt(3.0), r6 = std::sqrt(6.0);
+  Mat3<double> expected;
+  expected << 0, -1 / r2, 1 / r2, 2 / r6, -1 / r6, -1 / r6, 1 / r3, 1 / r3, 1 / r3;
+  EXPECT_LT((frame - expected).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+TEST(QrFrame, IsARotationWithFirstRowAlongA) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec3<double> a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
+    const Mat3<double> frame = qr_frame(a, b);
+    EXPECT_LT((frame * frame.transpose() - Mat3<double>::Identity()).norm(), 1e-14);
+    EXPECT_NEAR(frame.determinant(), 1.0, 1e-14);
+    EXPECT_LT((frame.row(0).transpose() - a.normalized()).norm(), 1e-15);
+    // b lies in the plane of the first two rows, on the positive side of the second.
+    EXPECT_NEAR(frame.row(2).dot(b), 0.0, 1e-14);
+    EXPECT_GT(frame.row(1).dot(b), 0.0);
+  }
+}
+
+TEST(QrFrame, CommutesWithRotations) {
+  const Mat3<double> q = axis_rotation(0.9, Vec3<double>(1, -2, 0.5));
+  const Vec3<double> a(0.3, 1.2, -0.4), b(-0.7, 0.2, 0.9);
+  EXPECT_LT((qr_frame<double>(q * a, q * b) - qr_frame(a, b) * q.transpose()).norm(), 1e-14);
+}
+
+Mat3<double> svd_polar(const Mat3<double>& m) {
+  Eigen::JacobiSVD<Mat3<double>> svd(m, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return svd.matrixU() * svd.matrixV().transpose();
+}
+
+TEST(PolarFactor, RecoversTheRotationOfRotatedStretch) {
+  // M = Q S with Q a rotation and S symmetric positive definite: the polar factor is Q.
+  const Mat3<double> q = axis_rotation(0.7, Vec3<double>(1, 2, 3));
+  Mat3<double> s;
+  s << 1.1, 0.05, -0.02, 0.05, 0.95, 0.03, -0.02, 0.03, 1.02;
+  EXPECT_LT((polar_factor<double>(q * s) - q).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_LT((polar_factor<float>((q * s).cast<float>()) - q.cast<float>()).cwiseAbs().maxCoeff(), 1e-6f);
+}
+
+TEST(PolarFactor, AgreesWithSvdOnRandomMatrices) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    Mat3<double> m;
+    for (int i = 0; i < 9; ++i) m(i / 3, i % 3) = u(rng);
+    if (std::abs(m.determinant()) < 1e-3) continue;
+    const Mat3<double> q = polar_factor(m);
+    EXPECT_LT((q - svd_polar(m)).cwiseAbs().maxCoeff(), 1e-10) << m;
+    EXPECT_LT((q.transpose() * q - Mat3<double>::Identity()).norm(), 1e-12);
+    // Q^T M is the symmetric factor.
+    const Mat3<double> s = q.transpose() * m;
+    EXPECT_LT((s - s.transpose()).norm(), 1e-10);
+  }
+}
+
+TEST(PolarFactor, InvertedMatrixGivesAReflectionLikeSofa) {
+  // SPEC.md: for det F < 0 SOFA's iteration converges to an orthogonal matrix of determinant -1.
+  const Mat3<double> q = axis_rotation(0.4, Vec3<double>(0, 1, 1));
+  const Mat3<double> m = q * Vec3<double>(1.2, 0.9, -0.8).asDiagonal();
+  const Mat3<double> factor = polar_factor(m);
+  EXPECT_NEAR(factor.determinant(), -1.0, 1e-12);
+  EXPECT_LT((factor - q * Vec3<double>(1, 1, -1).asDiagonal().toDenseMatrix()).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(PolarFactor, SingularAndNonFiniteInputReturnWithoutHanging) {
+  const Mat3<double> zero = Mat3<double>::Zero();
+  EXPECT_EQ(polar_factor(zero), zero);  // a zero determinant stops the iteration at once
+  Mat3<double> nan = Mat3<double>::Identity();
+  nan(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(polar_factor(nan).allFinite());
+}
+
+TEST(PolarFrame, IsThePolarFactorOfTheRowMatrix) {
+  const Vec3<double> a(1, 0.1, 0), b(0.2, 1, 0.1), c(0, -0.1, 1.1);
+  Mat3<double> rows;
+  rows << a.transpose(), b.transpose(), c.transpose();
+  EXPECT_LT((polar_frame(a, b, c) - svd_polar(rows)).cwiseAbs().maxCoeff(), 1e-14);
+}
+
+TEST(PolarTolerance, IsSofas) {
+  EXPECT_EQ(polar_tolerance<double>(), 1e-8);
+  EXPECT_EQ(polar_tolerance<float>(), 1e-6f);
+}
+
+}  // namespace
+}  // namespace fastcorot
