@@ -1,0 +1,206 @@
+#include "run_command.h"
+
+#include "default_scene.h"
+#include "json_io.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/scene/scene_builder.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <map>
+#include <ostream>
+#include <sstream>
+
+namespace fastcorot::cli {
+
+std::set<long> parse_step_list(const std::string& text) {
+  std::set<long> steps;
+  std::stringstream stream(text);
+  for (std::string item; std::getline(stream, item, ',');) {
+    char* end = nullptr;
+    const long step = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || *end != '\0' || step < 0) {
+      throw make_error("--dump-steps \"", text, "\": expected a comma-separated list of step numbers >= 0");
+    }
+    steps.insert(step);
+  }
+  return steps;
+}
+
+std::string mesh_scene_text(const std::string& mesh_path) {
+  const MeshData mesh = read_mesh_file(mesh_path);
+  if (mesh.points.empty()) throw make_error(mesh_path, ": the mesh has no points");
+  Vec3<double> lo = mesh.points.front(), hi = mesh.points.front();
+  for (const auto& p : mesh.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double extent = (hi - lo).maxCoeff();
+  const double tolerance = 1e-6 * extent;
+  const std::string extension = std::filesystem::path(mesh_path).extension().string();
+  const std::string loader = extension == ".msh" ? "MeshGmshLoader" : "MeshVTKLoader";
+  std::ostringstream scene;
+  scene.precision(17);
+  scene << "<Node name=\"root\" dt=\"0.01\" gravity=\"0 0 -9.81\">\n"
+        << "  <Node name=\"" << std::filesystem::path(mesh_path).stem().string() << "\">\n"
+        << "    <EulerImplicitSolver rayleighStiffness=\"0.1\" rayleighMass=\"0.1\"/>\n"
+        << "    <CGLinearSolver iterations=\"100\" tolerance=\"1e-9\" threshold=\"1e-15\"/>\n"
+        << "    <" << loader << " name=\"loader\" filename=\"" << std::filesystem::absolute(mesh_path).string() << "\"/>\n"
+        << "    <TetrahedronSetTopologyContainer name=\"topology\" src=\"@loader\"/>\n"
+        << "    <MechanicalObject name=\"state\"/>\n"
+        << "    <DiagonalMass massDensity=\"1000\"/>\n"
+        << "    <FastTetrahedralCorotationalForceField youngModulus=\"100000\" poissonRatio=\"0.3\" method=\"large\"/>\n"
+        << "    <BoxROI name=\"bottom\" box=\"" << lo.x() - tolerance << " " << lo.y() - tolerance << " "
+        << lo.z() - tolerance << " " << hi.x() + tolerance << " " << hi.y() + tolerance << " " << lo.z() + tolerance
+        << "\"/>\n"
+        << "    <FixedProjectiveConstraint indices=\"@bottom.indices\"/>\n"
+        << "  </Node>\n</Node>\n";
+  return scene.str();
+}
+
+namespace {
+
+LoadedScene load(const RunOptions& options) {
+  if (options.scene.empty()) return build_scene(parse_scene_text(kDefaultScene, "<built-in cantilever beam>"));
+  std::string extension = std::filesystem::path(options.scene).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (extension == ".msh" || extension == ".vtk" || extension == ".vtu") {
+    return build_scene(parse_scene_text(mesh_scene_text(options.scene), options.scene + " (default mesh scene)"));
+  }
+  return load_scene_file(options.scene);
+}
+
+std::string file_stem(const std::string& path) {
+  std::string stem = path;
+  std::replace(stem.begin(), stem.end(), '/', '_');
+  return stem;
+}
+
+class VtuSeries {
+ public:
+  VtuSeries(const std::string& dir, const Simulation<double>& simulation) : dir_(dir) {
+    std::filesystem::create_directories(dir_);
+    for (const auto& object : simulation.objects) names_.push_back(file_stem(object.path));
+    frames_.resize(simulation.objects.size());
+  }
+
+  void write(Simulation<double>& simulation) {
+    for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
+      auto& object = simulation.objects[o];
+      auto& system = object.system;
+      const auto& x = system.state.position;
+      const std::size_t n = x.size();
+      std::vector<Vec3<double>> force(n, Vec3<double>::Zero());
+      system.compute_force(x, force);
+      VtuField displacement{"displacement", 3, {}}, velocity{"velocity", 3, {}}, force_field{"force", 3, {}};
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec3<double> u = x[i] - system.state.rest_position[i];
+        displacement.values.insert(displacement.values.end(), {u.x(), u.y(), u.z()});
+        const Vec3<double>& v = system.state.velocity[i];
+        velocity.values.insert(velocity.values.end(), {v.x(), v.y(), v.z()});
+        force_field.values.insert(force_field.values.end(), {force[i].x(), force[i].y(), force[i].z()});
+      }
+      std::vector<VtuCellBlock> cells;
+      if (object.mesh) {
+        VtuCellBlock block;
+        for (const auto& t : object.mesh->tetrahedra()) block.connectivity.insert(block.connectivity.end(), t.begin(), t.end());
+        cells.push_back(std::move(block));
+      }
+      const std::string file = names_[o] + "_" + std::to_string(simulation.steps_done()) + ".vtu";
+      write_vtu(std::filesystem::path(dir_) / file, x, cells, {displacement, velocity, force_field});
+      frames_[o].push_back({simulation.time(), file});
+      write_pvd(std::filesystem::path(dir_) / (names_[o] + ".pvd"), frames_[o]);
+    }
+  }
+
+ private:
+  std::string dir_;
+  std::vector<std::string> names_;
+  std::vector<std::vector<std::pair<double, std::string>>> frames_;
+};
+
+void record(json& steps, const Simulation<double>& simulation) {
+  json frame = json::object();
+  for (const auto& object : simulation.objects) frame[object.path] = points_to_json(object.system.state.position);
+  steps[std::to_string(simulation.steps_done())] = std::move(frame);
+}
+
+void progress(std::ostream& err, long done, long total, double seconds) {
+  const int width = 30;
+  const int filled = total > 0 ? static_cast<int>(width * done / total) : width;
+  const double rate = seconds > 0 ? static_cast<double>(done) / seconds : 0.0;
+  const double remaining = rate > 0 ? static_cast<double>(total - done) / rate : 0.0;
+  err << "\r[" << std::string(static_cast<std::size_t>(filled), '#') << std::string(static_cast<std::size_t>(width - filled), ' ')
+      << "] " << done << "/" << total << " steps  " << std::fixed << std::setprecision(1) << rate << " steps/s  "
+      << remaining << " s left " << std::flush;
+}
+
+}  // namespace
+
+void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
+  if (options.steps < 0) throw make_error("--steps ", options.steps, ": must be >= 0");
+  if (options.every < 1) throw make_error("--every ", options.every, ": must be >= 1");
+  if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
+  LoadedScene scene = load(options);
+  Simulation<double>& simulation = scene.simulation;
+  if (options.dt) {
+    if (!(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
+    simulation.dt = *options.dt;
+  }
+  if (!options.quiet) {
+    for (const auto& line : scene.info) err << "info: " << line << '\n';
+  }
+  json steps = json::object();
+  auto write_dump = [&] {
+    if (options.dump_state.empty()) return;
+    json dump = {{"dt", simulation.dt}, {"steps", steps}};
+    write_text(dump.dump(), options.dump_state);
+  };
+  std::optional<VtuSeries> vtu;
+  if (options.vtu) vtu.emplace(options.out_dir, simulation);
+  const bool dump_last = !options.dump_state.empty();
+  if (options.dump_steps.count(0) || (dump_last && options.steps == 0)) record(steps, simulation);
+  if (vtu) vtu->write(simulation);
+
+  const bool show_progress = !options.quiet && isatty(fileno(stderr));
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  long solves = 0, iterations = 0;
+  double last_draw = -1;
+  try {
+    for (long step = 1; step <= options.steps; ++step) {
+      const StepReport report = simulation.step();
+      solves += report.linear_solves;
+      iterations += report.linear_iterations;
+      if (options.dump_steps.count(step) || (dump_last && step == options.steps)) record(steps, simulation);
+      if (vtu && (step % options.every == 0 || step == options.steps)) vtu->write(simulation);
+      if (show_progress && (elapsed() - last_draw > 0.1 || step == options.steps)) {
+        last_draw = elapsed();
+        progress(err, step, options.steps, last_draw);
+      }
+    }
+  } catch (const Error&) {
+    if (show_progress) err << '\n';
+    write_dump();  // keep what was computed before the failure
+    throw;
+  }
+  if (show_progress) err << '\n';
+  write_dump();
+  const double seconds = elapsed();
+  if (!options.quiet) {
+    out << "fastcorot run: " << options.steps << " steps in " << std::fixed << std::setprecision(3) << seconds
+        << " s (" << std::setprecision(1) << (seconds > 0 ? static_cast<double>(options.steps) / seconds : 0.0)
+        << " steps/s), " << simulation.objects.size() << " object(s), mean linear-solver iterations "
+        << std::setprecision(2) << (solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0)
+        << '\n';
+  }
+}
+
+}  // namespace fastcorot::cli

@@ -1,0 +1,45 @@
+// The SOFA components fastcorot understands, as a declarative table: for each component its
+// attributes (name, type, default, meaning). The scene builder checks every attribute against this
+// table (unknown names are errors with file:line), and `fastcorot components` prints it, so the
+// documentation of supported components comes from the same source. Components listed as ignored
+// are accepted with one info line: they only draw, configure plugins or handle collisions.
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fastcorot {
+
+struct AttributeSpec {
+  std::string_view name;
+  std::string_view type;           // "real", "vec3", "reals", "vec3s", "indices", "int", "int3", "bool", "string", "link", "file"
+  std::string_view default_value;  // as a scene would write it; "" when none
+  std::string_view doc;
+};
+
+struct ComponentSpec {
+  std::string_view name;
+  std::string_view category;  // "state", "topology", "loader", "mapping", "forcefield", "mass", "constraint", "engine", "odesolver", "linearsolver"
+  std::string_view doc;
+  std::vector<AttributeSpec> attributes;
+  std::vector<std::string_view> aliases = {};  // other component names SOFA accepts for it
+};
+
+// Supported components; nullptr when `name` is neither a component nor one of its aliases.
+const ComponentSpec* find_component(std::string_view name);
+std::span<const ComponentSpec> supported_components();
+
+// Components accepted without effect on the mechanics (visual, plugin, collision, helpers).
+bool is_ignored_component(std::string_view name);
+std::span<const std::string_view> ignored_components();
+
+// Attributes every component accepts (name, template, tags, printLog, ...) and the rule that
+// attributes beginning with "draw" or "show" are display options with no effect on mechanics.
+bool is_common_attribute(std::string_view name);
+
+// A Markdown table of the supported components (used by `fastcorot components` and the README).
+std::string component_documentation();
+
+}  // namespace fastcorot

@@ -1,0 +1,55 @@
+// Reading and writing tetrahedral mesh files: Gmsh .msh (formats 2.2 and 4.1, ASCII and binary),
+// legacy VTK .vtk (4.2 and 5.1, ASCII and binary) and VTK XML .vtu (ascii, base64 "binary" and raw or
+// base64 "appended" data, zlib-compressed or not) — whatever gmsh, meshio and ParaView write by
+// default. Points are kept in file order (all of them, as SOFA's loaders keep them); tetrahedra are
+// the file's linear tetrahedra in file order; other cell types are skipped (triangles are kept
+// apart as the surface). Errors name the file, the line (text formats) or byte offset, and what is wrong.
+#pragma once
+
+#include "fastcorot/core/types.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fastcorot {
+
+struct MeshData {
+  std::vector<Vec3<double>> points;
+  std::vector<Tetrahedron> tetrahedra;
+  std::vector<Triangle> triangles;  // triangles the file holds (often the boundary), may be empty
+};
+
+// Chooses the reader from the extension (.msh, .vtk, .vtu; case-insensitive). Throws
+// fastcorot::Error for an unknown extension, a missing or unreadable file, a corrupt or truncated
+// file, an unsupported format version or encoding, and indices out of range.
+MeshData read_mesh_file(const std::filesystem::path& path);
+
+MeshData read_gmsh(const std::filesystem::path& path);
+MeshData read_vtk_legacy(const std::filesystem::path& path);
+MeshData read_vtu(const std::filesystem::path& path);
+
+// A named per-point (or per-cell) field of 3-vectors or scalars for VTU output.
+struct VtuField {
+  std::string name;
+  int components = 3;          // 1 or 3
+  std::vector<double> values;  // size = count × components
+};
+
+struct VtuCellBlock {
+  int vtk_cell_type = 10;          // 10 = tetrahedron, 5 = triangle
+  int nodes_per_cell = 4;
+  std::vector<Index> connectivity;  // cells × nodes_per_cell
+};
+
+// Writes an unstructured grid (.vtu, base64 binary, uncompressed) with the given point and cell
+// fields; cell fields cover the cells of all blocks in order.
+void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>>& points,
+               const std::vector<VtuCellBlock>& cells, const std::vector<VtuField>& point_fields,
+               const std::vector<VtuField>& cell_fields = {});
+
+// Writes a ParaView collection (.pvd) listing (time, file) pairs; file names relative to the .pvd.
+void write_pvd(const std::filesystem::path& path,
+               const std::vector<std::pair<double, std::string>>& time_steps);
+
+}  // namespace fastcorot

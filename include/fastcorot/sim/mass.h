@@ -1,0 +1,62 @@
+// Mass of a deformable object: lumped (one mass per vertex: SOFA's DiagonalMass, UniformMass and
+// MeshMatrixMass with lumping) or consistent (a symmetric #V×#V scalar matrix applied to each axis:
+// MeshMatrixMass without lumping). Gravity acts through the mass: f_i += (sum_j M_ij) g.
+#pragma once
+
+#include "fastcorot/core/types.h"
+#include "fastcorot/fem/matrix_sink.h"
+#include "fastcorot/topology/tet_mesh.h"
+
+#include <Eigen/SparseCore>
+
+#include <span>
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+class Mass {
+ public:
+  Mass() = default;
+
+  // One mass per vertex; throws fastcorot::Error for a negative or non-finite entry.
+  static Mass lumped(std::vector<Real> vertex_masses);
+  // A consistent #V×#V scalar matrix (symmetric); vertex_masses() then returns its row sums.
+  static Mass consistent(Eigen::SparseMatrix<Real> matrix);
+
+  bool is_lumped() const { return matrix_.size() == 0; }
+  Index size() const { return static_cast<Index>(vertex_masses_.size()); }
+  // Lumped masses, or the row sums of the consistent matrix.
+  std::span<const Real> vertex_masses() const { return vertex_masses_; }
+  Real total_mass() const;
+
+  // out += factor · M dx
+  void add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor) const;
+  // f += M g (the weight of each vertex)
+  void add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const;
+  // factor · M as 3×3 blocks (diagonal blocks m I, or M_ij I) at the given scalar offset.
+  void add_to_matrix(MatrixSink<Real>& sink, Real factor, Index offset = 0) const;
+  // 1/2 v^T M v
+  Real kinetic_energy(std::span<const Vec3<Real>> v) const;
+
+ private:
+  std::vector<Real> vertex_masses_;
+  Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix_;  // empty when lumped
+};
+
+// SOFA's DiagonalMass on tetrahedra: each tetrahedron gives density · |V| / 4 to each of its vertices.
+template <class Real>
+std::vector<Real> tetrahedral_lumped_masses(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
+                                            Real density);
+
+// SOFA's MeshMatrixMass on tetrahedra: the consistent linear-tetrahedron mass matrix,
+// M_ii += density |V| / 10, M_ij += density |V| / 20 for i != j in each tetrahedron.
+template <class Real>
+Eigen::SparseMatrix<Real> tetrahedral_mass_matrix(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
+                                                  Real density);
+
+// Total rest volume sum |V_t|.
+template <class Real>
+Real total_volume(const TetMesh& mesh, std::span<const Vec3<Real>> rest);
+
+}  // namespace fastcorot

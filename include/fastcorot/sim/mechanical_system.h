@@ -1,0 +1,73 @@
+// MechanicalSystem<Real>: everything an ODE solver acts on for one object (the contents of a SOFA
+// node under one solver): the state, the force fields, the mass, fixed points, constant forces and
+// gravity. It offers the operations SOFA's mechanical visitors provide: the total force, the
+// product (m M + b B + k K) dx with projective constraints applied, and the same matrix assembled.
+// K is df/dx of the force fields' last linearisation (their last add_force); B = 0 except through
+// the force fields' own Rayleigh stiffness.
+#pragma once
+
+#include "fastcorot/core/types.h"
+#include "fastcorot/fem/corotational_force_field.h"
+#include "fastcorot/sim/mass.h"
+#include "fastcorot/sim/mechanical_state.h"
+
+#include <Eigen/SparseCore>
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace fastcorot {
+
+// Forces held constant in time (SOFA's ConstantForceField): forces[i] applies to indices[i].
+template <class Real>
+struct ConstantForce {
+  std::vector<Index> indices;
+  std::vector<Vec3<Real>> forces;
+};
+
+// Factors of the system matrix m M + b B + k K.
+template <class Real>
+struct MatrixFactors {
+  Real m = 0;
+  Real b = 0;
+  Real k = 0;
+};
+
+template <class Real>
+class MechanicalSystem {
+ public:
+  MechanicalState<Real> state;
+  std::vector<std::shared_ptr<CorotationalForceField<Real>>> force_fields;
+  Mass<Real> mass;                   // empty (size 0) when the object has no mass component
+  std::vector<Index> fixed;          // fixed point indices, sorted, unique
+  std::vector<ConstantForce<Real>> constant_forces;
+  Vec3<Real> gravity = Vec3<Real>::Zero();
+
+  Index size() const { return state.size(); }
+
+  // Sorts and de-duplicates `fixed` and checks every index against the state size; throws
+  // fastcorot::Error naming the bad index. Call after filling the system.
+  void finalize();
+
+  // f = total force at positions x (force fields, weight, constant forces); overwrites f. The force
+  // fields record their linearisation at x.
+  void compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+
+  // out = (m M + b B + k K) dx, then projected (fixed entries zero).
+  void multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
+                std::span<Vec3<Real>> out) const;
+
+  // The same matrix assembled (3#V × 3#V); each fixed point's rows and columns are cleared and its
+  // diagonal set to 1, as SOFA's projective constraints do to an assembled matrix.
+  Eigen::SparseMatrix<Real> assemble(const MatrixFactors<Real>& factors) const;
+
+  // Zeroes the entries of fixed points.
+  void project(std::span<Vec3<Real>> v) const;
+
+  // Elastic energy of the force fields plus the potential of gravity and constant forces, at x.
+  Real potential_energy(std::span<const Vec3<Real>> x) const;
+  Real kinetic_energy() const;
+};
+
+}  // namespace fastcorot

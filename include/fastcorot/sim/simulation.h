@@ -1,0 +1,45 @@
+// Simulation<Real>: the objects of a scene, each with its ODE solver and linear solver (one SOFA
+// solver node each), advanced together one time step at a time as SOFA's DefaultAnimationLoop
+// does: each object is integrated in scene order, then time advances by dt. A step that leaves a
+// non-finite position or velocity stops the simulation with an error naming the step and object.
+#pragma once
+
+#include "fastcorot/sim/linear_solver.h"
+#include "fastcorot/sim/mechanical_system.h"
+#include "fastcorot/sim/ode_solver.h"
+#include "fastcorot/topology/tet_mesh.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+struct SimulatedObject {
+  std::string path;               // node path from the root, names joined by '/'
+  std::shared_ptr<TetMesh> mesh;  // the elements (for output), may be null
+  MechanicalSystem<Real> system;
+  std::unique_ptr<OdeSolver<Real>> ode_solver;
+  std::unique_ptr<LinearSolver<Real>> linear_solver;
+};
+
+template <class Real>
+class Simulation {
+ public:
+  Real dt = Real(0.01);
+  Vec3<Real> gravity{Real(0), Real(-9.81), Real(0)};
+  std::vector<SimulatedObject<Real>> objects;
+
+  // Advances every object by dt. Throws fastcorot::Error "diverged at step N ..." when a state
+  // becomes non-finite (the state before the step is lost for that object; others are advanced).
+  StepReport step();
+
+  long steps_done() const { return steps_done_; }
+  Real time() const { return static_cast<Real>(steps_done_) * dt; }
+
+ private:
+  long steps_done_ = 0;
+};
+
+}  // namespace fastcorot

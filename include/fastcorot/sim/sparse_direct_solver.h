@@ -1,0 +1,26 @@
+// Sparse direct solve of the assembled system (SOFA's EigenSimplicialLDLT, SparseLDLSolver and
+// SparseCholeskySolver): LDL^T factorisation with Eigen's SimplicialLDLT. The symbolic analysis
+// (fill-reducing ordering, elimination tree) is reused while the sparsity pattern is unchanged.
+#pragma once
+
+#include "fastcorot/sim/linear_solver.h"
+
+#include <Eigen/SparseCholesky>
+
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+class SparseDirectSolver final : public LinearSolver<Real> {
+ public:
+  // Throws fastcorot::Error when the matrix is singular or not positive definite enough to factor.
+  LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
+                          std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
+
+ private:
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>> ldlt_;
+  std::vector<typename Eigen::SparseMatrix<Real>::StorageIndex> analysed_outer_, analysed_inner_;
+};
+
+}  // namespace fastcorot

@@ -1,0 +1,188 @@
+#include "fastcorot/scene/component_table.h"
+
+#include <algorithm>
+#include <array>
+#include <sstream>
+
+namespace fastcorot {
+
+namespace {
+
+const std::vector<ComponentSpec>& table() {
+  static const std::vector<ComponentSpec> components = {
+      {"MechanicalObject", "state", "Positions, velocities and rest positions of the points (template Vec3, Vec3d or Vec3f; simulated in double).",
+       {{"position", "vec3s", "", "initial positions; default: the node's first topology's points"},
+        {"velocity", "vec3s", "0", "initial velocities (one value is repeated to every point)"},
+        {"rest_position", "vec3s", "", "rest positions; default: the transformed positions"},
+        {"translation", "vec3", "0 0 0", "added to the positions after scaling and rotation"},
+        {"rotation", "vec3", "0 0 0", "Euler angles in degrees, R = Rz Ry Rx"},
+        {"scale3d", "vec3", "1 1 1", "per-axis scale, applied first"},
+        {"src", "link", "", "take position from this loader"},
+        {"topology", "link", "", "the topology giving the initial points"}}},
+      {"RegularGridTopology", "topology", "A grid of n = (nx, ny, nz) points over [min, max], x fastest (SOFA's point order).",
+       {{"n", "int3", "2 2 2", "points per axis"},
+        {"min", "vec3", "0 0 0", "first corner"},
+        {"max", "vec3", "1 1 1", "opposite corner"}}},
+      {"TetrahedronSetTopologyContainer", "topology", "Tetrahedra (inline, from a loader with src, or filled by a Hexa2TetraTopologicalMapping).",
+       {{"position", "vec3s", "", "points"},
+        {"tetrahedra", "indices", "", "4 indices per tetrahedron"},
+        {"edges", "indices", "", "explicit edge list (any order and orientation)"},
+        {"triangles", "indices", "", "accepted, unused"},
+        {"src", "link", "", "take position, tetrahedra and edges from this loader"}},
+       {"MeshTopology", "TetrahedronSetTopology"}},
+      {"Hexa2TetraTopologicalMapping", "mapping", "Splits the hexahedra of `input` (a RegularGridTopology) into 6 tetrahedra each, as SOFA does.",
+       {{"input", "link", "", "the grid"},
+        {"output", "link", "", "the TetrahedronSetTopologyContainer to fill"},
+        {"swapping", "bool", "false", "alternate the split between neighbouring cells (conforming faces)"}}},
+      {"MeshGmshLoader", "loader", "Reads a Gmsh .msh file (2.2 or 4.1, ASCII or binary).",
+       {{"filename", "file", "", "mesh file, relative to the scene's folder"},
+        {"translation", "vec3", "0 0 0", "applied after rotation"},
+        {"rotation", "vec3", "0 0 0", "Euler angles in degrees, R = Rz Ry Rx"},
+        {"scale3d", "vec3", "1 1 1", "applied first"},
+        {"createSubelements", "bool", "true", "accepted; edges are derived as needed"}}},
+      {"MeshVTKLoader", "loader", "Reads a VTK mesh: legacy .vtk (4.2, 5.1) or XML .vtu (ascii, base64, appended, zlib).",
+       {{"filename", "file", "", "mesh file, relative to the scene's folder"},
+        {"translation", "vec3", "0 0 0", "applied after rotation"},
+        {"rotation", "vec3", "0 0 0", "Euler angles in degrees, R = Rz Ry Rx"},
+        {"scale3d", "vec3", "1 1 1", "applied first"}}},
+      {"FastTetrahedralCorotationalForceField", "forcefield", "The corotational linear tetrahedral force field of SPEC.md.",
+       {{"youngModulus", "reals", "5000", "E, one value or one per tetrahedron"},
+        {"poissonRatio", "reals", "0.45", "nu in [0, 0.5), one value or one per tetrahedron"},
+        {"method", "string", "qr", "qr (large), polar, polar2, none (linear, small)"},
+        {"rayleighStiffness", "real", "0", "the force field's own stiffness-proportional damping"},
+        {"drawing", "bool", "false", "draw the tetrahedra"},
+        {"drawColor1", "string", "0 0 1 1", "colour of face 0"},
+        {"drawColor2", "string", "0 0.5 1 1", "colour of face 1"},
+        {"drawColor3", "string", "0 1 1 1", "colour of face 2"},
+        {"drawColor4", "string", "0.5 1 1 1", "colour of face 3"},
+        {"topology", "link", "", "the tetrahedral topology (default: the node's)"}}},
+      {"DiagonalMass", "mass", "Lumped mass: each tetrahedron gives density |V| / 4 to each vertex.",
+       {{"massDensity", "real", "", "density"},
+        {"totalMass", "real", "", "total mass (wins over massDensity); 1 when neither is given"},
+        {"topology", "link", "", "the tetrahedral topology (default: the node's)"}}},
+      {"UniformMass", "mass", "The same mass on every point.",
+       {{"vertexMass", "real", "", "mass of each point"},
+        {"totalMass", "real", "", "total mass, divided among the points (wins over vertexMass)"}}},
+      {"MeshMatrixMass", "mass", "Linear-tetrahedron mass matrix (consistent, or lumped by row sums).",
+       {{"massDensity", "real", "", "density"},
+        {"totalMass", "real", "", "total mass (wins over massDensity); 1 when neither is given"},
+        {"lumping", "bool", "false", "use the row sums as a diagonal mass"},
+        {"topology", "link", "", "the tetrahedral topology (default: the node's)"}}},
+      {"FixedProjectiveConstraint", "constraint", "Holds points fixed (their velocity increments are projected to zero).",
+       {{"indices", "indices", "0", "fixed points"},
+        {"fixAll", "bool", "false", "fix every point"},
+        {"activate_projectVelocity", "bool", "false", "also zero the velocities of fixed points after each step"}},
+       {"FixedConstraint"}},
+      {"BoxROI", "engine", "Selects the points (and tetrahedra) inside axis-aligned boxes, bounds included.",
+       {{"box", "reals", "0 0 0 1 1 1", "xmin ymin zmin xmax ymax zmax, 6 numbers per box"},
+        {"position", "vec3s", "", "points to test (default: the node's rest positions)"},
+        {"strict", "bool", "true", "a tetrahedron is inside when all its vertices are (else its barycentre)"},
+        {"doUpdate", "bool", "true", "accepted; the selection is made at init"}}},
+      {"ConstantForceField", "forcefield", "Constant forces on points (indices empty = every point).",
+       {{"indices", "indices", "", "points receiving a force"},
+        {"forces", "vec3s", "", "one force per index (wins)"},
+        {"force", "vec3", "", "the same force on every index"},
+        {"totalForce", "vec3", "", "divided equally among the indices"},
+        {"indexFromEnd", "bool", "false", "index i means point n-1-i"}}},
+      {"EulerImplicitSolver", "odesolver", "Backward Euler with Rayleigh damping (SOFA's formulation).",
+       {{"rayleighStiffness", "real", "0", "stiffness-proportional damping"},
+        {"rayleighMass", "real", "0", "mass-proportional damping"},
+        {"vdamping", "real", "0", "velocity decay rate"},
+        {"firstOrder", "bool", "false", "first-order scheme"},
+        {"trapezoidalScheme", "bool", "false", "trapezoidal factors (tr = 0.5)"},
+        {"solveConstraint", "bool", "false", "accepted; no constraint solvers"}}},
+      {"StaticSolver", "odesolver", "Static equilibrium by Newton-Raphson on P f(x) = 0.",
+       {{"newtonSolver", "link", "", "the NewtonRaphsonSolver (default: one with default settings)"},
+        {"newton_iterations", "int", "1", "older form: maxNbIterationsNewton"},
+        {"absolute_correction_tolerance_threshold", "real", "1e-5", "older form: absoluteEstimateDifferenceThreshold"},
+        {"relative_correction_tolerance_threshold", "real", "1e-5", "older form: relativeEstimateDifferenceThreshold"},
+        {"absolute_residual_tolerance_threshold", "real", "1e-5", "older form: absoluteResidualStoppingThreshold"},
+        {"relative_residual_tolerance_threshold", "real", "1e-5", "older form: mapped as SOFA maps it (onto relativeEstimateDifferenceThreshold)"},
+        {"should_diverge_when_residual_is_growing", "bool", "false", "older form: no effect"}}},
+      {"NewtonRaphsonSolver", "odesolver", "Newton iterations with line search, driven by a StaticSolver.",
+       {{"maxNbIterationsNewton", "int", "1", "Newton iterations per step"},
+        {"maxNbIterationsLineSearch", "int", "5", "step halvings tried"},
+        {"lineSearchCoefficient", "real", "0.5", "step reduction factor"},
+        {"relativeSuccessiveStoppingThreshold", "real", "1e-5", "|r_k| < t |r_(k-1)|"},
+        {"relativeInitialStoppingThreshold", "real", "1e-5", "|r_k| < t |r_0|"},
+        {"absoluteResidualStoppingThreshold", "real", "1e-5", "|r_k| < t"},
+        {"relativeEstimateDifferenceThreshold", "real", "0", "|dx| < t |x| (0: off)"},
+        {"absoluteEstimateDifferenceThreshold", "real", "0", "|dx| < t (0: off)"},
+        {"updateStateWhenDiverged", "bool", "true", "accepted"},
+        {"warnWhenLineSearchFails", "bool", "true", "accepted"},
+        {"warnWhenDiverge", "bool", "true", "accepted"}}},
+      {"CGLinearSolver", "linearsolver", "Matrix-free conjugate gradient with SOFA's stopping rules.",
+       {{"iterations", "int", "25", "maximum iterations"},
+        {"tolerance", "real", "1e-5", "stop when |r| / |b| <= tolerance"},
+        {"threshold", "real", "1e-5", "stop when |p^T A p| <= threshold"},
+        {"warmStart", "bool", "false", "accepted; starts from zero"}}},
+      {"EigenSimplicialLDLT", "linearsolver", "Sparse direct LDL^T solve of the assembled system.",
+       {{"ordering", "string", "AMD", "accepted"}},
+       {"SparseLDLSolver", "SparseCholeskySolver", "EigenSimplicialLLT", "EigenSparseLU"}},
+  };
+  return components;
+}
+
+constexpr std::array<std::string_view, 40> kIgnored = {
+    "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
+    "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
+    "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
+    "DiscreteIntersection", "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel",
+    "LineCollisionModel", "PointCollisionModel", "SphereCollisionModel", "OglModel", "VisualModel",
+    "VisualGrid", "LineAxis", "OglSceneFrame", "TetrahedronSetTopologyModifier",
+    "TetrahedronSetGeometryAlgorithms", "TriangleSetTopologyContainer", "TriangleSetTopologyModifier",
+    "TriangleSetGeometryAlgorithms", "Tetra2TriangleTopologicalMapping", "IdentityMapping",
+    "BarycentricMapping", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
+    "PositionalLight", "BackgroundSetting", "Camera", "OglLabel"};
+
+constexpr std::array<std::string_view, 8> kCommon = {"name", "template", "tags", "printLog", "listening",
+                                                     "bbox", "componentState", "src"};
+
+}  // namespace
+
+const ComponentSpec* find_component(std::string_view name) {
+  for (const auto& spec : table()) {
+    if (spec.name == name) return &spec;
+    if (std::find(spec.aliases.begin(), spec.aliases.end(), name) != spec.aliases.end()) return &spec;
+  }
+  return nullptr;
+}
+
+std::span<const ComponentSpec> supported_components() { return table(); }
+
+bool is_ignored_component(std::string_view name) {
+  return std::find(kIgnored.begin(), kIgnored.end(), name) != kIgnored.end();
+}
+
+std::span<const std::string_view> ignored_components() { return kIgnored; }
+
+bool is_common_attribute(std::string_view name) {
+  return std::find(kCommon.begin(), kCommon.end(), name) != kCommon.end() || name.starts_with("draw") ||
+         name.starts_with("show");
+}
+
+std::string component_documentation() {
+  std::ostringstream out;
+  for (const auto& spec : table()) {
+    out << "### " << spec.name;
+    if (!spec.aliases.empty()) {
+      out << " (also";
+      for (auto alias : spec.aliases) {
+        if (alias != spec.name) out << " " << alias;
+      }
+      out << ")";
+    }
+    out << "\n\n" << spec.doc << "\n\n| attribute | type | default | meaning |\n|---|---|---|---|\n";
+    for (const auto& a : spec.attributes) {
+      out << "| `" << a.name << "` | " << a.type << " | " << (a.default_value.empty() ? "—" : a.default_value)
+          << " | " << a.doc << " |\n";
+    }
+    out << "\n";
+  }
+  out << "Accepted without effect on the mechanics (one info line each):";
+  for (auto name : kIgnored) out << " " << name;
+  out << ".\n";
+  return out.str();
+}
+
+}  // namespace fastcorot

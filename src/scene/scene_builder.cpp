@@ -1,0 +1,380 @@
+#include "fastcorot/scene/scene_builder.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/sim/conjugate_gradient.h"
+#include "fastcorot/sim/sparse_direct_solver.h"
+#include "scene_data.h"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace fastcorot {
+
+using scene_detail::Component;
+using scene_detail::GraphNode;
+using scene_detail::Numbers;
+using scene_detail::SceneData;
+
+namespace {
+
+bool is_integrator(const Component& c) { return c.type() == "EulerImplicitSolver" || c.type() == "StaticSolver"; }
+
+// A node whose state is mapped from its parent's (visual or collision models): it does not take
+// part in the mechanics here.
+bool is_mapped_node(const GraphNode& node) {
+  for (const auto& c : node.components) {
+    const std::string& type = c->object->type;
+    if (type.ends_with("Mapping") && type != "Hexa2TetraTopologicalMapping" &&
+        type != "Tetra2TriangleTopologicalMapping") {
+      return true;
+    }
+  }
+  return false;
+}
+
+Vec3<double> node_vec3(const SceneNode& node, const std::string& name, const Vec3<double>& fallback) {
+  const auto it = node.attributes.find(name);
+  if (it == node.attributes.end()) return fallback;
+  std::istringstream in(it->second);
+  Vec3<double> v;
+  if (!(in >> v.x() >> v.y() >> v.z()) || !v.allFinite()) {
+    throw make_error(node.location.to_string(), ": Node '", node.name, "': ", name, " = \"", it->second,
+                     "\": expected 3 finite numbers");
+  }
+  return v;
+}
+
+class Builder {
+ public:
+  explicit Builder(const SceneNode& root) : data_(root, info_) {}
+
+  LoadedScene build() {
+    const SceneNode& root = *data_.root().scene;
+    simulation_.gravity = node_vec3(root, "gravity", {0, -9.81, 0});
+    if (const auto dt = root.attributes.find("dt"); dt != root.attributes.end()) {
+      char* end = nullptr;
+      simulation_.dt = std::strtod(dt->second.c_str(), &end);
+      if (end == dt->second.c_str() || *end != '\0' || !(simulation_.dt > 0) || !std::isfinite(simulation_.dt)) {
+        throw make_error(root.location.to_string(), ": Node '", root.name, "': dt = \"", dt->second,
+                         "\": must be a finite number > 0");
+      }
+    }
+    visit(data_.root(), false);
+    if (simulation_.objects.empty()) {
+      throw make_error(root.location.file.string(), ": the scene has no node with an ODE solver "
+                       "(EulerImplicitSolver or StaticSolver) and a MechanicalObject: nothing to simulate");
+    }
+    return {std::move(simulation_), std::move(info_)};
+  }
+
+ private:
+  void visit(GraphNode& node, bool under_solver) {
+    std::vector<Component*> integrators;
+    for (const auto& c : node.components) {
+      if (is_integrator(*c)) integrators.push_back(c.get());
+    }
+    if (integrators.size() > 1) {
+      throw make_error(integrators[1]->where(), ": a second ODE solver in node ", node.path, " (one per node)");
+    }
+    if (!integrators.empty() && !under_solver) {
+      build_object(node, *integrators.front());
+      return;
+    }
+    if (!under_solver && !node.of_category("state").empty()) {
+      info_.push_back(node.scene->location.to_string() + ": node " + node.path +
+                      " has no ODE solver above it: it is not simulated (as in SOFA)");
+    }
+    for (auto& child : node.children) visit(*child, under_solver);
+  }
+
+  // Nodes taking part in the mechanics under a solver node: the node and its descendants, minus
+  // mapped (visual/collision) subtrees.
+  void collect(GraphNode& node, std::vector<GraphNode*>& nodes) {
+    if (is_mapped_node(node)) {
+      for (const char* category : {"forcefield", "mass", "constraint"}) {
+        if (!node.of_category(category).empty()) {
+          throw make_error(node.of_category(category).front()->where(),
+                           ": mechanics in a mapped node are not supported (node ", node.path, ")");
+        }
+      }
+      info_.push_back(node.scene->location.to_string() + ": mapped node " + node.path +
+                      " ignored (visual or collision only)");
+      return;
+    }
+    nodes.push_back(&node);
+    for (auto& child : node.children) collect(*child, nodes);
+  }
+
+  void build_object(GraphNode& solver_node, Component& integrator) {
+    std::vector<GraphNode*> nodes;
+    collect(solver_node, nodes);
+    std::vector<Component*> states, linear_solvers;
+    for (GraphNode* node : nodes) {
+      for (Component* c : node->of_category("state")) states.push_back(c);
+      for (Component* c : node->of_category("linearsolver")) linear_solvers.push_back(c);
+    }
+    if (states.empty()) {
+      throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
+    }
+    if (states.size() > 1) {
+      throw make_error(states[1]->where(), ": a second MechanicalObject under the solver of node ",
+                       solver_node.path, "; fastcorot simulates one object per solver");
+    }
+    Component& state = *states.front();
+    SimulatedObject<double> object;
+    object.path = state.node->path;
+    auto& system = object.system;
+    system.gravity = simulation_.gravity;
+    system.state.position = data_.points(state, "position");
+    system.state.rest_position = data_.points(state, "rest_position");
+    const Index n = system.size();
+    if (n == 0) throw make_error(state.where(), ": the state has no points");
+    if (system.state.rest_position.size() != system.state.position.size()) {
+      throw make_error(state.where(), ": rest_position has ", system.state.rest_position.size(),
+                       " points, position has ", n);
+    }
+    auto velocity = data_.points(state, "velocity");
+    if (velocity.size() == 1) velocity.assign(static_cast<std::size_t>(n), velocity.front());
+    if (!velocity.empty() && velocity.size() != static_cast<std::size_t>(n)) {
+      throw make_error(state.where(), ": velocity has ", velocity.size(), " entries, position has ", n);
+    }
+    system.state.velocity = velocity.empty() ? Points<double>(static_cast<std::size_t>(n), Vec3<double>::Zero()) : velocity;
+
+    for (GraphNode* node : nodes) {
+      for (const auto& c : node->components) {
+        if (!c->spec) continue;
+        const std::string_view type = c->type();
+        if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
+        if (type == "ConstantForceField") add_constant_force(*c, system);
+        if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
+        if (c->spec->category == "mass") {
+          if (system.mass.size() != 0) throw make_error(c->where(), ": a second mass for ", object.path);
+          system.mass = build_mass(*c, system.state.rest_position);
+        }
+      }
+    }
+    try {
+      system.finalize();
+    } catch (const Error& error) {
+      throw make_error(state.where(), ": ", error.what());
+    }
+    object.ode_solver = build_integrator(integrator, nodes);
+    if (linear_solvers.empty()) {
+      throw make_error(integrator.where(), ": no linear solver in node ", solver_node.path,
+                       " or below (add CGLinearSolver or EigenSimplicialLDLT)");
+    }
+    object.linear_solver = build_linear_solver(*linear_solvers.front());
+    simulation_.objects.push_back(std::move(object));
+  }
+
+  std::shared_ptr<TetMesh> mesh_of(Component& user, Index num_points) {
+    Component* topology = user.has("topology") ? &data_.resolve_object(*user.node, user.object->attributes.at("topology"), user)
+                                               : data_.topology_of(*user.node);
+    if (!topology) throw make_error(user.where(), ": no topology in its node or above");
+    if (const auto it = meshes_.find(topology); it != meshes_.end()) return it->second;
+    const std::vector<Index> flat = data_.indices(*topology, "tetrahedra");
+    if (flat.empty()) {
+      throw make_error(user.where(), ": its topology ", topology->where(), " has no tetrahedra",
+                       topology->type() == "RegularGridTopology"
+                           ? " (a grid gives hexahedra: add a TetrahedronSetTopologyContainer filled by a "
+                             "Hexa2TetraTopologicalMapping after it)"
+                           : "");
+    }
+    if (flat.size() % 4 != 0) throw make_error(topology->where(), ": tetrahedra needs 4 indices per tetrahedron");
+    std::vector<Tetrahedron> tetrahedra(flat.size() / 4);
+    for (std::size_t t = 0; t < tetrahedra.size(); ++t) {
+      for (int j = 0; j < 4; ++j) tetrahedra[t][j] = flat[4 * t + j];
+    }
+    const std::vector<Index> edge_list = data_.indices(*topology, "edges");
+    try {
+      std::shared_ptr<TetMesh> mesh;
+      if (edge_list.empty()) {
+        mesh = std::make_shared<TetMesh>(num_points, std::move(tetrahedra));
+      } else {
+        std::vector<Edge> edges(edge_list.size() / 2);
+        for (std::size_t e = 0; e < edges.size(); ++e) edges[e] = {edge_list[2 * e], edge_list[2 * e + 1]};
+        mesh = std::make_shared<TetMesh>(num_points, std::move(tetrahedra), std::move(edges));
+      }
+      return meshes_[topology] = mesh;
+    } catch (const Error& error) {
+      throw make_error(topology->where(), ": ", error.what());
+    }
+  }
+
+  void add_force_field(Component& c, SimulatedObject<double>& object) {
+    auto& system = object.system;
+    CorotationalForceField<double>::Parameters parameters;
+    if (c.has("youngModulus")) parameters.young_modulus = data_.data(c, "youngModulus");
+    if (c.has("poissonRatio")) parameters.poisson_ratio = data_.data(c, "poissonRatio");
+    parameters.rayleigh_stiffness = data_.real(c, "rayleighStiffness", 0.0);
+    try {
+      if (parameters.young_modulus.empty()) throw make_error("youngModulus is empty");
+      if (parameters.poisson_ratio.empty()) throw make_error("poissonRatio is empty");
+      parameters.method = parse_rotation_method(data_.text(c, "method", "qr"));
+      auto mesh = mesh_of(c, system.size());
+      system.force_fields.push_back(
+          std::make_shared<CorotationalForceField<double>>(mesh, system.state.rest_position, parameters));
+      if (!object.mesh) object.mesh = mesh;
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  Mass<double> build_mass(Component& c, const Points<double>& rest) {
+    const auto n = static_cast<Index>(rest.size());
+    const std::string_view type = c.type();
+    try {
+      if (type == "UniformMass") {
+        double vertex_mass;
+        if (c.has("totalMass")) {
+          vertex_mass = data_.real(c, "totalMass", 0) / static_cast<double>(n);
+        } else if (c.has("vertexMass")) {
+          vertex_mass = data_.real(c, "vertexMass", 0);
+        } else {
+          throw make_error("neither vertexMass nor totalMass given");
+        }
+        return Mass<double>::lumped(std::vector<double>(static_cast<std::size_t>(n), vertex_mass));
+      }
+      const auto mesh = mesh_of(c, n);
+      double density = 1;
+      const bool from_total = c.has("totalMass") || !c.has("massDensity");
+      if (!from_total) density = data_.real(c, "massDensity", 1.0);
+      if (!(density > 0) || !std::isfinite(density)) throw make_error("massDensity = ", density, ": must be > 0");
+      if (type == "DiagonalMass" || (type == "MeshMatrixMass" && data_.boolean(c, "lumping", false))) {
+        std::vector<double> masses = tetrahedral_lumped_masses<double>(*mesh, rest, 1.0);
+        double sum = 0;
+        for (double m : masses) sum += m;
+        const double factor = from_total ? data_.real(c, "totalMass", 1.0) / sum : density;
+        if (from_total && !(data_.real(c, "totalMass", 1.0) > 0)) throw make_error("totalMass must be > 0");
+        for (double& m : masses) m *= factor;
+        return Mass<double>::lumped(std::move(masses));
+      }
+      Eigen::SparseMatrix<double> matrix = tetrahedral_mass_matrix<double>(*mesh, rest, 1.0);
+      const double total = matrix.sum();
+      const double factor = from_total ? data_.real(c, "totalMass", 1.0) / total : density;
+      if (from_total && !(data_.real(c, "totalMass", 1.0) > 0)) throw make_error("totalMass must be > 0");
+      return Mass<double>::consistent(matrix * factor);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  void add_fixed(Component& c, MechanicalSystem<double>& system) {
+    if (data_.boolean(c, "fixAll", false)) {
+      for (Index i = 0; i < system.size(); ++i) system.fixed.push_back(i);
+      return;
+    }
+    const std::vector<Index> indices = c.has("indices") ? data_.indices(c, "indices") : std::vector<Index>{0};
+    for (Index i : indices) {
+      if (i >= system.size()) throw make_error(c.where(), ": index ", i, " out of range [0, ", system.size(), ")");
+      system.fixed.push_back(i);
+    }
+  }
+
+  void add_constant_force(Component& c, MechanicalSystem<double>& system) {
+    ConstantForce<double> constant;
+    constant.indices = data_.indices(c, "indices");
+    if (constant.indices.empty()) {
+      for (Index i = 0; i < system.size(); ++i) constant.indices.push_back(i);
+    }
+    const auto count = constant.indices.size();
+    if (data_.boolean(c, "indexFromEnd", false)) {
+      for (Index& i : constant.indices) i = system.size() - 1 - i;
+    }
+    for (Index i : constant.indices) {
+      if (i < 0 || i >= system.size()) throw make_error(c.where(), ": index out of range [0, ", system.size(), ")");
+    }
+    if (c.has("forces")) {
+      constant.forces = data_.points(c, "forces");
+      if (constant.forces.size() != count) {
+        throw make_error(c.where(), ": forces has ", constant.forces.size(), " entries for ", count, " indices");
+      }
+    } else if (c.has("force")) {
+      constant.forces.assign(count, data_.vec3(c, "force", {0, 0, 0}));
+    } else if (c.has("totalForce")) {
+      constant.forces.assign(count, data_.vec3(c, "totalForce", {0, 0, 0}) / static_cast<double>(count));
+    } else {
+      info_.push_back(c.where() + ": no forces, force or totalForce given: no load");
+      constant.forces.assign(count, Vec3<double>::Zero());
+    }
+    system.constant_forces.push_back(std::move(constant));
+  }
+
+  std::unique_ptr<OdeSolver<double>> build_integrator(Component& c, const std::vector<GraphNode*>& nodes) {
+    try {
+      if (c.type() == "EulerImplicitSolver") {
+        ImplicitEulerSolver<double>::Parameters p;
+        p.rayleigh_stiffness = data_.real(c, "rayleighStiffness", 0);
+        p.rayleigh_mass = data_.real(c, "rayleighMass", 0);
+        p.velocity_damping = data_.real(c, "vdamping", 0);
+        p.first_order = data_.boolean(c, "firstOrder", false);
+        p.trapezoidal = data_.boolean(c, "trapezoidalScheme", false);
+        return std::make_unique<ImplicitEulerSolver<double>>(p);
+      }
+      StaticSolver<double>::NewtonParameters p;
+      Component* newton = nullptr;
+      if (c.has("newtonSolver")) {
+        newton = &data_.resolve_object(*c.node, c.object->attributes.at("newtonSolver"), c);
+        if (newton->type() != "NewtonRaphsonSolver") {
+          throw make_error("newtonSolver must link a NewtonRaphsonSolver, not ", newton->type());
+        }
+      } else {
+        for (GraphNode* node : nodes) {
+          for (auto& other : node->components) {
+            if (!newton && other->type() == "NewtonRaphsonSolver") newton = other.get();
+          }
+        }
+      }
+      if (newton) {
+        p.max_iterations = static_cast<int>(data_.real(*newton, "maxNbIterationsNewton", 1));
+        p.max_line_search_iterations = static_cast<int>(data_.real(*newton, "maxNbIterationsLineSearch", 5));
+        p.line_search_coefficient = data_.real(*newton, "lineSearchCoefficient", 0.5);
+        p.relative_successive_threshold = data_.real(*newton, "relativeSuccessiveStoppingThreshold", 1e-5);
+        p.relative_initial_threshold = data_.real(*newton, "relativeInitialStoppingThreshold", 1e-5);
+        p.absolute_residual_threshold = data_.real(*newton, "absoluteResidualStoppingThreshold", 1e-5);
+        p.relative_estimate_difference_threshold = data_.real(*newton, "relativeEstimateDifferenceThreshold", 0);
+        p.absolute_estimate_difference_threshold = data_.real(*newton, "absoluteEstimateDifferenceThreshold", 0);
+      } else {
+        // SOFA creates a NewtonRaphsonSolver and copies the older StaticSolver attributes onto it,
+        // including its mapping of the relative residual threshold onto the estimate difference.
+        p.max_iterations = static_cast<int>(data_.real(c, "newton_iterations", 1));
+        p.absolute_estimate_difference_threshold = data_.real(c, "absolute_correction_tolerance_threshold", 0);
+        p.relative_estimate_difference_threshold = data_.real(c, "relative_correction_tolerance_threshold", 0);
+        p.absolute_residual_threshold = data_.real(c, "absolute_residual_tolerance_threshold", 1e-5);
+        if (c.has("relative_residual_tolerance_threshold")) {
+          p.relative_estimate_difference_threshold = data_.real(c, "relative_residual_tolerance_threshold", 0);
+        }
+      }
+      return std::make_unique<StaticSolver<double>>(p);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c) {
+    if (c.type() != "CGLinearSolver") return std::make_unique<SparseDirectSolver<double>>();
+    ConjugateGradientSolver<double>::Parameters p;
+    p.iterations = static_cast<int>(data_.real(c, "iterations", 25));
+    p.tolerance = data_.real(c, "tolerance", 1e-5);
+    p.threshold = data_.real(c, "threshold", 1e-5);
+    try {
+      return std::make_unique<ConjugateGradientSolver<double>>(p);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  std::vector<std::string> info_;
+  SceneData data_;
+  Simulation<double> simulation_;
+  std::map<const Component*, std::shared_ptr<TetMesh>> meshes_;
+};
+
+}  // namespace
+
+LoadedScene build_scene(const SceneNode& root) { return Builder(root).build(); }
+
+LoadedScene load_scene_file(const std::filesystem::path& path) { return build_scene(parse_scene_file(path)); }
+
+}  // namespace fastcorot

@@ -1,0 +1,446 @@
+#include "scene_data.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/topology/regular_grid.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace fastcorot::scene_detail {
+
+std::string Component::where() const {
+  std::string text = object->location.to_string() + ": " + std::string(type());
+  if (!name().empty()) text += " '" + name() + "'";
+  return text;
+}
+
+std::vector<Component*> GraphNode::of_category(std::string_view category) const {
+  std::vector<Component*> found;
+  for (const auto& c : components) {
+    if (c->spec && c->spec->category == category) found.push_back(c.get());
+  }
+  return found;
+}
+
+Mat3<double> euler_rotation(const Vec3<double>& degrees) {
+  const Vec3<double> radians = degrees * std::numbers::pi / 180.0;
+  return (Eigen::AngleAxisd(radians.z(), Vec3<double>::UnitZ()) * Eigen::AngleAxisd(radians.y(), Vec3<double>::UnitY()) *
+          Eigen::AngleAxisd(radians.x(), Vec3<double>::UnitX()))
+      .toRotationMatrix();
+}
+
+namespace {
+
+std::string join_names(std::span<const AttributeSpec> attributes) {
+  std::string list;
+  for (const auto& a : attributes) list += (list.empty() ? "" : ", ") + std::string(a.name);
+  return list;
+}
+
+std::string supported_names() {
+  std::string list;
+  for (const auto& spec : supported_components()) list += (list.empty() ? "" : ", ") + std::string(spec.name);
+  return list;
+}
+
+// Applies scale, then rotation, then translation (SOFA's MechanicalObject and loaders).
+std::vector<Vec3<double>> transformed(std::vector<Vec3<double>> points, const Vec3<double>& scale,
+                                      const Vec3<double>& rotation_degrees, const Vec3<double>& translation) {
+  const bool rotate = rotation_degrees != Vec3<double>::Zero();
+  const Mat3<double> r = euler_rotation(rotation_degrees);
+  for (auto& p : points) {
+    p = p.cwiseProduct(scale);
+    if (rotate) p = r * p;
+    p += translation;
+  }
+  return points;
+}
+
+Numbers flatten(const std::vector<Vec3<double>>& points) {
+  Numbers out;
+  out.reserve(3 * points.size());
+  for (const auto& p : points) out.insert(out.end(), {p.x(), p.y(), p.z()});
+  return out;
+}
+
+template <std::size_t N>
+Numbers flatten_indices(const std::vector<std::array<Index, N>>& tuples) {
+  Numbers out;
+  out.reserve(N * tuples.size());
+  for (const auto& t : tuples) {
+    for (Index i : t) out.push_back(static_cast<double>(i));
+  }
+  return out;
+}
+
+}  // namespace
+
+SceneData::SceneData(const SceneNode& root, std::vector<std::string>& info) {
+  root_ = build_node(root, nullptr, info);
+}
+
+std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNode* parent,
+                                                 std::vector<std::string>& info) {
+  auto node = std::make_unique<GraphNode>();
+  node->scene = &scene;
+  node->parent = parent;
+  node->path = parent ? parent->path + "/" + scene.name : scene.name;
+  for (const auto& object : scene.objects) {
+    auto component = std::make_unique<Component>();
+    component->object = &object;
+    component->node = node.get();
+    component->spec = find_component(object.type);
+    if (!component->spec) {
+      if (is_ignored_component(object.type)) {
+        info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
+        node->components.push_back(std::move(component));
+        continue;
+      }
+      throw make_error(object.location.to_string(), ": unknown component '", object.type,
+                       "'; supported: ", supported_names(),
+                       " (and display or collision components, which are ignored); see `fastcorot components`");
+    }
+    for (const auto& [attribute, value] : object.attributes) {
+      if (is_common_attribute(attribute)) continue;
+      bool known = false;
+      for (const auto& a : component->spec->attributes) known = known || a.name == attribute;
+      if (!known) {
+        throw make_error(object.location.to_string(), ": ", component->spec->name, ": unknown attribute '",
+                         attribute, "'; supported: ", join_names(component->spec->attributes));
+      }
+    }
+    node->components.push_back(std::move(component));
+  }
+  for (const auto& child : scene.children) node->children.push_back(build_node(child, node.get(), info));
+  return node;
+}
+
+Numbers SceneData::parse_numbers(const Component& c, const std::string& name, const std::string& text) const {
+  Numbers numbers;
+  std::string cleaned = text;
+  for (char& ch : cleaned) {
+    if (ch == ',' || ch == '[' || ch == ']') ch = ' ';
+  }
+  std::istringstream in(cleaned);
+  std::string token;
+  while (in >> token) {
+    try {
+      std::size_t used = 0;
+      const double value = std::stod(token, &used);
+      if (used != token.size()) throw std::invalid_argument(token);
+      if (!std::isfinite(value)) throw std::invalid_argument(token);
+      numbers.push_back(value);
+    } catch (const std::exception&) {
+      throw make_error(c.where(), ": ", name, " = \"", text.size() > 60 ? text.substr(0, 60) + "..." : text,
+                       "\": '", token, "' is not a finite number");
+    }
+  }
+  return numbers;
+}
+
+Component& SceneData::resolve_object(const GraphNode& from, const std::string& link, const Component& user) {
+  auto fail = [&](const std::string& why) -> Component& {
+    throw make_error(user.where(), ": broken link '", link, "': ", why);
+  };
+  if (link.empty() || link[0] != '@') return fail("links start with @");
+  std::string path = link.substr(1);
+  const GraphNode* node = &from;
+  // Only the first name of a relative path is searched upward through the ancestors (SOFA).
+  bool search_up = true;
+  if (!path.empty() && path[0] == '/') {
+    while (node->parent) node = node->parent;
+    path = path.substr(1);
+    search_up = false;
+    const auto slash = path.find('/');
+    if (path.substr(0, slash) == node->scene->name) path = slash == std::string::npos ? "" : path.substr(slash + 1);
+  }
+  std::vector<std::string> parts;
+  std::stringstream stream(path);
+  for (std::string part; std::getline(stream, part, '/');) {
+    if (!part.empty()) parts.push_back(part);
+  }
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    const bool last = i + 1 == parts.size();
+    if (part == "." || part == "..") {
+      if (part == ".." && !node->parent) return fail("the root has no parent");
+      if (part == "..") node = node->parent;
+      search_up = false;
+      continue;
+    }
+    const GraphNode* next = nullptr;
+    for (const GraphNode* scope = node; scope && !next; scope = search_up ? scope->parent : nullptr) {
+      if (last) {
+        for (const auto& c : scope->components) {
+          if (c->name() == part) return *c;
+        }
+      }
+      for (const auto& child : scope->children) {
+        if (child->scene->name == part) next = child.get();
+      }
+      if (next && last) return fail("'" + part + "' is a node, not a component");
+    }
+    if (!next) {
+      return fail("no " + std::string(last ? "component" : "node") + " named '" + part + "' in " + node->path +
+                  (search_up ? " or above" : ""));
+    }
+    node = next;
+    search_up = false;
+  }
+  return fail("it names no component");
+}
+
+const Numbers& SceneData::data(Component& c, const std::string& name) {
+  if (const auto it = c.cache.find(name); it != c.cache.end()) return it->second;
+  if (c.evaluating.count(name)) throw make_error(c.where(), ": '", name, "' depends on itself through links");
+  c.evaluating.insert(name);
+  Numbers value;
+  const auto attribute = c.object->attributes.find(name);
+  if (attribute != c.object->attributes.end() && !attribute->second.empty() && attribute->second[0] == '@') {
+    const std::string& link = attribute->second;
+    const auto slash = link.rfind('/');
+    const auto dot = link.rfind('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot + 1 == link.size() ||
+        link.compare(dot - 1, 2, "..") == 0) {
+      // A link to a component for a data attribute: take that component's data of the same name.
+      value = data(resolve_object(*c.node, link, c), name);
+    } else {
+      value = data(resolve_object(*c.node, link.substr(0, dot), c), link.substr(dot + 1));
+    }
+  } else if (attribute != c.object->attributes.end()) {
+    value = parse_numbers(c, name, attribute->second);
+  } else {
+    value = compute(c, name);
+  }
+  c.evaluating.erase(name);
+  return c.cache[name] = std::move(value);
+}
+
+const MeshData& SceneData::mesh_file(Component& loader) {
+  if (const auto it = mesh_files_.find(&loader); it != mesh_files_.end()) return it->second;
+  const auto filename = loader.object->attributes.find("filename");
+  if (filename == loader.object->attributes.end() || filename->second.empty()) {
+    throw make_error(loader.where(), ": no filename given");
+  }
+  const std::filesystem::path path = loader.object->location.file.parent_path() / filename->second;
+  MeshData mesh;
+  try {
+    mesh = read_mesh_file(path);
+  } catch (const Error& error) {
+    throw make_error(loader.where(), ": ", error.what());
+  }
+  mesh.points = transformed(std::move(mesh.points), vec3(loader, "scale3d", {1, 1, 1}),
+                            vec3(loader, "rotation", {0, 0, 0}), vec3(loader, "translation", {0, 0, 0}));
+  return mesh_files_[&loader] = std::move(mesh);
+}
+
+Component* SceneData::topology_of(const GraphNode& node) {
+  for (const GraphNode* scope = &node; scope; scope = scope->parent) {
+    const auto topologies = scope->of_category("topology");
+    if (!topologies.empty()) return topologies.back();
+  }
+  return nullptr;
+}
+
+Numbers SceneData::compute(Component& c, const std::string& name) {
+  const std::string_view type = c.type();
+  // src="@loader": same-named data come from the source unless written here.
+  if (const auto src = c.object->attributes.find("src"); src != c.object->attributes.end() &&
+                                                         (name == "position" || name == "tetrahedra" || name == "triangles")) {
+    Component& source = resolve_object(*c.node, src->second, c);
+    if (type == "MechanicalObject" && name != "position") return {};
+    if (type != "MechanicalObject") return data(source, name);
+  }
+  if (type == "RegularGridTopology" && name == "position") {
+    RegularGrid grid;
+    const Numbers& n = data(c, "n");
+    if (n.size() != 3) throw make_error(c.where(), ": n needs 3 integers");
+    for (int k = 0; k < 3; ++k) grid.n[k] = static_cast<Index>(n[k]);
+    grid.min = vec3(c, "min", {0, 0, 0});
+    grid.max = vec3(c, "max", {1, 1, 1});
+    try {
+      validate(grid);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+    return flatten(grid_points<double>(grid));
+  }
+  if (type == "RegularGridTopology" && name == "n") return {2, 2, 2};
+  if (type == "MeshGmshLoader" || type == "MeshVTKLoader") {
+    const MeshData& mesh = mesh_file(c);
+    if (name == "position") return flatten(mesh.points);
+    if (name == "tetrahedra") return flatten_indices(mesh.tetrahedra);
+    if (name == "triangles") return flatten_indices(mesh.triangles);
+    return {};
+  }
+  if (type == "TetrahedronSetTopologyContainer") {
+    // Filled by a Hexa2TetraTopologicalMapping that names this container as its output.
+    std::vector<GraphNode*> stack = {root_.get()};
+    while (!stack.empty()) {
+      GraphNode* node = stack.back();
+      stack.pop_back();
+      for (auto& m : node->components) {
+        if (m->type() != "Hexa2TetraTopologicalMapping" || !m->has("output")) continue;
+        if (&resolve_object(*node, m->object->attributes.at("output"), *m) != &c) continue;
+        if (!m->has("input")) throw make_error(m->where(), ": no input given");
+        Component& grid = resolve_object(*node, m->object->attributes.at("input"), *m);
+        if (grid.type() != "RegularGridTopology") {
+          throw make_error(m->where(), ": input must be a RegularGridTopology, not ", grid.type());
+        }
+        if (name == "position") return data(grid, "position");
+        if (name == "tetrahedra") {
+          RegularGrid spec;
+          const Numbers& n = data(grid, "n");
+          for (int k = 0; k < 3; ++k) spec.n[k] = static_cast<Index>(n[k]);
+          spec.min = vec3(grid, "min", {0, 0, 0});
+          spec.max = vec3(grid, "max", {1, 1, 1});
+          return flatten_indices(grid_tetrahedra(spec, boolean(*m, "swapping", false)));
+        }
+        return {};
+      }
+      for (auto& child : node->children) stack.push_back(child.get());
+    }
+    return {};
+  }
+  if (type == "MechanicalObject") {
+    if (name == "position") {
+      std::vector<Vec3<double>> base;
+      if (const auto src = c.object->attributes.find("src"); src != c.object->attributes.end()) {
+        base = points_from(data(resolve_object(*c.node, src->second, c), "position"), c, "position");
+      } else {
+        Component* topology = nullptr;
+        if (c.has("topology")) {
+          topology = &resolve_object(*c.node, c.object->attributes.at("topology"), c);
+        } else {
+          const auto local = c.node->of_category("topology");
+          if (!local.empty()) topology = local.front();
+        }
+        if (!topology) {
+          throw make_error(c.where(), ": no position given and no topology in node ", c.node->path,
+                           " to take points from");
+        }
+        base = points_from(data(*topology, "position"), *topology, "position");
+      }
+      return flatten(transformed(std::move(base), vec3(c, "scale3d", {1, 1, 1}), vec3(c, "rotation", {0, 0, 0}),
+                                 vec3(c, "translation", {0, 0, 0})));
+    }
+    if (name == "rest_position") return data(c, "position");
+    if (name == "velocity") return {};
+    return {};
+  }
+  if (type == "BoxROI") {
+    if (name == "box") return {0, 0, 0, 1, 1, 1};
+    if (name == "position") {
+      for (const GraphNode* scope = c.node; scope; scope = scope->parent) {
+        const auto states = scope->of_category("state");
+        if (!states.empty()) return data(*states.front(), "rest_position");
+        if (scope == c.node) {
+          const auto loaders = scope->of_category("loader");
+          if (!loaders.empty()) return data(*loaders.front(), "position");
+        }
+      }
+      throw make_error(c.where(), ": no position given and no MechanicalObject in its node or above");
+    }
+    const Numbers& box = data(c, "box");
+    if (box.size() % 6 != 0 || box.empty()) {
+      throw make_error(c.where(), ": box needs 6 numbers per box (xmin ymin zmin xmax ymax zmax), got ", box.size());
+    }
+    auto inside = [&](const Vec3<double>& p) {
+      for (std::size_t b = 0; b < box.size(); b += 6) {
+        bool in = true;
+        for (int k = 0; k < 3; ++k) {
+          const double lo = std::min(box[b + k], box[b + 3 + k]);
+          const double hi = std::max(box[b + k], box[b + 3 + k]);
+          in = in && lo <= p[k] && p[k] <= hi;
+        }
+        if (in) return true;
+      }
+      return false;
+    };
+    const auto positions = points(c, "position");
+    if (name == "indices") {
+      Numbers out;
+      for (std::size_t i = 0; i < positions.size(); ++i) {
+        if (inside(positions[i])) out.push_back(static_cast<double>(i));
+      }
+      return out;
+    }
+    if (name == "tetrahedronIndices") {
+      Component* topology = topology_of(*c.node);
+      if (!topology) return {};
+      const Numbers& tets = data(*topology, "tetrahedra");
+      const bool strict = boolean(c, "strict", true);
+      Numbers out;
+      for (std::size_t t = 0; t + 3 < tets.size(); t += 4) {
+        bool all = true;
+        Vec3<double> centre = Vec3<double>::Zero();
+        for (int j = 0; j < 4; ++j) {
+          const auto v = static_cast<std::size_t>(tets[t + j]);
+          if (v >= positions.size()) throw make_error(c.where(), ": tetrahedron ", t / 4, " has a vertex out of range");
+          all = all && inside(positions[v]);
+          centre += positions[v] / 4;
+        }
+        if (strict ? all : inside(centre)) out.push_back(static_cast<double>(t / 4));
+      }
+      return out;
+    }
+  }
+  return {};
+}
+
+double SceneData::real(Component& c, const std::string& name, double fallback) {
+  if (!c.has(name)) return fallback;
+  const Numbers& values = data(c, name);
+  if (values.size() != 1) throw make_error(c.where(), ": ", name, " needs one number, got ", values.size());
+  return values[0];
+}
+
+bool SceneData::boolean(Component& c, const std::string& name, bool fallback) {
+  const auto it = c.object->attributes.find(name);
+  if (it == c.object->attributes.end()) return fallback;
+  const std::string& v = it->second;
+  if (v == "1" || v == "true" || v == "True" || v == "TRUE") return true;
+  if (v == "0" || v == "false" || v == "False" || v == "FALSE") return false;
+  throw make_error(c.where(), ": ", name, " = \"", v, "\": expected true/false or 1/0");
+}
+
+std::string SceneData::text(Component& c, const std::string& name, const std::string& fallback) {
+  const auto it = c.object->attributes.find(name);
+  return it == c.object->attributes.end() ? fallback : it->second;
+}
+
+Vec3<double> SceneData::vec3(Component& c, const std::string& name, const Vec3<double>& fallback) {
+  if (!c.has(name)) return fallback;
+  const Numbers& values = data(c, name);
+  if (values.size() != 3) throw make_error(c.where(), ": ", name, " needs 3 numbers, got ", values.size());
+  return {values[0], values[1], values[2]};
+}
+
+std::vector<Vec3<double>> SceneData::points(Component& c, const std::string& name) {
+  return points_from(data(c, name), c, name);
+}
+
+std::vector<Index> SceneData::indices(Component& c, const std::string& name) {
+  std::vector<Index> out;
+  for (double v : data(c, name)) {
+    if (!(v >= 0) || v != std::floor(v) || v > 2e9) {
+      throw make_error(c.where(), ": ", name, ": ", v, " is not a valid index");
+    }
+    out.push_back(static_cast<Index>(v));
+  }
+  return out;
+}
+
+std::vector<Vec3<double>> points_from(const Numbers& values, const Component& c, const std::string& name) {
+  if (values.size() % 3 != 0) {
+    throw make_error(c.where(), ": ", name, " needs 3 numbers per point, got ", values.size(), " numbers");
+  }
+  std::vector<Vec3<double>> out(values.size() / 3);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {values[3 * i], values[3 * i + 1], values[3 * i + 2]};
+  return out;
+}
+
+}  // namespace fastcorot::scene_detail

@@ -1,0 +1,94 @@
+// Internal to the scene builder: the scene as a graph of component instances whose data (positions,
+// tetrahedra, indices, ...) are computed on demand, following SOFA's links (`@name`, `@../a.b`,
+// `src="@loader"`) and SOFA's implicit wiring (a MechanicalObject takes the node's first topology's
+// points, a container is filled by the Hexa2TetraTopologicalMapping that outputs to it, BoxROI reads
+// the node's rest positions, ...). Cycles and broken links are errors naming the file and line.
+#pragma once
+
+#include "fastcorot/core/types.h"
+#include "fastcorot/scene/component_table.h"
+#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/scene/scene_graph.h"
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace fastcorot::scene_detail {
+
+using Numbers = std::vector<double>;
+
+struct GraphNode;
+
+struct Component {
+  const SceneObject* object = nullptr;
+  const ComponentSpec* spec = nullptr;  // nullptr for ignored components
+  GraphNode* node = nullptr;
+  std::map<std::string, Numbers> cache;
+  std::set<std::string> evaluating;
+
+  std::string_view type() const { return spec ? spec->name : std::string_view(object->type); }
+  std::string name() const { return object->name(); }
+  bool has(const std::string& attribute) const { return object->attributes.count(attribute) != 0; }
+  // "file:line: Type 'name'"
+  std::string where() const;
+};
+
+struct GraphNode {
+  const SceneNode* scene = nullptr;
+  GraphNode* parent = nullptr;
+  std::string path;  // names from the root joined by '/'
+  std::vector<std::unique_ptr<Component>> components;
+  std::vector<std::unique_ptr<GraphNode>> children;
+
+  // Components of the given category, in scene order.
+  std::vector<Component*> of_category(std::string_view category) const;
+};
+
+class SceneData {
+ public:
+  // Builds the graph, checking every component and attribute against the table. Ignored
+  // components are reported through `info`.
+  SceneData(const SceneNode& root, std::vector<std::string>& info);
+
+  GraphNode& root() { return *root_; }
+
+  // Data `name` of component c: the attribute as written (a value, or a link to another
+  // component's data), else what `src` provides, else what the component computes.
+  const Numbers& data(Component& c, const std::string& name);
+
+  // Scalar and typed reads of a component's attribute with its default from the table.
+  double real(Component& c, const std::string& name, double fallback);
+  bool boolean(Component& c, const std::string& name, bool fallback);
+  std::string text(Component& c, const std::string& name, const std::string& fallback);
+  Vec3<double> vec3(Component& c, const std::string& name, const Vec3<double>& fallback);
+  std::vector<Vec3<double>> points(Component& c, const std::string& name);
+  std::vector<Index> indices(Component& c, const std::string& name);
+
+  // The object a link ("@a/b/c") designates, searched as SOFA does from `from`.
+  Component& resolve_object(const GraphNode& from, const std::string& link, const Component& user);
+
+  // The node's topology slot (its last topology component, else the nearest ancestor's); nullptr
+  // when there is none.
+  Component* topology_of(const GraphNode& node);
+
+ private:
+  Numbers compute(Component& c, const std::string& name);
+  Numbers parse_numbers(const Component& c, const std::string& name, const std::string& text) const;
+  const MeshData& mesh_file(Component& loader);
+  std::unique_ptr<GraphNode> build_node(const SceneNode& scene, GraphNode* parent, std::vector<std::string>& info);
+
+  std::unique_ptr<GraphNode> root_;
+  std::map<const Component*, MeshData> mesh_files_;
+};
+
+// Groups a flat list into points; throws naming c and the data when the count is not a multiple of 3.
+std::vector<Vec3<double>> points_from(const Numbers& values, const Component& c, const std::string& name);
+
+// Rotation matrix of SOFA's Euler angles in degrees (R = Rz Ry Rx).
+Mat3<double> euler_rotation(const Vec3<double>& degrees);
+
+}  // namespace fastcorot::scene_detail

@@ -1,0 +1,131 @@
+#include "fastcorot/sim/mass.h"
+
+#include "fastcorot/core/error.h"
+
+#include <cmath>
+
+namespace fastcorot {
+
+template <class Real>
+Mass<Real> Mass<Real>::lumped(std::vector<Real> vertex_masses) {
+  for (std::size_t i = 0; i < vertex_masses.size(); ++i) {
+    if (!(vertex_masses[i] >= 0) || !std::isfinite(vertex_masses[i])) {
+      throw make_error("mass of vertex ", i, " = ", vertex_masses[i], ": must be finite and >= 0");
+    }
+  }
+  Mass mass;
+  mass.vertex_masses_ = std::move(vertex_masses);
+  return mass;
+}
+
+template <class Real>
+Mass<Real> Mass<Real>::consistent(Eigen::SparseMatrix<Real> matrix) {
+  if (matrix.rows() != matrix.cols()) throw make_error("mass matrix is not square");
+  Mass mass;
+  mass.matrix_ = matrix;
+  mass.vertex_masses_.assign(static_cast<std::size_t>(matrix.rows()), Real(0));
+  for (Eigen::Index row = 0; row < mass.matrix_.outerSize(); ++row) {
+    for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(mass.matrix_, row); it; ++it) {
+      mass.vertex_masses_[static_cast<std::size_t>(row)] += it.value();
+    }
+  }
+  return mass;
+}
+
+template <class Real>
+Real Mass<Real>::total_mass() const {
+  Real total = 0;
+  for (Real m : vertex_masses_) total += m;
+  return total;
+}
+
+template <class Real>
+void Mass<Real>::add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor) const {
+  if (is_lumped()) {
+    for (std::size_t i = 0; i < vertex_masses_.size(); ++i) out[i] += (factor * vertex_masses_[i]) * dx[i];
+    return;
+  }
+  for (Eigen::Index row = 0; row < matrix_.outerSize(); ++row) {
+    Vec3<Real> sum = Vec3<Real>::Zero();
+    for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(matrix_, row); it; ++it) {
+      sum += it.value() * dx[static_cast<std::size_t>(it.col())];
+    }
+    out[static_cast<std::size_t>(row)] += factor * sum;
+  }
+}
+
+template <class Real>
+void Mass<Real>::add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const {
+  for (std::size_t i = 0; i < vertex_masses_.size(); ++i) f[i] += vertex_masses_[i] * gravity;
+}
+
+template <class Real>
+void Mass<Real>::add_to_matrix(MatrixSink<Real>& sink, Real factor, Index offset) const {
+  if (is_lumped()) {
+    for (std::size_t i = 0; i < vertex_masses_.size(); ++i) {
+      const Index row = offset + 3 * static_cast<Index>(i);
+      sink.add_block(row, row, (factor * vertex_masses_[i]) * Mat3<Real>::Identity());
+    }
+    return;
+  }
+  for (Eigen::Index row = 0; row < matrix_.outerSize(); ++row) {
+    for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(matrix_, row); it; ++it) {
+      sink.add_block(offset + 3 * static_cast<Index>(row), offset + 3 * static_cast<Index>(it.col()),
+                     (factor * it.value()) * Mat3<Real>::Identity());
+    }
+  }
+}
+
+template <class Real>
+Real Mass<Real>::kinetic_energy(std::span<const Vec3<Real>> v) const {
+  std::vector<Vec3<Real>> mv(v.size(), Vec3<Real>::Zero());
+  add_mdx(v, mv, Real(1));
+  Real energy = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) energy += v[i].dot(mv[i]);
+  return energy / 2;
+}
+
+template <class Real>
+std::vector<Real> tetrahedral_lumped_masses(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
+                                            Real density) {
+  std::vector<Real> masses(static_cast<std::size_t>(mesh.num_points()), Real(0));
+  for (const Tetrahedron& t : mesh.tetrahedra()) {
+    const Real share = density * std::abs(signed_volume(tetrahedron_points(t, rest))) / 4;
+    for (Index v : t) masses[static_cast<std::size_t>(v)] += share;
+  }
+  return masses;
+}
+
+template <class Real>
+Eigen::SparseMatrix<Real> tetrahedral_mass_matrix(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
+                                                  Real density) {
+  std::vector<Eigen::Triplet<Real>> triplets;
+  triplets.reserve(16 * static_cast<std::size_t>(mesh.num_tetrahedra()));
+  for (const Tetrahedron& t : mesh.tetrahedra()) {
+    const Real volume = std::abs(signed_volume(tetrahedron_points(t, rest)));
+    for (int i = 0; i < 4; ++i) {
+      for (int j = 0; j < 4; ++j) triplets.emplace_back(t[i], t[j], density * volume / (i == j ? 10 : 20));
+    }
+  }
+  Eigen::SparseMatrix<Real> matrix(mesh.num_points(), mesh.num_points());
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  return matrix;
+}
+
+template <class Real>
+Real total_volume(const TetMesh& mesh, std::span<const Vec3<Real>> rest) {
+  Real volume = 0;
+  for (const Tetrahedron& t : mesh.tetrahedra()) volume += std::abs(signed_volume(tetrahedron_points(t, rest)));
+  return volume;
+}
+
+template class Mass<float>;
+template class Mass<double>;
+template std::vector<float> tetrahedral_lumped_masses(const TetMesh&, std::span<const Vec3<float>>, float);
+template std::vector<double> tetrahedral_lumped_masses(const TetMesh&, std::span<const Vec3<double>>, double);
+template Eigen::SparseMatrix<float> tetrahedral_mass_matrix(const TetMesh&, std::span<const Vec3<float>>, float);
+template Eigen::SparseMatrix<double> tetrahedral_mass_matrix(const TetMesh&, std::span<const Vec3<double>>, double);
+template float total_volume(const TetMesh&, std::span<const Vec3<float>>);
+template double total_volume(const TetMesh&, std::span<const Vec3<double>>);
+
+}  // namespace fastcorot

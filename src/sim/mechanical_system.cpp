@@ -1,0 +1,99 @@
+#include "fastcorot/sim/mechanical_system.h"
+
+#include "fastcorot/core/error.h"
+
+#include <algorithm>
+
+namespace fastcorot {
+
+template <class Real>
+void MechanicalSystem<Real>::finalize() {
+  std::sort(fixed.begin(), fixed.end());
+  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  const Index n = size();
+  for (Index i : fixed) {
+    if (i < 0 || i >= n) throw make_error("fixed point index ", i, " out of range [0, ", n, ")");
+  }
+  for (const auto& constant : constant_forces) {
+    for (Index i : constant.indices) {
+      if (i < 0 || i >= n) throw make_error("constant force index ", i, " out of range [0, ", n, ")");
+    }
+  }
+  if (mass.size() != 0 && mass.size() != n) {
+    throw make_error("the mass has ", mass.size(), " entries; the state has ", n, " points");
+  }
+  if (state.velocity.empty()) state.velocity.assign(static_cast<std::size_t>(n), Vec3<Real>::Zero());
+  if (state.rest_position.empty()) state.rest_position = state.position;
+}
+
+template <class Real>
+void MechanicalSystem<Real>::compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
+  set_zero(f);
+  for (auto& field : force_fields) field->add_force(x, f);
+  if (mass.size() != 0) mass.add_gravity(gravity, f);
+  for (const auto& constant : constant_forces) {
+    for (std::size_t i = 0; i < constant.indices.size(); ++i) {
+      f[static_cast<std::size_t>(constant.indices[i])] += constant.forces[i];
+    }
+  }
+}
+
+template <class Real>
+void MechanicalSystem<Real>::multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
+                                      std::span<Vec3<Real>> out) const {
+  set_zero(out);
+  if (factors.m != 0 && mass.size() != 0) mass.add_mdx(dx, out, factors.m);
+  for (const auto& field : force_fields) field->add_dforce(dx, out, factors.k, factors.b);
+  project(out);
+}
+
+template <class Real>
+Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<Real>& factors) const {
+  TripletSink<Real> sink;
+  if (mass.size() != 0) mass.add_to_matrix(sink, factors.m);
+  for (const auto& field : force_fields) field->add_stiffness(sink, factors.k, 0, factors.b);
+  std::vector<bool> is_fixed(static_cast<std::size_t>(size()), false);
+  for (Index i : fixed) is_fixed[static_cast<std::size_t>(i)] = true;
+  auto& triplets = sink.triplets;
+  triplets.erase(std::remove_if(triplets.begin(), triplets.end(),
+                                [&](const Eigen::Triplet<Real>& t) {
+                                  return is_fixed[static_cast<std::size_t>(t.row() / 3)] ||
+                                         is_fixed[static_cast<std::size_t>(t.col() / 3)];
+                                }),
+                 triplets.end());
+  for (Index i : fixed) {
+    for (Index c = 0; c < 3; ++c) triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
+  }
+  return sink.to_sparse(3 * size());
+}
+
+template <class Real>
+void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
+  for (Index i : fixed) v[static_cast<std::size_t>(i)].setZero();
+}
+
+template <class Real>
+Real MechanicalSystem<Real>::potential_energy(std::span<const Vec3<Real>> x) const {
+  Real energy = 0;
+  for (const auto& field : force_fields) energy += field->potential_energy(x);
+  if (mass.size() != 0) {
+    const auto masses = mass.vertex_masses();
+    for (std::size_t i = 0; i < masses.size(); ++i) energy -= masses[i] * gravity.dot(x[i]);
+  }
+  for (const auto& constant : constant_forces) {
+    for (std::size_t i = 0; i < constant.indices.size(); ++i) {
+      energy -= constant.forces[i].dot(x[static_cast<std::size_t>(constant.indices[i])]);
+    }
+  }
+  return energy;
+}
+
+template <class Real>
+Real MechanicalSystem<Real>::kinetic_energy() const {
+  return mass.size() == 0 ? Real(0) : mass.kinetic_energy(state.velocity);
+}
+
+template class MechanicalSystem<float>;
+template class MechanicalSystem<double>;
+
+}  // namespace fastcorot
