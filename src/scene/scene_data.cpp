@@ -141,9 +141,10 @@ Numbers SceneData::parse_numbers(const Component& c, const std::string& name, co
   return numbers;
 }
 
-Component& SceneData::resolve_object(const GraphNode& from, const std::string& link, const Component& user) {
+Component& SceneData::resolve_object(const GraphNode& from, const std::string& link, const Component& user,
+                                     const std::string& as_written) {
   auto fail = [&](const std::string& why) -> Component& {
-    throw make_error(user.where(), ": broken link '", link, "': ", why);
+    throw make_error(user.where(), ": broken link '", as_written.empty() ? link : as_written, "': ", why);
   };
   if (link.empty() || link[0] != '@') return fail("links start with @");
   std::string path = link.substr(1);
@@ -193,30 +194,31 @@ Component& SceneData::resolve_object(const GraphNode& from, const std::string& l
   return fail("it names no component");
 }
 
+std::optional<Numbers> SceneData::written(Component& c, const std::string& name) {
+  const auto attribute = c.object->attributes.find(name);
+  if (attribute == c.object->attributes.end()) return std::nullopt;
+  const std::string& text = attribute->second;
+  if (text.empty() || text[0] != '@') return parse_numbers(c, name, text);
+  // "@path.data": the data name follows the last '.' after the last '/'; "@path" alone names a
+  // component whose data of the same name is meant.
+  const auto slash = text.rfind('/');
+  const auto dot = text.rfind('.');
+  const bool names_data = dot != std::string::npos && (slash == std::string::npos || dot > slash) &&
+                          dot + 1 < text.size() && text[dot - 1] != '.';
+  if (!names_data) return data(resolve_object(*c.node, text, c), name);
+  return data(resolve_object(*c.node, text.substr(0, dot), c, text), text.substr(dot + 1));
+}
+
 const Numbers& SceneData::data(Component& c, const std::string& name) {
   if (const auto it = c.cache.find(name); it != c.cache.end()) return it->second;
   if (c.evaluating.count(name)) throw make_error(c.where(), ": '", name, "' depends on itself through links");
   c.evaluating.insert(name);
-  Numbers value;
-  const auto attribute = c.object->attributes.find(name);
-  if (attribute != c.object->attributes.end() && !attribute->second.empty() && attribute->second[0] == '@') {
-    const std::string& link = attribute->second;
-    const auto slash = link.rfind('/');
-    const auto dot = link.rfind('.');
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot + 1 == link.size() ||
-        link.compare(dot - 1, 2, "..") == 0) {
-      // A link to a component for a data attribute: take that component's data of the same name.
-      value = data(resolve_object(*c.node, link, c), name);
-    } else {
-      value = data(resolve_object(*c.node, link.substr(0, dot), c), link.substr(dot + 1));
-    }
-  } else if (attribute != c.object->attributes.end()) {
-    value = parse_numbers(c, name, attribute->second);
-  } else {
-    value = compute(c, name);
-  }
+  // A MechanicalObject transforms its positions whatever their source, so it computes them itself.
+  const bool transforms = c.type() == "MechanicalObject" && name == "position";
+  std::optional<Numbers> value = transforms ? std::nullopt : written(c, name);
+  if (!value) value = compute(c, name);
   c.evaluating.erase(name);
-  return c.cache[name] = std::move(value);
+  return c.cache[name] = std::move(*value);
 }
 
 const MeshData& SceneData::mesh_file(Component& loader) {
@@ -308,7 +310,9 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   if (type == "MechanicalObject") {
     if (name == "position") {
       std::vector<Vec3<double>> base;
-      if (const auto src = c.object->attributes.find("src"); src != c.object->attributes.end()) {
+      if (auto given = written(c, "position")) {
+        base = points_from(*given, c, "position");
+      } else if (const auto src = c.object->attributes.find("src"); src != c.object->attributes.end()) {
         base = points_from(data(resolve_object(*c.node, src->second, c), "position"), c, "position");
       } else {
         Component* topology = nullptr;

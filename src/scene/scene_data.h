@@ -69,7 +69,9 @@ class SceneData {
   std::vector<Index> indices(Component& c, const std::string& name);
 
   // The object a link ("@a/b/c") designates, searched as SOFA does from `from`.
-  Component& resolve_object(const GraphNode& from, const std::string& link, const Component& user);
+  // `as_written` is the attribute text shown in errors when it differs from `link`.
+  Component& resolve_object(const GraphNode& from, const std::string& link, const Component& user,
+                            const std::string& as_written = "");
 
   // The node's topology slot (its last topology component, else the nearest ancestor's); nullptr
   // when there is none.
@@ -77,6 +79,8 @@ class SceneData {
 
  private:
   Numbers compute(Component& c, const std::string& name);
+  // The attribute as written: parsed numbers, or the data a link designates; nullopt when absent.
+  std::optional<Numbers> written(Component& c, const std::string& name);
   Numbers parse_numbers(const Component& c, const std::string& name, const std::string& text) const;
   const MeshData& mesh_file(Component& loader);
   std::unique_ptr<GraphNode> build_node(const SceneNode& scene, GraphNode* parent, std::vector<std::string>& info);

@@ -169,7 +169,7 @@ TEST(VtuReader, ErrorsNameFileLineAndProblem) {
   EXPECT_TRUE(contains(error("LittleEndian", "MiddleEndian"), "unknown byte_order 'MiddleEndian'"));
   EXPECT_TRUE(contains(error(R"(version="0.1")", R"(version="0.1" header_type="UInt16")"),
                        "unknown header_type 'UInt16'"));
-  EXPECT_TRUE(contains(error("</Points>", "</Pointz>"), "bad.vtu:8: XML error"));
+  EXPECT_TRUE(contains(error("</Points>", "</Pointz>"), "bad.vtu:5: XML error"));
   EXPECT_TRUE(contains(error(R"(NumberOfPoints="4" )", ""), "bad.vtu:4: <Piece> needs an integer attribute NumberOfPoints"));
   EXPECT_TRUE(contains(error("0 1 2 3 3 2 1", "0 1 2 4 3 2 1"),
                        "bad.vtu:11: cell 0: point index 4 out of range [0, 4)"));

@@ -1,0 +1,212 @@
+// Scenes fed as inline XML through the real parser and builder; every expectation is derived from
+// SOFA's conventions (docs/sofa-components.md) by hand.
+#include "fastcorot/scene/scene_builder.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/sim/conjugate_gradient.h"
+#include "fastcorot/sim/sparse_direct_solver.h"
+
+#include <gtest/gtest.h>
+
+namespace fastcorot {
+namespace {
+
+LoadedScene build(const std::string& body, const std::string& root_attributes = "") {
+  return build_scene(parse_scene_text("<Node name=\"root\" " + root_attributes + ">\n" + body + "\n</Node>", "test.scn"));
+}
+
+std::string error_of(const std::string& body) {
+  try {
+    build(body);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// Two hexahedral cells along x (3×2×2 points) split into 12 tetrahedra, fixed at x = 0.
+const std::string kSmallBeam = R"(
+  <Node name="beam">
+    <EulerImplicitSolver rayleighStiffness="0.1" rayleighMass="0.1"/>
+    <CGLinearSolver iterations="50" tolerance="1e-12" threshold="1e-20"/>
+    <RegularGridTopology name="grid" n="3 2 2" min="0 0 0" max="2 1 1"/>
+    <MechanicalObject name="state" translation="10 0 0"/>
+    <TetrahedronSetTopologyContainer name="tets"/>
+    <Hexa2TetraTopologicalMapping input="@grid" output="@tets" swapping="true"/>
+    <DiagonalMass massDensity="2"/>
+    <FastTetrahedralCorotationalForceField youngModulus="1000" poissonRatio="0.3" method="large"/>
+    <BoxROI name="roi" box="9.5 -1 -1 10 2 2"/>
+    <FixedProjectiveConstraint indices="@roi.indices"/>
+  </Node>)";
+
+TEST(SceneBuilder, GridBeamFollowsSofaConventions) {
+  const LoadedScene scene = build(kSmallBeam, "dt=\"0.02\" gravity=\"0 0 -5\"");
+  const auto& simulation = scene.simulation;
+  EXPECT_EQ(simulation.dt, 0.02);
+  ASSERT_EQ(simulation.objects.size(), 1u);
+  const auto& object = simulation.objects[0];
+  EXPECT_EQ(object.path, "root/beam");
+  const auto& system = object.system;
+  // RegularGridTopology order (x fastest), then the MechanicalObject's translation.
+  ASSERT_EQ(system.size(), 12);
+  EXPECT_EQ(system.state.position[1], Vec3<double>(11, 0, 0));
+  EXPECT_EQ(system.state.position[3], Vec3<double>(10, 1, 0));
+  EXPECT_EQ(system.state.position[6], Vec3<double>(10, 0, 1));
+  EXPECT_EQ(system.state.rest_position, system.state.position);
+  EXPECT_EQ(system.gravity, Vec3<double>(0, 0, -5));
+  // BoxROI is inclusive: x in [9.5, 10] selects the x = 10 face, points 0, 3, 6, 9.
+  EXPECT_EQ(system.fixed, (std::vector<Index>{0, 3, 6, 9}));
+  // 6 tetrahedra per cell; DiagonalMass: total = density × volume = 2 × 2.
+  ASSERT_EQ(system.force_fields.size(), 1u);
+  EXPECT_EQ(system.force_fields[0]->mesh().num_tetrahedra(), 12);
+  EXPECT_EQ(system.force_fields[0]->method(), RotationMethod::qr);
+  EXPECT_NEAR(system.mass.total_mass(), 4.0, 1e-12);
+  // A corner point belongs to the tetrahedra of one cell only, a middle point to two cells.
+  const auto masses = system.mass.vertex_masses();
+  EXPECT_NEAR(masses[1] + masses[4] + masses[7] + masses[10], 2.0, 1e-12);  // the middle plane x = 1 holds half
+  EXPECT_NE(dynamic_cast<ConjugateGradientSolver<double>*>(object.linear_solver.get()), nullptr);
+  EXPECT_NE(dynamic_cast<ImplicitEulerSolver<double>*>(object.ode_solver.get()), nullptr);
+}
+
+TEST(SceneBuilder, DefaultsAreSofas) {
+  const LoadedScene scene = build(R"(
+  <EulerImplicitSolver/>
+  <EigenSimplicialLDLT/>
+  <MechanicalObject position="0 0 0  1 0 0  0 1 0  0 0 1"/>
+  <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/>
+  <DiagonalMass/>
+  <FastTetrahedralCorotationalForceField/>
+  <FixedProjectiveConstraint/>)");
+  const auto& simulation = scene.simulation;
+  EXPECT_EQ(simulation.dt, 0.01);
+  EXPECT_EQ(simulation.gravity, Vec3<double>(0, -9.81, 0));
+  const auto& system = simulation.objects[0].system;
+  EXPECT_EQ(simulation.objects[0].path, "root");
+  EXPECT_EQ(system.fixed, std::vector<Index>{0});  // FixedProjectiveConstraint's default indices
+  EXPECT_NEAR(system.mass.total_mass(), 1.0, 1e-15);  // DiagonalMass with nothing set: totalMass 1
+  const auto& parameters = system.force_fields[0]->parameters();
+  EXPECT_EQ(parameters.young_modulus, std::vector<double>{5000});
+  EXPECT_EQ(parameters.poisson_ratio, std::vector<double>{0.45});
+  EXPECT_NE(dynamic_cast<SparseDirectSolver<double>*>(simulation.objects[0].linear_solver.get()), nullptr);
+}
+
+const std::string kTet = R"(
+  <EulerImplicitSolver/>
+  <CGLinearSolver/>
+  <MechanicalObject name="state" position="0 0 0  1 0 0  0 1 0  0 0 1  1 1 1"/>
+  <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3  1 2 3 4"/>
+  <FastTetrahedralCorotationalForceField youngModulus="100" poissonRatio="0.3"/>)";
+
+TEST(SceneBuilder, MassesAndConstantForces) {
+  auto system_of = [](const std::string& extra) { return build(kTet + extra).simulation.objects[0].system; };
+  // UniformMass: totalMass wins over vertexMass and is shared equally.
+  EXPECT_NEAR(system_of("<UniformMass totalMass=\"10\" vertexMass=\"7\"/>").mass.vertex_masses()[4], 2.0, 1e-15);
+  EXPECT_NEAR(system_of("<UniformMass vertexMass=\"3\"/>").mass.total_mass(), 15.0, 1e-15);
+  // MeshMatrixMass: consistent unless lumping; both weigh density × volume in total. The volumes
+  // are 1/6 and 1/3 (vertices 1 2 3 4: |det| = 2), so the total is 3 × 1/2.
+  const auto consistent = system_of("<MeshMatrixMass massDensity=\"3\"/>").mass;
+  EXPECT_FALSE(consistent.is_lumped());
+  EXPECT_NEAR(consistent.total_mass(), 1.5, 1e-14);
+  const auto lumped = system_of("<MeshMatrixMass massDensity=\"3\" lumping=\"true\"/>").mass;
+  EXPECT_TRUE(lumped.is_lumped());
+  // Vertex 0 is only in the first tetrahedron: 3 × (1/6) / 4.
+  EXPECT_NEAR(lumped.vertex_masses()[0], 0.125, 1e-15);
+  // ConstantForceField: forces > force > totalForce; empty indices = every point.
+  const auto all = system_of("<ConstantForceField totalForce=\"0 -10 0\"/>").constant_forces.at(0);
+  ASSERT_EQ(all.indices.size(), 5u);
+  EXPECT_EQ(all.forces[2], Vec3<double>(0, -2, 0));
+  const auto per_index = system_of("<ConstantForceField indices=\"4 1\" forces=\"1 0 0  0 2 0\" force=\"9 9 9\"/>").constant_forces.at(0);
+  EXPECT_EQ(per_index.indices, (std::vector<Index>{4, 1}));
+  EXPECT_EQ(per_index.forces[1], Vec3<double>(0, 2, 0));
+  const auto from_end = system_of("<ConstantForceField indices=\"0\" force=\"1 2 3\" indexFromEnd=\"1\"/>").constant_forces.at(0);
+  EXPECT_EQ(from_end.indices, std::vector<Index>{4});
+  EXPECT_EQ(system_of("<FixedProjectiveConstraint fixAll=\"true\"/>").fixed.size(), 5u);
+}
+
+TEST(SceneBuilder, LinksSearchUpwardAndFollowPaths) {
+  const LoadedScene scene = build(R"(
+  <RegularGridTopology name="grid" n="2 2 2" min="0 0 0" max="1 1 1"/>
+  <Node name="object">
+    <EulerImplicitSolver/>
+    <CGLinearSolver/>
+    <MechanicalObject position="@../grid.position" scale3d="2 2 2"/>
+    <TetrahedronSetTopologyContainer name="tets"/>
+    <Hexa2TetraTopologicalMapping input="@grid" output="@tets"/>
+    <UniformMass totalMass="1"/>
+    <FastTetrahedralCorotationalForceField/>
+    <BoxROI name="roi" box="-1 -1 -1 0.5 3 3"/>
+    <FixedProjectiveConstraint indices="@/root/object/roi.indices"/>
+  </Node>)");
+  const auto& system = scene.simulation.objects[0].system;
+  EXPECT_EQ(system.state.position[7], Vec3<double>(2, 2, 2));  // scaled grid corner
+  EXPECT_EQ(system.fixed, (std::vector<Index>{0, 2, 4, 6}));    // x = 0 face
+  EXPECT_EQ(system.force_fields[0]->mesh().num_tetrahedra(), 6);
+}
+
+TEST(SceneBuilder, RotationIsEulerXyzInDegrees) {
+  // rotation="0 0 90": x axis → y axis.
+  const LoadedScene scene = build(R"(
+  <EulerImplicitSolver/>
+  <CGLinearSolver/>
+  <MechanicalObject position="1 0 0  0 0 0  0 1 0  0 0 1" rotation="0 0 90"/>
+  <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/>
+  <UniformMass totalMass="1"/>)");
+  const Vec3<double> p = scene.simulation.objects[0].system.state.position[0];
+  EXPECT_LT((p - Vec3<double>(0, 1, 0)).norm(), 1e-15);
+}
+
+TEST(SceneBuilder, StaticSolverTakesItsNewtonSettings) {
+  const LoadedScene scene = build(R"(
+  <StaticSolver newtonSolver="@newton"/>
+  <NewtonRaphsonSolver name="newton" maxNbIterationsNewton="7"/>
+  <CGLinearSolver/>
+  <MechanicalObject position="0 0 0  1 0 0  0 1 0  0 0 1"/>
+  <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/>
+  <FastTetrahedralCorotationalForceField/>)");
+  EXPECT_NE(dynamic_cast<StaticSolver<double>*>(scene.simulation.objects[0].ode_solver.get()), nullptr);
+}
+
+TEST(SceneBuilder, IgnoredComponentsAndMappedNodesGetInfoLines) {
+  const LoadedScene scene = build(kTet + R"(
+  <UniformMass totalMass="1"/>
+  <VisualStyle displayFlags="showBehaviorModels"/>
+  <Node name="visual">
+    <OglModel name="visual"/>
+    <BarycentricMapping input="@.." output="@visual"/>
+  </Node>)");
+  ASSERT_GE(scene.info.size(), 2u);
+  bool style = false, visual = false;
+  for (const auto& line : scene.info) {
+    style = style || (line.find("test.scn:") != std::string::npos && line.find("VisualStyle ignored") != std::string::npos);
+    visual = visual || line.find("root/visual") != std::string::npos;
+  }
+  EXPECT_TRUE(style);
+  EXPECT_TRUE(visual);
+}
+
+TEST(SceneBuilder, BadScenesNameTheProblemAndTheLine) {
+  auto expect = [](const std::string& body, std::initializer_list<std::string> needles) {
+    const std::string message = error_of(body);
+    for (const auto& needle : needles) EXPECT_NE(message.find(needle), std::string::npos) << "message: " << message << "\nlacks: " << needle;
+  };
+  expect(kTet + "\n<SpringForceField/>", {"test.scn:8", "unknown component 'SpringForceField'", "supported:"});
+  expect(kTet + "\n<UniformMass totalMass=\"1\" weight=\"3\"/>", {"test.scn:8", "unknown attribute 'weight'", "vertexMass"});
+  expect(kTet + "\n<FixedProjectiveConstraint indices=\"@nowhere.indices\"/>", {"broken link '@nowhere.indices'", "test.scn:8"});
+  expect(kTet + "\n<FixedProjectiveConstraint indices=\"9\"/>", {"index 9 out of range"});
+  expect(R"(<EulerImplicitSolver/><CGLinearSolver/><MeshGmshLoader name="l" filename="absent.msh"/>
+            <TetrahedronSetTopologyContainer src="@l"/><MechanicalObject/>)",
+         {"MeshGmshLoader 'l'", "absent.msh"});
+  expect(R"(<EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position="0 0 0 1 0 0 0 1 0 0 0 1"/>
+            <TetrahedronSetTopologyContainer/><FastTetrahedralCorotationalForceField/>)",
+         {"has no tetrahedra"});
+  expect(R"(<EulerImplicitSolver/><MechanicalObject position="0 0 0"/>)", {"no linear solver"});
+  expect(R"(<MechanicalObject position="0 0 0"/>)", {"nothing to simulate"});
+  expect(kTet + "<UniformMass totalMass=\"1\"/><FastTetrahedralCorotationalForceField method=\"svd\"/>", {"method = \"svd\""});
+  expect(R"(<EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position="0 0 x"/>)", {"'x' is not a finite number"});
+  expect(R"(<EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position="0 0 0  1 0 0  0 1 0  2 0 0"/>
+            <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/><FastTetrahedralCorotationalForceField/>)",
+         {"degenerate"});
+}
+
+}  // namespace
+}  // namespace fastcorot

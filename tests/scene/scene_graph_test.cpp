@@ -1,0 +1,107 @@
+#include "fastcorot/scene/scene_graph.h"
+
+#include "fastcorot/core/error.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fastcorot {
+namespace {
+
+std::string error_of(const std::string& text, const std::filesystem::path& file = "scene.scn") {
+  try {
+    parse_scene_text(text, file);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(SceneGraph, ReadsNodesObjectsAttributesAndLines) {
+  const SceneNode root = parse_scene_text(R"(<?xml version="1.0"?>
+<Node name="root" dt="0.02" gravity="0 0 -1">
+  <DefaultAnimationLoop/>
+  <Node name="child">
+    <MechanicalObject name="state" position="0 0 0"/>
+    <Object type="UniformMass" totalMass="2"/>
+  </Node>
+</Node>)", "scene.scn");
+  EXPECT_EQ(root.name, "root");
+  EXPECT_EQ(root.attributes.at("dt"), "0.02");
+  ASSERT_EQ(root.objects.size(), 1u);
+  EXPECT_EQ(root.objects[0].type, "DefaultAnimationLoop");
+  EXPECT_EQ(root.objects[0].location.line, 3);
+  ASSERT_EQ(root.children.size(), 1u);
+  const SceneNode& child = root.children[0];
+  EXPECT_EQ(child.name, "child");
+  ASSERT_EQ(child.objects.size(), 2u);
+  EXPECT_EQ(child.objects[0].name(), "state");
+  EXPECT_EQ(child.objects[0].location.to_string(), "scene.scn:5");
+  // SOFA's older <Object type="..."/> form.
+  EXPECT_EQ(child.objects[1].type, "UniformMass");
+  EXPECT_EQ(child.objects[1].attributes.count("type"), 0u);
+}
+
+TEST(SceneGraph, MalformedXmlNamesFileAndLine) {
+  const std::string message = error_of("<Node name=\"root\">\n  <MechanicalObject\n</Node>", "bad.scn");
+  EXPECT_NE(message.find("bad.scn:"), std::string::npos) << message;
+  EXPECT_NE(message.find("malformed XML"), std::string::npos) << message;
+  EXPECT_NE(error_of("<Scene/>").find("root must be a <Node>"), std::string::npos);
+  EXPECT_NE(error_of("").find("scene.scn"), std::string::npos);
+}
+
+class SceneFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("fastcorot_scene_graph_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_ / "parts");
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  std::filesystem::path write(const std::string& name, const std::string& text) {
+    const auto path = dir_ / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(SceneFiles, IncludeInsertsANodeAsChildAndAGroupInPlace) {
+  write("parts/body.xml", R"(<Node name="body"><MechanicalObject name="state"/></Node>)");
+  write("parts/solvers.xml", R"(<Group><EulerImplicitSolver/><CGLinearSolver/></Group>)");
+  const auto scene = write("main.scn", R"(<Node name="root">
+  <include href="parts/solvers.xml"/>
+  <include href="parts/body.xml"/>
+</Node>)");
+  const SceneNode root = parse_scene_file(scene);
+  ASSERT_EQ(root.objects.size(), 2u);
+  EXPECT_EQ(root.objects[0].type, "EulerImplicitSolver");
+  EXPECT_EQ(root.objects[1].type, "CGLinearSolver");
+  EXPECT_EQ(root.objects[0].location.file, dir_ / "parts/solvers.xml");
+  ASSERT_EQ(root.children.size(), 1u);
+  EXPECT_EQ(root.children[0].name, "body");
+}
+
+TEST_F(SceneFiles, IncludeErrors) {
+  write("cycle_a.scn", R"(<Node name="a"><include href="cycle_b.scn"/></Node>)");
+  write("cycle_b.scn", R"(<Node name="b"><include href="cycle_a.scn"/></Node>)");
+  try {
+    parse_scene_file(dir_ / "cycle_a.scn");
+    ADD_FAILURE() << "no error for an include cycle";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("include cycle"), std::string::npos) << error.what();
+  }
+  const auto missing = write("missing.scn", "<Node name=\"r\">\n<include href=\"nowhere.xml\"/>\n</Node>");
+  try {
+    parse_scene_file(missing);
+    ADD_FAILURE() << "no error for a missing include";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("missing.scn:2"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("nowhere.xml"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(parse_scene_file(dir_ / "absent.scn"), Error);
+}
+
+}  // namespace
+}  // namespace fastcorot
