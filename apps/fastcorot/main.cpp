@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
   run->add_option("--every", run_options.every, "write a frame every K steps (and the last)")->capture_default_str();
   run->add_option("--dump-state", run_options.dump_state, "write positions as JSON to FILE");
   run->add_option("--dump-steps", dump_steps, "steps to dump, e.g. 0,1,10,100 (default; the last step is always dumped)");
-  run->add_option("--threads", run_options.threads, "worker threads (kernels are single-threaded for now)")
+  run->add_option("--threads", run_options.threads, "threads: independent objects are integrated concurrently")
       ->capture_default_str();
   run->add_flag("--quiet", run_options.quiet, "no progress bar, info lines or summary");
 

@@ -115,7 +115,7 @@ const std::vector<ComponentSpec>& table() {
        {{"iterations", "int", "25", "maximum iterations"},
         {"tolerance", "real", "1e-5", "stop when |r| / |b| <= tolerance"},
         {"threshold", "real", "1e-5", "stop when |p^T A p| <= threshold"},
-        {"warmStart", "bool", "false", "accepted; starts from zero"}}},
+        {"warmStart", "bool", "false", "only false: the solve starts from zero"}}},
       {"EigenSimplicialLDLT", "linearsolver", "Sparse direct LDL^T solve of the assembled system.",
        {{"ordering", "string", "AMD", "accepted"}},
        {"SparseLDLSolver", "SparseCholeskySolver", "EigenSimplicialLLT", "EigenSparseLU"}},

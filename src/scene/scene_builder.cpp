@@ -261,14 +261,18 @@ class Builder {
   }
 
   void add_fixed(Component& c, MechanicalSystem<double>& system) {
+    std::vector<Index> indices;
     if (data_.boolean(c, "fixAll", false)) {
-      for (Index i = 0; i < system.size(); ++i) system.fixed.push_back(i);
-      return;
+      for (Index i = 0; i < system.size(); ++i) indices.push_back(i);
+    } else {
+      indices = c.has("indices") ? data_.indices(c, "indices") : std::vector<Index>{0};  // SOFA's default
     }
-    const std::vector<Index> indices = c.has("indices") ? data_.indices(c, "indices") : std::vector<Index>{0};
     for (Index i : indices) {
       if (i >= system.size()) throw make_error(c.where(), ": index ", i, " out of range [0, ", system.size(), ")");
-      system.fixed.push_back(i);
+    }
+    system.fixed.insert(system.fixed.end(), indices.begin(), indices.end());
+    if (data_.boolean(c, "activate_projectVelocity", false)) {
+      system.zero_velocity.insert(system.zero_velocity.end(), indices.begin(), indices.end());
     }
   }
 
@@ -354,6 +358,9 @@ class Builder {
 
   std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c) {
     if (c.type() != "CGLinearSolver") return std::make_unique<SparseDirectSolver<double>>();
+    if (data_.boolean(c, "warmStart", false)) {
+      throw make_error(c.where(), ": warmStart=\"true\" is not supported (the solve starts from zero)");
+    }
     ConjugateGradientSolver<double>::Parameters p;
     p.iterations = static_cast<int>(data_.real(c, "iterations", 25));
     p.tolerance = data_.real(c, "tolerance", 1e-5);

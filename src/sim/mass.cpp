@@ -26,6 +26,9 @@ Mass<Real> Mass<Real>::consistent(Eigen::SparseMatrix<Real> matrix) {
   mass.vertex_masses_.assign(static_cast<std::size_t>(matrix.rows()), Real(0));
   for (Eigen::Index row = 0; row < mass.matrix_.outerSize(); ++row) {
     for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(mass.matrix_, row); it; ++it) {
+      if (!std::isfinite(it.value())) {
+        throw make_error("mass matrix entry (", row, ", ", it.col(), ") = ", it.value(), ": must be finite");
+      }
       mass.vertex_masses_[static_cast<std::size_t>(row)] += it.value();
     }
   }

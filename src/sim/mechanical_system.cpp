@@ -15,6 +15,10 @@ void MechanicalSystem<Real>::finalize() {
     if (i < 0 || i >= n) throw make_error("fixed point index ", i, " out of range [0, ", n, ")");
   }
   for (const auto& constant : constant_forces) {
+    if (constant.forces.size() != constant.indices.size()) {
+      throw make_error("constant force: ", constant.forces.size(), " forces for ", constant.indices.size(),
+                       " indices");
+    }
     for (Index i : constant.indices) {
       if (i < 0 || i >= n) throw make_error("constant force index ", i, " out of range [0, ", n, ")");
     }
@@ -24,6 +28,10 @@ void MechanicalSystem<Real>::finalize() {
   }
   if (state.velocity.empty()) state.velocity.assign(static_cast<std::size_t>(n), Vec3<Real>::Zero());
   if (state.rest_position.empty()) state.rest_position = state.position;
+  if (state.velocity.size() != state.position.size() || state.rest_position.size() != state.position.size()) {
+    throw make_error("the state has ", n, " positions, ", state.velocity.size(), " velocities and ",
+                     state.rest_position.size(), " rest positions");
+  }
 }
 
 template <class Real>

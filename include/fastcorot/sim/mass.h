@@ -22,6 +22,7 @@ class Mass {
   // One mass per vertex; throws fastcorot::Error for a negative or non-finite entry.
   static Mass lumped(std::vector<Real> vertex_masses);
   // A consistent #V×#V scalar matrix (symmetric); vertex_masses() then returns its row sums.
+  // Throws fastcorot::Error for a non-square matrix or a non-finite entry.
   static Mass consistent(Eigen::SparseMatrix<Real> matrix);
 
   bool is_lumped() const { return matrix_.size() == 0; }

@@ -41,13 +41,18 @@ class MechanicalSystem {
   std::vector<std::shared_ptr<CorotationalForceField<Real>>> force_fields;
   Mass<Real> mass;                   // empty (size 0) when the object has no mass component
   std::vector<Index> fixed;          // fixed point indices, sorted, unique
+  // Points whose velocity is zeroed after each step (FixedProjectiveConstraint's
+  // activate_projectVelocity); SOFA otherwise leaves their velocity alone.
+  std::vector<Index> zero_velocity;
   std::vector<ConstantForce<Real>> constant_forces;
   Vec3<Real> gravity = Vec3<Real>::Zero();
 
   Index size() const { return state.size(); }
 
   // Sorts and de-duplicates `fixed` and checks every index against the state size; throws
-  // fastcorot::Error naming the bad index. Call after filling the system.
+  // fastcorot::Error naming the bad index, or when a constant force has not one force per index,
+  // the mass or the velocities / rest positions (filled from the positions when empty) do not
+  // match the state size. Call after filling the system.
   void finalize();
 
   // f = total force at positions x (force fields, weight, constant forces); overwrites f. The force

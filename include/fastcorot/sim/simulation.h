@@ -30,6 +30,9 @@ class Simulation {
   Real dt = Real(0.01);
   Vec3<Real> gravity{Real(0), Real(-9.81), Real(0)};
   std::vector<SimulatedObject<Real>> objects;
+  // Objects are independent; with threads > 1 they are integrated concurrently (like SOFA's
+  // parallelODESolving). Each object's result is the same whatever the thread count.
+  int threads = 1;
 
   // Advances every object by dt. Throws fastcorot::Error "diverged at step N ..." when a state
   // becomes non-finite (the state before the step is lost for that object; others are advanced).
