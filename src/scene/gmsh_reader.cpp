@@ -163,6 +163,7 @@ class GmshReader {
   void read_nodes_v2() {
     const auto count = in_.integer<std::int64_t>("the node count");
     if (detail::to_index(count) < 0) in_.fail_text("bad node count ", count);
+    check_node_count(static_cast<std::uint64_t>(count));
     tags_.set_expected_count(static_cast<std::uint64_t>(count));
     mesh_.points.reserve(std::min<std::size_t>(static_cast<std::size_t>(count), in_.remaining() / 8));
     if (binary_) in_.rest_of_line();
@@ -256,6 +257,7 @@ class GmshReader {
     size_value("the smallest node tag");
     size_value("the largest node tag");
     if (count > static_cast<std::uint64_t>(INT32_MAX)) fail("bad node count " + std::to_string(count));
+    check_node_count(count);
     tags_.set_expected_count(count);
     mesh_.points.reserve(std::min<std::size_t>(count, in_.remaining() / 8));
     std::vector<std::uint64_t> block_tags;
@@ -269,6 +271,7 @@ class GmshReader {
              std::to_string(parametric) + ")");
       }
       if (n > count - mesh_.points.size()) fail("node blocks hold more nodes than the header's count");
+      if (n > in_.remaining() / 2) fail("a node block of " + std::to_string(n) + " nodes is larger than the file");
       const int extra = parametric ? dim : 0;  // u, (u v) or (u v w) after x y z
       block_tags.resize(static_cast<std::size_t>(n));
       for (auto& tag : block_tags) tag = size_value("a node tag");
@@ -338,6 +341,14 @@ class GmshReader {
   }
 
   // --- shared ------------------------------------------------------------------------------
+
+  // Every node takes at least 8 bytes ("1 0 0 0" and a line break); a larger count is a corrupt
+  // header, refused before anything is allocated for it.
+  void check_node_count(std::uint64_t count) {
+    if (count > in_.remaining() / 8) {
+      fail("node count " + std::to_string(count) + " is larger than the file can hold");
+    }
+  }
 
   void add_node(std::int64_t tag, const Vec3<double>& x) {
     if (tag < 0) fail("negative node tag " + std::to_string(tag));

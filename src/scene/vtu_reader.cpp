@@ -351,9 +351,12 @@ class VtuReader {
     } else if (std::strcmp(format, "appended") == 0) {
       if (!have_appended_) fail(array, array_name(array), ": format=\"appended\" but no <AppendedData>");
       std::int64_t offset = 0;
-      if (array->QueryInt64Attribute("offset", &offset) != tinyxml2::XML_SUCCESS || offset < 0 ||
-          static_cast<std::uint64_t>(offset) > appended_.size()) {
-        fail(array, array_name(array), ": bad or missing offset into the appended data");
+      if (array->QueryInt64Attribute("offset", &offset) != tinyxml2::XML_SUCCESS || offset < 0) {
+        fail(array, array_name(array), ": no valid offset attribute");
+      }
+      if (static_cast<std::uint64_t>(offset) > appended_.size()) {
+        fail(array, array_name(array), ": offset ", offset, " lies past the end of the ",
+             appended_.size(), " bytes of appended data (truncated file?)");
       }
       ByteSource source(appended_.substr(static_cast<std::size_t>(offset)), appended_base64_);
       read_binary(array, source, count * static_cast<std::size_t>(type->bytes), bytes);

@@ -14,6 +14,9 @@ void MechanicalSystem<Real>::finalize() {
   for (Index i : fixed) {
     if (i < 0 || i >= n) throw make_error("fixed point index ", i, " out of range [0, ", n, ")");
   }
+  for (Index i : zero_velocity) {
+    if (i < 0 || i >= n) throw make_error("zero-velocity point index ", i, " out of range [0, ", n, ")");
+  }
   for (const auto& constant : constant_forces) {
     if (constant.forces.size() != constant.indices.size()) {
       throw make_error("constant force: ", constant.forces.size(), " forces for ", constant.indices.size(),

@@ -5,6 +5,7 @@
 
 #include "fastcorot/core/error.h"
 #include "support/deformations.h"
+#include "support/finite_difference.h"
 
 #include <gtest/gtest.h>
 

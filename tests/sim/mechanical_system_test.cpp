@@ -115,6 +115,10 @@ TEST(MechanicalSystem, FinalizeRejectsOutOfRangeIndicesByValue) {
   fixed_negative.fixed = {-1};
   expect_error(fixed_negative, "fixed point index -1");
 
+  auto zero_velocity_high = base;
+  zero_velocity_high.zero_velocity = {5};
+  expect_error(zero_velocity_high, "index 5");
+
   auto constant_high = base;
   constant_high.constant_forces.push_back({{2, 7}, {Vec3<double>::Zero(), Vec3<double>::Zero()}});
   expect_error(constant_high, "constant force index 7");
