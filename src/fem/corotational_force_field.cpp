@@ -105,17 +105,15 @@ template <class Real>
 void CorotationalForceField<Real>::rebuild_edge_stiffness() {
   edge_stiffness_.assign(static_cast<std::size_t>(mesh_->num_edges()), Mat3<Real>::Zero());
   for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
+    const auto& rest = rest_[static_cast<std::size_t>(t)];
     const Mat3<Real>& r = rotations_[static_cast<std::size_t>(t)];
+    const std::array<Vec3<Real>, 4> rotated = {r * rest.shape[0], r * rest.shape[1], r * rest.shape[2],
+                                               r * rest.shape[3]};
     const auto& edges = mesh_->edges_of_tetrahedron(t);
     for (int e = 0; e < 6; ++e) {
-      const Mat3<Real> block = edge_block(rest_[static_cast<std::size_t>(t)], e);
-      Mat3<Real>& target = edge_stiffness_[static_cast<std::size_t>(edges[e])];
-      // The block couples local vertex l to k; stored from the mesh edge's first vertex.
-      if (mesh_->edge_follows_mesh_edge(t, e)) {
-        target += r * block * r.transpose();
-      } else {
-        target += r * block.transpose() * r.transpose();
-      }
+      // The block couples local vertex l to k; it is stored from the mesh edge's first vertex.
+      edge_stiffness_[static_cast<std::size_t>(edges[e])] +=
+          rotated_edge_block(rest, rotated, e, !mesh_->edge_follows_mesh_edge(t, e));
     }
   }
 }

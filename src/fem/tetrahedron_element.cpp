@@ -72,21 +72,17 @@ Mat3<Real> tetrahedron_rotation(const TetrahedronRest<Real>& rest, const TetPoin
 
 namespace {
 
-// Forces g_j in the rest frame: g_l += L_e u_e, g_k -= L_e^T u_e.
+// Rest-frame displacement gradient H = sum_{j>=1} u_j s_j^T, u_j = R^T (x_j - x0) - (p_j - p0)
+// (u_0 = 0; differences keep precision far from the origin).
 template <class Real>
-TetPoints<Real> rest_frame_force(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
+Mat3<Real> displacement_gradient(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
                                  const TetPoints<Real>& x, const Mat3<Real>& rotation) {
-  TetPoints<Real> g;
-  for (auto& v : g) v.setZero();
-  for (int e = 0; e < 6; ++e) {
-    const int k = kTetrahedronEdges[e][0];
-    const int l = kTetrahedronEdges[e][1];
-    const Vec3<Real> u = rotation.transpose() * (x[l] - x[k]) - (p[l] - p[k]);
-    const Mat3<Real> block = edge_block(rest, e);
-    g[l] += block * u;
-    g[k] -= block.transpose() * u;
+  Mat3<Real> h = Mat3<Real>::Zero();
+  for (int j = 1; j < 4; ++j) {
+    const Vec3<Real> u = rotation.transpose() * (x[j] - x[0]) - (p[j] - p[0]);
+    h.noalias() += u * rest.shape[j].transpose();
   }
-  return g;
+  return h;
 }
 
 }  // namespace
@@ -94,21 +90,35 @@ TetPoints<Real> rest_frame_force(const TetrahedronRest<Real>& rest, const TetPoi
 template <class Real>
 TetPoints<Real> tetrahedron_force(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
                                   const TetPoints<Real>& x, const Mat3<Real>& rotation) {
-  TetPoints<Real> f = rest_frame_force(rest, p, x, rotation);
-  for (auto& v : f) v = rotation * v;
+  const Mat3<Real> h = displacement_gradient(rest, p, x, rotation);
+  Mat3<Real> stress = rest.mu * (h + h.transpose());
+  stress.diagonal().array() += rest.lambda * h.trace();
+  // World-frame forces f_j = -R stress s_j.
+  const Mat3<Real> world_stress = rotation * stress;
+  TetPoints<Real> f;
+  for (int j = 0; j < 4; ++j) f[j] = -(world_stress * rest.shape[j]);
   return f;
 }
 
 template <class Real>
 Real tetrahedron_energy(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
                         const TetPoints<Real>& x, const Mat3<Real>& rotation) {
-  const TetPoints<Real> g = rest_frame_force(rest, p, x, rotation);
-  Real energy = 0;
-  for (int j = 1; j < 4; ++j) {
-    const Vec3<Real> u = rotation.transpose() * (x[j] - x[0]) - (p[j] - p[0]);
-    energy -= u.dot(g[j]);
-  }
-  return energy / 2;
+  const Mat3<Real> h = displacement_gradient(rest, p, x, rotation);
+  const Mat3<Real> strain = (h + h.transpose()) / 2;
+  const Real trace = h.trace();
+  return rest.lambda / 2 * trace * trace + rest.mu * strain.squaredNorm();
+}
+
+template <class Real>
+Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>& rest, const std::array<Vec3<Real>, 4>& rotated_shape,
+                              int e, bool transposed) {
+  const int k = kTetrahedronEdges[e][0];
+  const int l = kTetrahedronEdges[e][1];
+  const Vec3<Real>& rk = rotated_shape[transposed ? l : k];
+  const Vec3<Real>& rl = rotated_shape[transposed ? k : l];
+  Mat3<Real> block = rest.lambda * rl * rk.transpose() + rest.mu * rk * rl.transpose();
+  block.diagonal().array() += rest.mu * rest.shape[l].dot(rest.shape[k]);
+  return block;
 }
 
 #define FASTCOROT_INSTANTIATE(Real)                                                                \
@@ -121,7 +131,9 @@ Real tetrahedron_energy(const TetrahedronRest<Real>& rest, const TetPoints<Real>
   template TetPoints<Real> tetrahedron_force(const TetrahedronRest<Real>&, const TetPoints<Real>&, \
                                              const TetPoints<Real>&, const Mat3<Real>&);           \
   template Real tetrahedron_energy(const TetrahedronRest<Real>&, const TetPoints<Real>&,           \
-                                   const TetPoints<Real>&, const Mat3<Real>&);
+                                   const TetPoints<Real>&, const Mat3<Real>&);                      \
+  template Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>&,                             \
+                                         const std::array<Vec3<Real>, 4>&, int, bool);
 FASTCOROT_INSTANTIATE(float)
 FASTCOROT_INSTANTIATE(double)
 #undef FASTCOROT_INSTANTIATE

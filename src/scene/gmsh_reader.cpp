@@ -27,8 +27,8 @@ constexpr int kTetrahedronType = 4;  // MSH_TET_4
 // Nodes per element of the Gmsh element types (GmshDefines.h: MSH_LIN_2 = 1 ... MSH_TET_56 = 31,
 // MSH_HEX_64 = 92, MSH_HEX_125 = 93); 0 for a type this reader does not know.
 int nodes_per_element(std::int64_t type) {
-  static constexpr int kCounts[] = {0,  2,  3,  4,  4,  8,  6, 5, 3, 6,  9,  10, 27, 18, 14, 1,
-                                    8,  20, 15, 13, 9,  10, 12, 15, 15, 21, 4, 5,  6,  20, 35, 56};
+  static constexpr int kCounts[] = {0, 2,  3,  4,  4, 8,  6,  5,  3,  6,  9, 10, 27, 18, 14, 1,
+                                    8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5,  6,  20, 35, 56};
   if (type >= 0 && type < static_cast<std::int64_t>(std::size(kCounts))) {
     return kCounts[type];
   }
@@ -48,7 +48,8 @@ class NodeTags {
   // False when the tag is already there.
   bool add(std::uint64_t tag, Index index) {
     if (tag < dense_limit_) {
-      if (tag >= dense_.size()) dense_.resize(std::max<std::size_t>(tag + 1, 2 * dense_.size()), -1);
+      if (tag >= dense_.size())
+        dense_.resize(std::max<std::size_t>(tag + 1, 2 * dense_.size()), -1);
       if (dense_[tag] >= 0) return false;
       dense_[tag] = index;
       return true;
@@ -141,7 +142,8 @@ class GmshReader {
     const int data_size = in_.integer<int>("the data size");
     // Format 2 gives sizeof(double); format 4 gives sizeof(size_t), the size of tags and counts.
     if (major_ == 2 ? data_size != 8 : (data_size != 8 && data_size != 4)) {
-      in_.fail_text("unsupported data size ", data_size, major_ == 2 ? " (must be 8)" : " (must be 4 or 8)");
+      in_.fail_text("unsupported data size ", data_size,
+                    major_ == 2 ? " (must be 8)" : " (must be 4 or 8)");
     }
     size_t_bytes_ = data_size;
     if (binary_) {
@@ -165,7 +167,8 @@ class GmshReader {
     if (detail::to_index(count) < 0) in_.fail_text("bad node count ", count);
     check_node_count(static_cast<std::uint64_t>(count));
     tags_.set_expected_count(static_cast<std::uint64_t>(count));
-    mesh_.points.reserve(std::min<std::size_t>(static_cast<std::size_t>(count), in_.remaining() / 8));
+    mesh_.points.reserve(
+        std::min<std::size_t>(static_cast<std::size_t>(count), in_.remaining() / 8));
     if (binary_) in_.rest_of_line();
     for (std::int64_t i = 0; i < count; ++i) {
       std::int64_t tag = 0;
@@ -247,7 +250,8 @@ class GmshReader {
   }
 
   [[noreturn]] void fail(const std::string& message) {
-    binary_ ? in_.fail_binary(message) : in_.fail_text(message);
+    if (binary_) in_.fail_binary(message);
+    in_.fail_text(message);
   }
 
   void read_nodes_v4() {
@@ -256,7 +260,8 @@ class GmshReader {
     const std::uint64_t count = size_value("the node count");
     size_value("the smallest node tag");
     size_value("the largest node tag");
-    if (count > static_cast<std::uint64_t>(INT32_MAX)) fail("bad node count " + std::to_string(count));
+    if (count > static_cast<std::uint64_t>(INT32_MAX))
+      fail("bad node count " + std::to_string(count));
     check_node_count(count);
     tags_.set_expected_count(count);
     mesh_.points.reserve(std::min<std::size_t>(count, in_.remaining() / 8));
@@ -270,8 +275,10 @@ class GmshReader {
         fail("bad node block header (dimension " + std::to_string(dim) + ", parametric " +
              std::to_string(parametric) + ")");
       }
-      if (n > count - mesh_.points.size()) fail("node blocks hold more nodes than the header's count");
-      if (n > in_.remaining() / 2) fail("a node block of " + std::to_string(n) + " nodes is larger than the file");
+      if (n > count - mesh_.points.size())
+        fail("node blocks hold more nodes than the header's count");
+      if (n > in_.remaining() / 2)
+        fail("a node block of " + std::to_string(n) + " nodes is larger than the file");
       const int extra = parametric ? dim : 0;  // u, (u v) or (u v w) after x y z
       block_tags.resize(static_cast<std::size_t>(n));
       for (auto& tag : block_tags) tag = size_value("a node tag");
@@ -282,7 +289,8 @@ class GmshReader {
         add_node(tag, x);
       }
     }
-    if (mesh_.points.size() != count) fail("the node blocks hold fewer nodes than the header's count");
+    if (mesh_.points.size() != count)
+      fail("the node blocks hold fewer nodes than the header's count");
   }
 
   void read_elements_v4() {
@@ -302,7 +310,8 @@ class GmshReader {
       done += n;
       const int k = nodes_per_element(type);
       if (k == 0) {
-        if (binary_) fail("unknown element type " + std::to_string(type) + " (cannot step over it)");
+        if (binary_)
+          fail("unknown element type " + std::to_string(type) + " (cannot step over it)");
         for (std::uint64_t e = 0; e < n; ++e) {  // one element per line
           in_.skip_whitespace();
           in_.rest_of_line();

@@ -31,7 +31,8 @@ std::string read_file_bytes(const std::filesystem::path& path) {
 
 std::size_t line_number(std::string_view text, std::size_t offset) {
   offset = std::min(offset, text.size());
-  return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
+  return 1 + static_cast<std::size_t>(std::count(
+                 text.begin(), text.begin() + static_cast<std::ptrdiff_t>(offset), '\n'));
 }
 
 void check_mesh_data(const MeshData& mesh, const std::string& file) {

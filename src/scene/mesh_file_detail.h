@@ -90,7 +90,8 @@ class FileCursor {
 
   // The next token if one is left on the current line, else an empty view (the cursor stays).
   std::string_view token_on_line() {
-    while (pos_ < data_.size() && (data_[pos_] == ' ' || data_[pos_] == '\t' || data_[pos_] == '\r')) {
+    while (pos_ < data_.size() &&
+           (data_[pos_] == ' ' || data_[pos_] == '\t' || data_[pos_] == '\r')) {
       ++pos_;
     }
     if (pos_ >= data_.size() || data_[pos_] == '\n') return {};
@@ -201,7 +202,9 @@ class FileCursor {
   }
 
  private:
-  static bool is_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t' || c == '\f' || c == '\v'; }
+  static bool is_space(char c) {
+    return c == ' ' || c == '\n' || c == '\r' || c == '\t' || c == '\f' || c == '\v';
+  }
 
   std::string_view data_;
   std::string file_;

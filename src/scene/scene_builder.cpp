@@ -45,6 +45,48 @@ Vec3<double> node_vec3(const SceneNode& node, const std::string& name, const Vec
   return v;
 }
 
+// SOFA's RGBAColor syntax: "r g b [a]", "#rgb", "#rgba", "#rrggbb", "#rrggbbaa", or one of the
+// names SOFA knows. We refuse what SOFA would refuse, and components outside [0, 1].
+Rgba parse_color(const std::string& attribute, const std::string& text) {
+  auto fail = [&](const char* why) {
+    return make_error(attribute, " = \"", text, "\": ", why,
+                      " (expected \"r g b [a]\" in [0, 1], #rrggbb[aa], #rgb[a] or a colour name)");
+  };
+  static const std::map<std::string, Rgba> names = {
+      {"white", {1, 1, 1, 1}}, {"black", {0, 0, 0, 1}},  {"red", {1, 0, 0, 1}},     {"green", {0, 1, 0, 1}},
+      {"blue", {0, 0, 1, 1}},  {"cyan", {0, 1, 1, 1}},   {"magenta", {1, 0, 1, 1}}, {"yellow", {1, 1, 0, 1}},
+      {"gray", {0.5f, 0.5f, 0.5f, 1}}};
+  std::istringstream in(text);
+  std::string first;
+  in >> first;
+  if (first.empty()) throw fail("empty");
+  Rgba color{0, 0, 0, 1};
+  if (first[0] == '#') {
+    const std::string hex = first.substr(1);
+    const bool digits = hex.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
+    if (!digits || (hex.size() != 3 && hex.size() != 4 && hex.size() != 6 && hex.size() != 8)) throw fail("bad hex colour");
+    const std::size_t width = hex.size() <= 4 ? 1 : 2;
+    for (std::size_t k = 0; k * width < hex.size(); ++k) {
+      const int value = std::stoi(hex.substr(k * width, width), nullptr, 16);
+      color[k] = static_cast<float>(width == 1 ? value * 17 : value) / 255.0f;
+    }
+  } else if (const auto named = names.find(first); named != names.end()) {
+    color = named->second;
+  } else {
+    std::istringstream numbers(text);
+    std::vector<double> values;
+    for (double v; numbers >> v;) values.push_back(v);
+    if (!numbers.eof() || (values.size() != 3 && values.size() != 4)) throw fail("not a colour");
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      if (!(values[k] >= 0 && values[k] <= 1)) throw fail("a component is outside [0, 1]");
+      color[k] = static_cast<float>(values[k]);
+    }
+    return color;
+  }
+  if (std::string rest; in >> rest) throw fail("unexpected text after the colour");
+  return color;
+}
+
 class Builder {
  public:
   explicit Builder(const SceneNode& root) : data_(root, info_) {}
@@ -148,6 +190,7 @@ class Builder {
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
         if (type == "ConstantForceField") add_constant_force(*c, system);
         if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
+        if (type == "BoxROI") add_boxes(*c, object);
         if (c->spec->category == "mass") {
           if (system.mass.size() != 0) throw make_error(c->where(), ": a second mass for ", object.path);
           system.mass = build_mass(*c, system.state.rest_position);
@@ -213,8 +256,15 @@ class Builder {
       if (parameters.poisson_ratio.empty()) throw make_error("poissonRatio is empty");
       parameters.method = parse_rotation_method(data_.text(c, "method", "qr"));
       auto mesh = mesh_of(c, system.size());
+      ForceFieldDrawing drawing;
+      drawing.drawing = data_.boolean(c, "drawing", false);
+      for (int k = 0; k < 4; ++k) {
+        const std::string name = "drawColor" + std::to_string(k + 1);
+        if (c.has(name)) drawing.colors[static_cast<std::size_t>(k)] = parse_color(name, data_.text(c, name, ""));
+      }
       system.force_fields.push_back(
           std::make_shared<CorotationalForceField<double>>(mesh, system.state.rest_position, parameters));
+      object.force_field_drawing.push_back(drawing);
       if (!object.mesh) object.mesh = mesh;
     } catch (const Error& error) {
       throw make_error(c.where(), ": ", error.what());
@@ -273,6 +323,18 @@ class Builder {
     system.fixed.insert(system.fixed.end(), indices.begin(), indices.end());
     if (data_.boolean(c, "activate_projectVelocity", false)) {
       system.zero_velocity.insert(system.zero_velocity.end(), indices.begin(), indices.end());
+    }
+  }
+
+  // The boxes are kept for drawing only; the selection itself is BoxROI's `indices` data.
+  void add_boxes(Component& c, SimulatedObject<double>& object) {
+    const Numbers& box = data_.data(c, "box");
+    if (box.empty() || box.size() % 6 != 0) {
+      throw make_error(c.where(), ": box needs 6 numbers per box (xmin ymin zmin xmax ymax zmax), got ", box.size());
+    }
+    for (std::size_t b = 0; b < box.size(); b += 6) {
+      const Vec3<double> a(box[b], box[b + 1], box[b + 2]), z(box[b + 3], box[b + 4], box[b + 5]);
+      object.boxes.push_back({a.cwiseMin(z), a.cwiseMax(z)});
     }
   }
 

@@ -69,7 +69,7 @@ class LegacyReader {
 
   MeshData read() {
     read_header();
-    std::vector<std::int64_t> offsets;       // cell c is connectivity[offsets[c], offsets[c + 1])
+    std::vector<std::int64_t> offsets;  // cell c is connectivity[offsets[c], offsets[c + 1])
     std::vector<std::int64_t> connectivity;
     std::vector<std::int64_t> types;
     std::size_t cells_at = 0;
@@ -113,13 +113,16 @@ class LegacyReader {
       const std::int64_t first = offsets[c];
       const std::int64_t count = offsets[c + 1] - first;
       if (types[c] == kVtkTetrahedron) {
-        if (count != 4) in_.fail_text_at(cells_at, "cell ", c, ": a tetrahedron (type 10) with ", count, " points");
+        if (count != 4)
+          in_.fail_text_at(cells_at, "cell ", c, ": a tetrahedron (type 10) with ", count,
+                           " points");
         mesh_.tetrahedra.push_back({point_index(connectivity, first, c, cells_at),
                                     point_index(connectivity, first + 1, c, cells_at),
                                     point_index(connectivity, first + 2, c, cells_at),
                                     point_index(connectivity, first + 3, c, cells_at)});
       } else if (types[c] == kVtkTriangle) {
-        if (count != 3) in_.fail_text_at(cells_at, "cell ", c, ": a triangle (type 5) with ", count, " points");
+        if (count != 3)
+          in_.fail_text_at(cells_at, "cell ", c, ": a triangle (type 5) with ", count, " points");
         mesh_.triangles.push_back({point_index(connectivity, first, c, cells_at),
                                    point_index(connectivity, first + 1, c, cells_at),
                                    point_index(connectivity, first + 2, c, cells_at)});
@@ -138,8 +141,10 @@ class LegacyReader {
       in_.fail_text("not a legacy VTK file: the first line is not '# vtk DataFile Version x.x'");
     }
     std::string_view version = first.substr(kMagic.size());
-    while (!version.empty() && std::isspace(static_cast<unsigned char>(version.front()))) version.remove_prefix(1);
-    while (!version.empty() && std::isspace(static_cast<unsigned char>(version.back()))) version.remove_suffix(1);
+    while (!version.empty() && std::isspace(static_cast<unsigned char>(version.front())))
+      version.remove_prefix(1);
+    while (!version.empty() && std::isspace(static_cast<unsigned char>(version.back())))
+      version.remove_suffix(1);
     if (version == "5.1") {
       version5_ = true;
     } else if (!(version == "4.2" || version == "4.1" || version == "4.0" || version == "3.0" ||
@@ -159,7 +164,8 @@ class LegacyReader {
                        "' (expected ASCII or BINARY)");
     }
     const std::size_t dataset_at = (in_.skip_whitespace(), in_.position());
-    if (!iequals(in_.token("DATASET"), "DATASET")) in_.fail_text_at(dataset_at, "expected 'DATASET'");
+    if (!iequals(in_.token("DATASET"), "DATASET"))
+      in_.fail_text_at(dataset_at, "expected 'DATASET'");
     const std::string_view dataset = in_.token("the dataset type");
     if (!iequals(dataset, "UNSTRUCTURED_GRID")) {
       in_.fail_text_at(dataset_at, "dataset type '", FileCursor::printable(dataset),
@@ -201,18 +207,25 @@ class LegacyReader {
                                               : detail::load_value<double>(p, kSwap));
     }
     switch (type.bytes) {
-      case 1: return static_cast<Out>(type.is_signed ? static_cast<std::int64_t>(static_cast<signed char>(*p))
-                                                     : static_cast<std::int64_t>(static_cast<unsigned char>(*p)));
-      case 2: return static_cast<Out>(type.is_signed ? detail::load_value<std::int16_t>(p, kSwap)
-                                                     : detail::load_value<std::uint16_t>(p, kSwap));
-      case 4: return static_cast<Out>(type.is_signed ? detail::load_value<std::int32_t>(p, kSwap)
-                                                     : detail::load_value<std::uint32_t>(p, kSwap));
-      default: return static_cast<Out>(type.is_signed ? detail::load_value<std::int64_t>(p, kSwap)
-                                                      : static_cast<std::int64_t>(detail::load_value<std::uint64_t>(p, kSwap)));
+      case 1:
+        return static_cast<Out>(type.is_signed
+                                    ? static_cast<std::int64_t>(static_cast<signed char>(*p))
+                                    : static_cast<std::int64_t>(static_cast<unsigned char>(*p)));
+      case 2:
+        return static_cast<Out>(type.is_signed ? detail::load_value<std::int16_t>(p, kSwap)
+                                               : detail::load_value<std::uint16_t>(p, kSwap));
+      case 4:
+        return static_cast<Out>(type.is_signed ? detail::load_value<std::int32_t>(p, kSwap)
+                                               : detail::load_value<std::uint32_t>(p, kSwap));
+      default:
+        return static_cast<Out>(type.is_signed ? detail::load_value<std::int64_t>(p, kSwap)
+                                               : static_cast<std::int64_t>(
+                                                     detail::load_value<std::uint64_t>(p, kSwap)));
     }
   }
 
-  void read_reals(const ValueType& type, std::size_t count, std::vector<double>& out, std::string_view what) {
+  void read_reals(const ValueType& type, std::size_t count, std::vector<double>& out,
+                  std::string_view what) {
     begin_array(type, count, what);
     out.clear();
     out.reserve(std::min(count, in_.remaining()));
@@ -228,7 +241,8 @@ class LegacyReader {
     out.clear();
     out.reserve(std::min(count, in_.remaining()));
     for (std::size_t i = 0; i < count; ++i) {
-      out.push_back(binary_ ? binary_value<std::int64_t>(type, what) : in_.integer<std::int64_t>(what));
+      out.push_back(binary_ ? binary_value<std::int64_t>(type, what)
+                            : in_.integer<std::int64_t>(what));
     }
   }
 
@@ -255,15 +269,18 @@ class LegacyReader {
     for (std::size_t c = 0; c < count; ++c) {
       const std::int64_t n = at < list.size() ? list[at] : -1;
       if (at >= list.size() || n < 0 || static_cast<std::size_t>(n) > list.size() - at - 1) {
-        in_.fail_text_at(cells_at, "CELLS: cell ", c, " runs past the cell list of ", size, " integers");
+        in_.fail_text_at(cells_at, "CELLS: cell ", c, " runs past the cell list of ", size,
+                         " integers");
       }
-      connectivity.insert(connectivity.end(), list.begin() + static_cast<std::ptrdiff_t>(at + 1),
-                          list.begin() + static_cast<std::ptrdiff_t>(at + 1 + static_cast<std::size_t>(n)));
+      connectivity.insert(
+          connectivity.end(), list.begin() + static_cast<std::ptrdiff_t>(at + 1),
+          list.begin() + static_cast<std::ptrdiff_t>(at + 1 + static_cast<std::size_t>(n)));
       at += 1 + static_cast<std::size_t>(n);
       offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
     }
     if (at != list.size()) {
-      in_.fail_text_at(cells_at, "CELLS: ", count, " cells use ", at, " of the ", size, " integers");
+      in_.fail_text_at(cells_at, "CELLS: ", count, " cells use ", at, " of the ", size,
+                       " integers");
     }
   }
 
@@ -278,7 +295,8 @@ class LegacyReader {
     if (offsets.empty()) offsets.push_back(0);  // no cells
     if (offsets.front() != 0 || offsets.back() != static_cast<std::int64_t>(num_connectivity)) {
       in_.fail_text_at(cells_at, "CELLS: offsets must run from 0 to the connectivity size ",
-                       num_connectivity, ", they run from ", offsets.front(), " to ", offsets.back());
+                       num_connectivity, ", they run from ", offsets.front(), " to ",
+                       offsets.back());
     }
     for (std::size_t c = 0; c + 1 < offsets.size(); ++c) {
       if (offsets[c + 1] < offsets[c]) {
@@ -287,8 +305,8 @@ class LegacyReader {
     }
   }
 
-  Index point_index(const std::vector<std::int64_t>& connectivity, std::int64_t at, std::size_t cell,
-                    std::size_t cells_at) {
+  Index point_index(const std::vector<std::int64_t>& connectivity, std::int64_t at,
+                    std::size_t cell, std::size_t cells_at) {
     const std::int64_t v = connectivity[static_cast<std::size_t>(at)];
     if (v < 0 || v >= static_cast<std::int64_t>(mesh_.points.size())) {
       in_.fail_text_at(cells_at, "cell ", cell, ": point index ", v, " out of range [0, ",
@@ -324,7 +342,8 @@ class LegacyReader {
       const std::size_t components = count_value("the number of components");
       const std::size_t tuples = count_value("the number of tuples");
       const ValueType& type = value_type();
-      if (tuples != 0 && components > SIZE_MAX / tuples) in_.fail_text_at(name_at, "field array too large");
+      if (tuples != 0 && components > SIZE_MAX / tuples)
+        in_.fail_text_at(name_at, "field array too large");
       const std::size_t count = components * tuples;
       if (binary_) {
         begin_array(type, count, "a field array");

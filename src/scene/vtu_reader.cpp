@@ -61,7 +61,9 @@ int base64_value(char c) {
   return -1;
 }
 
-bool is_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\n' || c == '\r' || c == '\t';
+}
 
 // The bytes of one binary DataArray: raw bytes, or base64 text decoded on the fly.
 class ByteSource {
@@ -175,7 +177,8 @@ class VtuReader {
     } else {
       const std::size_t gt = data_.find('>', tag);
       if (gt == std::string_view::npos) {
-        throw make_error(file_, ":", detail::line_number(data_, tag), ": unterminated <AppendedData> tag");
+        throw make_error(file_, ":", detail::line_number(data_, tag),
+                         ": unterminated <AppendedData> tag");
       }
       if (data_[gt - 1] == '/') {  // <AppendedData/>: no data
         xml = data_;
@@ -252,7 +255,8 @@ class VtuReader {
     const std::size_t num_points = count_attribute(piece, "NumberOfPoints");
     const std::size_t num_cells = count_attribute(piece, "NumberOfCells");
     const std::size_t first_point = mesh_.points.size();
-    if (first_point + num_points > static_cast<std::size_t>(INT32_MAX)) fail(piece, "too many points");
+    if (first_point + num_points > static_cast<std::size_t>(INT32_MAX))
+      fail(piece, "too many points");
 
     const tinyxml2::XMLElement* points = piece->FirstChildElement("Points");
     if (num_points > 0) {
@@ -307,10 +311,13 @@ class VtuReader {
       const std::int64_t begin = c == 0 ? 0 : offsets[c - 1];
       const std::int64_t count = offsets[c] - begin;
       if (types[c] == kVtkTetrahedron) {
-        if (count != 4) fail(connectivity_array, "cell ", c, ": a tetrahedron (type 10) with ", count, " points");
-        mesh_.tetrahedra.push_back({index(begin, c), index(begin + 1, c), index(begin + 2, c), index(begin + 3, c)});
+        if (count != 4)
+          fail(connectivity_array, "cell ", c, ": a tetrahedron (type 10) with ", count, " points");
+        mesh_.tetrahedra.push_back(
+            {index(begin, c), index(begin + 1, c), index(begin + 2, c), index(begin + 3, c)});
       } else if (types[c] == kVtkTriangle) {
-        if (count != 3) fail(connectivity_array, "cell ", c, ": a triangle (type 5) with ", count, " points");
+        if (count != 3)
+          fail(connectivity_array, "cell ", c, ": a triangle (type 5) with ", count, " points");
         mesh_.triangles.push_back({index(begin, c), index(begin + 1, c), index(begin + 2, c)});
       }
     }
@@ -349,7 +356,8 @@ class VtuReader {
       ByteSource source(text ? std::string_view(text) : std::string_view(), true);
       read_binary(array, source, count * static_cast<std::size_t>(type->bytes), bytes);
     } else if (std::strcmp(format, "appended") == 0) {
-      if (!have_appended_) fail(array, array_name(array), ": format=\"appended\" but no <AppendedData>");
+      if (!have_appended_)
+        fail(array, array_name(array), ": format=\"appended\" but no <AppendedData>");
       std::int64_t offset = 0;
       if (array->QueryInt64Attribute("offset", &offset) != tinyxml2::XML_SUCCESS || offset < 0) {
         fail(array, array_name(array), ": no valid offset attribute");
@@ -361,7 +369,8 @@ class VtuReader {
       ByteSource source(appended_.substr(static_cast<std::size_t>(offset)), appended_base64_);
       read_binary(array, source, count * static_cast<std::size_t>(type->bytes), bytes);
     } else {
-      fail(array, array_name(array), ": unknown format '", format, "' (expected ascii, binary or appended)");
+      fail(array, array_name(array), ": unknown format '", format,
+           "' (expected ascii, binary or appended)");
     }
     out.resize(count);
     const char* p = bytes.data();
@@ -372,21 +381,28 @@ class VtuReader {
   Out convert(const char* p, const ArrayType& type) const {
     using detail::load_value;
     if (!type.integral) {
-      return static_cast<Out>(type.bytes == 4 ? load_value<float>(p, swap_) : load_value<double>(p, swap_));
+      return static_cast<Out>(type.bytes == 4 ? load_value<float>(p, swap_)
+                                              : load_value<double>(p, swap_));
     }
     switch (type.bytes) {
-      case 1: return static_cast<Out>(type.is_signed ? static_cast<int>(static_cast<signed char>(*p))
-                                                     : static_cast<int>(static_cast<unsigned char>(*p)));
-      case 2: return static_cast<Out>(type.is_signed ? static_cast<std::int64_t>(load_value<std::int16_t>(p, swap_))
-                                                     : static_cast<std::int64_t>(load_value<std::uint16_t>(p, swap_)));
-      case 4: return static_cast<Out>(type.is_signed ? static_cast<std::int64_t>(load_value<std::int32_t>(p, swap_))
-                                                     : static_cast<std::int64_t>(load_value<std::uint32_t>(p, swap_)));
+      case 1:
+        return static_cast<Out>(type.is_signed ? static_cast<int>(static_cast<signed char>(*p))
+                                               : static_cast<int>(static_cast<unsigned char>(*p)));
+      case 2:
+        return static_cast<Out>(
+            type.is_signed ? static_cast<std::int64_t>(load_value<std::int16_t>(p, swap_))
+                           : static_cast<std::int64_t>(load_value<std::uint16_t>(p, swap_)));
+      case 4:
+        return static_cast<Out>(
+            type.is_signed ? static_cast<std::int64_t>(load_value<std::int32_t>(p, swap_))
+                           : static_cast<std::int64_t>(load_value<std::uint32_t>(p, swap_)));
       default: {
         if (type.is_signed) return static_cast<Out>(load_value<std::int64_t>(p, swap_));
         // Values past INT64_MAX become -1: out of range for any index check.
         const std::uint64_t v = load_value<std::uint64_t>(p, swap_);
-        return static_cast<Out>(v > static_cast<std::uint64_t>(INT64_MAX) ? std::int64_t{-1}
-                                                                          : static_cast<std::int64_t>(v));
+        return static_cast<Out>(v > static_cast<std::uint64_t>(INT64_MAX)
+                                    ? std::int64_t{-1}
+                                    : static_cast<std::int64_t>(v));
       }
     }
   }
@@ -437,7 +453,8 @@ class VtuReader {
   void take(const tinyxml2::XMLElement* array, ByteSource& source, std::size_t count,
             std::string& out, const char* what) {
     switch (source.take(count, out)) {
-      case ByteSource::Status::kOk: return;
+      case ByteSource::Status::kOk:
+        return;
       case ByteSource::Status::kEnd:
         fail(array, array_name(array), ": data ends early (truncated ", what, ")");
       case ByteSource::Status::kBadBase64:
@@ -461,15 +478,14 @@ class VtuReader {
     const std::uint64_t block_size = header_value(array, source);
     const std::uint64_t last_size = header_value(array, source);
     const std::uint64_t full_last = last_size == 0 ? block_size : last_size;
-    const bool consistent =
-        num_blocks == 0 ? expected == 0
-                        : (last_size <= block_size && block_size > 0 &&
-                           num_blocks - 1 <= expected / block_size &&
-                           (num_blocks - 1) * block_size + full_last == expected);
+    const bool consistent = num_blocks == 0
+                                ? expected == 0
+                                : (last_size <= block_size && block_size > 0 &&
+                                   num_blocks - 1 <= expected / block_size &&
+                                   (num_blocks - 1) * block_size + full_last == expected);
     if (!consistent) {
-      fail(array, array_name(array), ": compressed header (", num_blocks, " blocks of ",
-           block_size, " bytes, last ", last_size, ") does not give the expected ", expected,
-           " bytes");
+      fail(array, array_name(array), ": compressed header (", num_blocks, " blocks of ", block_size,
+           " bytes, last ", last_size, ") does not give the expected ", expected, " bytes");
     }
     if (num_blocks > source.max_left() / static_cast<std::size_t>(header_bytes_)) {
       fail(array, array_name(array), ": data ends early (truncated header)");
@@ -496,8 +512,8 @@ class VtuReader {
       take(array, source, static_cast<std::size_t>(compressed_sizes[b]), block, "data");
       const std::uint64_t size = b + 1 == compressed_sizes.size() ? full_last : block_size;
       uLongf produced = static_cast<uLongf>(size);
-      const int status = uncompress(reinterpret_cast<Bytef*>(out.data() + b * block_size), &produced,
-                                    reinterpret_cast<const Bytef*>(block.data()),
+      const int status = uncompress(reinterpret_cast<Bytef*>(out.data() + b * block_size),
+                                    &produced, reinterpret_cast<const Bytef*>(block.data()),
                                     static_cast<uLong>(block.size()));
       if (status != Z_OK || produced != size) {
         fail(array, array_name(array), ": zlib block ", b, " does not decompress to ", size,

@@ -26,9 +26,10 @@ std::string base64_encode(std::string_view bytes) {
   out.reserve((bytes.size() + 2) / 3 * 4);
   std::size_t i = 0;
   for (; i + 3 <= bytes.size(); i += 3) {
-    const std::uint32_t bits = (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16) |
-                               (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8) |
-                               static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 2]));
+    const std::uint32_t bits =
+        (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16) |
+        (static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8) |
+        static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 2]));
     out += kBase64Alphabet[(bits >> 18) & 63];
     out += kBase64Alphabet[(bits >> 12) & 63];
     out += kBase64Alphabet[(bits >> 6) & 63];
@@ -36,7 +37,8 @@ std::string base64_encode(std::string_view bytes) {
   }
   if (i < bytes.size()) {
     std::uint32_t bits = static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i])) << 16;
-    if (i + 1 < bytes.size()) bits |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+    if (i + 1 < bytes.size())
+      bits |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[i + 1])) << 8;
     out += kBase64Alphabet[(bits >> 18) & 63];
     out += kBase64Alphabet[(bits >> 12) & 63];
     out += i + 1 < bytes.size() ? kBase64Alphabet[(bits >> 6) & 63] : '=';
@@ -58,12 +60,23 @@ std::string xml_escape(std::string_view text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -81,8 +94,8 @@ class DataArrayWriter {
   DataArrayWriter(std::ofstream& out, std::string file) : out_(out), file_(std::move(file)) {}
 
   // `data` holds the little-endian values; the UInt32 header is their byte count.
-  void write(std::string_view indent, std::string_view type, std::string_view name,
-             int components, std::string_view data) {
+  void write(std::string_view indent, std::string_view type, std::string_view name, int components,
+             std::string_view data) {
     if (data.size() > UINT32_MAX) {
       throw make_error(file_, ": DataArray '", name, "' has ", data.size(),
                        " bytes, more than a UInt32 header can count");
@@ -93,7 +106,8 @@ class DataArrayWriter {
     bytes.append(data);
     out_ << indent << "<DataArray type=\"" << type << "\" Name=\"" << xml_escape(name) << '"';
     if (components != 1) out_ << " NumberOfComponents=\"" << components << '"';
-    out_ << " format=\"binary\">\n" << indent << "  " << base64_encode(bytes) << '\n'
+    out_ << " format=\"binary\">\n"
+         << indent << "  " << base64_encode(bytes) << '\n'
          << indent << "</DataArray>\n";
   }
 
@@ -149,8 +163,9 @@ void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>
     for (std::size_t i = 0; i < block.connectivity.size(); ++i) {
       const Index v = block.connectivity[i];
       if (v < 0 || static_cast<std::size_t>(v) >= points.size()) {
-        throw make_error(file, ": cell block ", b, ": cell ", i / static_cast<std::size_t>(block.nodes_per_cell),
-                         ": point index ", v, " out of range [0, ", points.size(), ")");
+        throw make_error(file, ": cell block ", b, ": cell ",
+                         i / static_cast<std::size_t>(block.nodes_per_cell), ": point index ", v,
+                         " out of range [0, ", points.size(), ")");
       }
     }
     num_cells += block.connectivity.size() / static_cast<std::size_t>(block.nodes_per_cell);
@@ -189,8 +204,10 @@ void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>
   std::string types;
   std::int64_t end = 0;
   for (const VtuCellBlock& block : cells) {
-    for (const Index v : block.connectivity) append_little_endian(connectivity, static_cast<std::int64_t>(v));
-    const std::size_t n = block.connectivity.size() / static_cast<std::size_t>(block.nodes_per_cell);
+    for (const Index v : block.connectivity)
+      append_little_endian(connectivity, static_cast<std::int64_t>(v));
+    const std::size_t n =
+        block.connectivity.size() / static_cast<std::size_t>(block.nodes_per_cell);
     for (std::size_t c = 0; c < n; ++c) {
       end += block.nodes_per_cell;
       append_little_endian(offsets, end);

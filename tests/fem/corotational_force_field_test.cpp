@@ -4,6 +4,7 @@
 #include "fastcorot/topology/regular_grid.h"
 #include "support/deformations.h"
 #include "support/finite_difference.h"
+#include "support/reference_element.h"
 
 #include <gtest/gtest.h>
 
@@ -53,7 +54,7 @@ Points deformed(const Points& rest, double amplitude, unsigned seed) {
 
 Points zeros(std::size_t n) { return Points(n, Vec3<double>::Zero()); }
 
-// Straightforward reference: loop over elements with the element kernels, assemble densely.
+// Straightforward reference: loop over elements with SPEC's per-edge element, assemble densely.
 struct Reference {
   Points force;
   Eigen::MatrixXd stiffness;
@@ -70,7 +71,7 @@ Reference reference(const TetMesh& mesh, const Points& rest, const Points& x, co
     const auto xt = tetrahedron_points<double>(tet, x);
     const auto data = tetrahedron_rest(p, lame_parameters(young, poisson), parameters.method);
     const Mat3<double> r = tetrahedron_rotation(data, xt, parameters.method);
-    const auto f = tetrahedron_force(data, p, xt, r);
+    const auto f = testing::reference_force(data, p, xt, r);
     for (int j = 0; j < 4; ++j) out.force[static_cast<std::size_t>(tet[j])] += f[j];
     for (int j = 0; j < 4; ++j) {
       out.stiffness.block<3, 3>(3 * tet[j], 3 * tet[j]) -= r * vertex_block(data, j) * r.transpose();

@@ -3,6 +3,7 @@
 #include "fastcorot/topology/tet_mesh.h"
 #include "support/deformations.h"
 #include "support/finite_difference.h"
+#include "support/reference_element.h"
 
 #include <gtest/gtest.h>
 
@@ -232,6 +233,33 @@ TEST_P(TetrahedronMethod, StiffnessIsTheForceDerivativeAtRest) {
     k.block<3, 3>(3 * kk, 3 * l) = -r * edge_block(rest, e).transpose() * r.transpose();
   }
   EXPECT_LT(testing::relative_error(jacobian, k), 1e-7);
+}
+
+TEST_P(TetrahedronMethod, KernelsMatchSpecsPerEdgeReference) {
+  // The stress form of the force and energy and the rotated edge blocks equal SPEC's literal
+  // per-edge formulas (tests/support/reference_element.h) to round-off, for both orientations.
+  const RotationMethod method = GetParam();
+  for (bool flip : {false, true}) {
+    auto p = irregular_points();
+    if (flip) std::swap(p[0], p[3]);
+    const auto rest = tetrahedron_rest(p, lame_parameters(1000.0, 0.3), method);
+    for (unsigned seed = 40; seed < 45; ++seed) {
+      const auto x = deformed(p, 0.3, seed);
+      const Mat3<double> r = tetrahedron_rotation(rest, x, method);
+      const auto f = tetrahedron_force(rest, p, x, r);
+      const auto ref = testing::reference_force(rest, p, x, r);
+      EXPECT_LT(testing::relative_error(flat(f), flat(ref)), 1e-13);
+      const double u = tetrahedron_energy(rest, p, x, r);
+      EXPECT_NEAR(u, testing::reference_energy(rest, p, x, r), 1e-13 * std::abs(u));
+      const std::array<Vec3<double>, 4> rotated = {r * rest.shape[0], r * rest.shape[1], r * rest.shape[2], r * rest.shape[3]};
+      for (int e = 0; e < 6; ++e) {
+        const Mat3<double> block = edge_block(rest, e);
+        EXPECT_LT((rotated_edge_block(rest, rotated, e, false) - r * block * r.transpose()).norm(), 1e-12 * block.norm());
+        EXPECT_LT((rotated_edge_block(rest, rotated, e, true) - r * block.transpose() * r.transpose()).norm(),
+                  1e-12 * block.norm());
+      }
+    }
+  }
 }
 
 TEST_P(TetrahedronMethod, FloatAgreesWithDouble) {

@@ -26,7 +26,8 @@ std::filesystem::path mesh_path(const std::string& name) {
 // Writes `contents` to a file of this test's own temporary folder.
 std::filesystem::path write_temp(const std::string& name, std::string_view contents) {
   const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("fastcorot_gmsh_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+                   ("fastcorot_gmsh_" +
+                    std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   std::ofstream(path, std::ios::binary) << contents;
@@ -202,7 +203,8 @@ std::string binary_v22(bool big_endian, std::int32_t one = 1) {
   }
   s += "\n$EndNodes\n$Elements\n2\n";
   for (const std::int32_t v : {15, 1, 2, /*element*/ 1, 0, 0, 30}) append(s, v, big_endian);
-  for (const std::int32_t v : {4, 1, 2, /*element*/ 2, 0, 0, 40, 30, 20, 10}) append(s, v, big_endian);
+  for (const std::int32_t v : {4, 1, 2, /*element*/ 2, 0, 0, 40, 30, 20, 10})
+    append(s, v, big_endian);
   s += "\n$EndElements\n";
   return s;
 }
@@ -231,7 +233,8 @@ TEST(GmshReader, ErrorsNameFileLineAndProblem) {
 
   const std::string header = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
   const std::string nodes = "$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n";
-  const std::string unknown = read_error(header + nodes + "$Elements\n1\n1 2 0 1 2 99\n$EndElements\n");
+  const std::string unknown =
+      read_error(header + nodes + "$Elements\n1\n1 2 0 1 2 99\n$EndElements\n");
   EXPECT_TRUE(contains(unknown, "bad.msh:11: element 1 uses node tag 99, which is not in $Nodes"))
       << unknown;
   EXPECT_TRUE(contains(read_error(header + "$Nodes\n2\n1 0 0 0\n1 1 0 0\n$EndNodes\n"),
@@ -242,18 +245,24 @@ TEST(GmshReader, ErrorsNameFileLineAndProblem) {
   EXPECT_TRUE(contains(read_error(header + "$Nodes\n1\n1 0 0 nan\n$EndNodes\n"), "not finite"));
   EXPECT_TRUE(contains(read_error(header + "$Nodes\n2\n1 0 0 0\n2 1 0 0\n$Elements\n"),
                        "expected '$EndNodes', found '$Elements'"));
-  EXPECT_TRUE(contains(read_error(header + "$Nodes\n3\n1 0 0 0\n"), "unexpected end of file"));
+  EXPECT_TRUE(
+      contains(read_error(header + "$Nodes\n2\n1 0 0 0\n2 1.0 0.0"), "unexpected end of file"));
+  EXPECT_TRUE(contains(read_error(header + "$Nodes\n1000\n1 0 0 0\n$EndNodes\n"),
+                       "bad.msh:5: node count 1000 is larger than the file can hold"));
   EXPECT_TRUE(contains(read_error(header + "$PhysicalNames\n1\n3 1 \"a\"\n"),
                        "section $PhysicalNames has no $EndPhysicalNames"));
   EXPECT_TRUE(contains(read_error(header), "no $Nodes section"));
-  EXPECT_TRUE(contains(read_error(header + "$Elements\n0\n$EndElements\n"), "$Elements before $Nodes"));
+  EXPECT_TRUE(
+      contains(read_error(header + "$Elements\n0\n$EndElements\n"), "$Elements before $Nodes"));
   EXPECT_TRUE(contains(read_error(header + nodes + "garbage\n"), "expected a section"));
 
   const std::string v41 = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  EXPECT_TRUE(contains(read_error(v41 + "$Nodes\n1 3 1 3\n2 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n"),
-                       "fewer nodes than the header's count"));
-  EXPECT_TRUE(contains(read_error(v41 + "$Nodes\n1 1 1 1\n2 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n"),
-                       "more nodes than the header's count"));
+  EXPECT_TRUE(
+      contains(read_error(v41 + "$Nodes\n1 3 1 3\n2 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n"),
+               "fewer nodes than the header's count"));
+  EXPECT_TRUE(
+      contains(read_error(v41 + "$Nodes\n1 1 1 1\n2 1 0 2\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n"),
+               "more nodes than the header's count"));
 }
 
 TEST(GmshReader, MissingFileIsAnError) {

@@ -21,11 +21,14 @@
 namespace fastcorot {
 namespace {
 
-std::filesystem::path meshes_dir() { return std::filesystem::path(FASTCOROT_TEST_DATA_DIR) / "meshes"; }
+std::filesystem::path meshes_dir() {
+  return std::filesystem::path(FASTCOROT_TEST_DATA_DIR) / "meshes";
+}
 
 std::filesystem::path temp_dir() {
   const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("fastcorot_mesh_file_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+                   ("fastcorot_mesh_file_" +
+                    std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::create_directories(dir);
   return dir;
 }
@@ -49,7 +52,8 @@ std::vector<std::filesystem::path> test_mesh_files() {
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(meshes_dir())) {
     const std::string extension = entry.path().extension().string();
-    if (extension == ".msh" || extension == ".vtk" || extension == ".vtu") files.push_back(entry.path());
+    if (extension == ".msh" || extension == ".vtk" || extension == ".vtu")
+      files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
   return files;
@@ -82,10 +86,13 @@ TEST(MeshFile, EveryFormatOfTheBoxGivesTheSameMesh) {
 
 TEST(MeshFile, ExtensionChoosesTheReaderWhateverItsCase) {
   const auto dir = temp_dir();
-  for (const char* name : {"box_gmsh_v41_ascii.msh", "box_vtk_v51_ascii.vtk", "box_vtk_ascii.vtu"}) {
+  for (const char* name :
+       {"box_gmsh_v41_ascii.msh", "box_vtk_v51_ascii.vtk", "box_vtk_ascii.vtu"}) {
     std::string upper = name;
-    std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return std::toupper(c); });
-    std::filesystem::copy_file(meshes_dir() / name, dir / upper, std::filesystem::copy_options::overwrite_existing);
+    std::transform(upper.begin(), upper.end(), upper.begin(),
+                   [](unsigned char c) { return std::toupper(c); });
+    std::filesystem::copy_file(meshes_dir() / name, dir / upper,
+                               std::filesystem::copy_options::overwrite_existing);
     EXPECT_EQ(read_mesh_file(dir / upper).tetrahedra.size(), 90u) << upper;
   }
 }
@@ -138,7 +145,8 @@ TEST(MeshFile, TruncatedFilesGiveAnErrorNeverACrash) {
     SCOPED_TRACE(path.filename().string());
     const std::string bytes = file_bytes(path);
     const auto cut = dir / path.filename();
-    std::vector<std::size_t> lengths = {0, 1, 2, 10, bytes.size() - 1, bytes.size() - 2, bytes.size() - 20};
+    std::vector<std::size_t> lengths = {
+        0, 1, 2, 10, bytes.size() - 1, bytes.size() - 2, bytes.size() - 20};
     for (int k = 1; k < 40; ++k) lengths.push_back(bytes.size() * static_cast<std::size_t>(k) / 40);
     int errors = 0;
     for (const std::size_t length : lengths) {
@@ -159,11 +167,13 @@ TEST(MeshFile, CorruptedBytesGiveAnErrorNeverACrash) {
       std::string corrupt = bytes;
       const std::size_t at = (bytes.size() * static_cast<std::size_t>(k)) / 60;
       // Flip bits of a few consecutive bytes, then try a value that breaks counts.
-      for (std::size_t i = at; i < std::min(at + 3, corrupt.size()); ++i) corrupt[i] = static_cast<char>(corrupt[i] ^ 0x5a);
+      for (std::size_t i = at; i < std::min(at + 3, corrupt.size()); ++i)
+        corrupt[i] = static_cast<char>(corrupt[i] ^ 0x5a);
       write_bytes(bad, corrupt);
       reads_or_throws_error(bad);
       std::fill(corrupt.begin() + static_cast<std::ptrdiff_t>(at),
-                corrupt.begin() + static_cast<std::ptrdiff_t>(std::min(at + 4, corrupt.size())), '\xff');
+                corrupt.begin() + static_cast<std::ptrdiff_t>(std::min(at + 4, corrupt.size())),
+                '\xff');
       write_bytes(bad, corrupt);
       reads_or_throws_error(bad);
     }

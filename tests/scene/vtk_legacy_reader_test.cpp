@@ -26,7 +26,8 @@ std::filesystem::path mesh_path(const std::string& name) {
 // Writes `contents` to a file of this test's own temporary folder.
 std::filesystem::path write_temp(const std::string& name, std::string_view contents) {
   const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("fastcorot_vtk_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+                   ("fastcorot_vtk_" +
+                    std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   std::ofstream(path, std::ios::binary) << contents;
@@ -68,9 +69,10 @@ TEST(VtkLegacyReader, BoxV42AsciiValuesReadFromTheFileByEye) {
 
 TEST(VtkLegacyReader, AllVersionsAndEncodingsAgree) {
   const MeshData reference = read_vtk_legacy(mesh_path("box_vtk_v51_binary.vtk"));
-  for (const char* name : {"box_vtk_v42_ascii.vtk", "box_vtk_v42_binary.vtk", "box_vtk_v51_ascii.vtk",
-                           "box_meshio_v42_ascii.vtk", "box_meshio_v42_binary.vtk",
-                           "box_meshio_v51_ascii.vtk", "box_meshio_v51_binary.vtk"}) {
+  for (const char* name :
+       {"box_vtk_v42_ascii.vtk", "box_vtk_v42_binary.vtk", "box_vtk_v51_ascii.vtk",
+        "box_meshio_v42_ascii.vtk", "box_meshio_v42_binary.vtk", "box_meshio_v51_ascii.vtk",
+        "box_meshio_v51_binary.vtk"}) {
     SCOPED_TRACE(name);
     const MeshData mesh = read_vtk_legacy(mesh_path(name));
     ASSERT_EQ(mesh.points.size(), reference.points.size());
@@ -153,8 +155,10 @@ void append_big_endian(std::string& out, T value) {
 }
 
 TEST(VtkLegacyReader, HandWrittenBinaryWithFloatPoints) {
-  std::string s = "# vtk DataFile Version 4.2\nbinary\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n";
-  for (const float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.25f}) append_big_endian(s, x);
+  std::string s =
+      "# vtk DataFile Version 4.2\nbinary\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n";
+  for (const float x : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 0.25f})
+    append_big_endian(s, x);
   s += "\nCELLS 1 5\n";
   for (const std::int32_t v : {4, 3, 2, 1, 0}) append_big_endian(s, v);
   s += "\nCELL_TYPES 1\n";
@@ -169,12 +173,14 @@ TEST(VtkLegacyReader, HandWrittenBinaryWithFloatPoints) {
 TEST(VtkLegacyReader, ErrorsNameFileLineAndProblem) {
   EXPECT_TRUE(contains(read_error("hello\n"), "bad.vtk:1: not a legacy VTK file"));
   const std::string version = read_error("# vtk DataFile Version 6.0\nt\nASCII\n");
-  EXPECT_TRUE(contains(version, "unsupported legacy VTK version '6.0' (supported: 4.2 and earlier, and 5.1)"))
+  EXPECT_TRUE(contains(
+      version, "unsupported legacy VTK version '6.0' (supported: 4.2 and earlier, and 5.1)"))
       << version;
   EXPECT_TRUE(contains(read_error("# vtk DataFile Version 4.2\nt\nHEX\n"),
                        "bad.vtk:3: unknown encoding 'HEX' (expected ASCII or BINARY)"));
-  EXPECT_TRUE(contains(read_error("# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\n"),
-                       "bad.vtk:4: dataset type 'POLYDATA' is not supported (only UNSTRUCTURED_GRID)"));
+  EXPECT_TRUE(
+      contains(read_error("# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\n"),
+               "bad.vtk:4: dataset type 'POLYDATA' is not supported (only UNSTRUCTURED_GRID)"));
   const std::string head = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n";
   const std::string points = "POINTS 4 double\n0 0 0 1 0 0 0 1 0 0 0 1\n";
   const std::string range = read_error(head + points + "CELLS 1 5\n4 0 1 2 4\nCELL_TYPES 1\n10\n");
@@ -185,19 +191,28 @@ TEST(VtkLegacyReader, ErrorsNameFileLineAndProblem) {
                        "a tetrahedron (type 10) with 3 points"));
   EXPECT_TRUE(contains(read_error(head + points + "CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 2\n10 10\n"),
                        "CELL_TYPES has 2 cells, CELLS has 1"));
-  EXPECT_TRUE(contains(read_error(head + points + "CELLS 1 5\n4 0 1 2 3\n"), "CELLS without CELL_TYPES"));
-  EXPECT_TRUE(contains(read_error(head + "POINTS 4 bit\n"), "bad.vtk:5: unsupported data type 'bit'"));
-  EXPECT_TRUE(contains(read_error(head + "POINTS 4 double\n0 0 0 1 0\n"), "unexpected end of file"));
-  EXPECT_TRUE(contains(read_error(head + "POINTS 1 double\n0 x 0\n"), "bad.vtk:6: expected a number"));
+  EXPECT_TRUE(
+      contains(read_error(head + points + "CELLS 1 5\n4 0 1 2 3\n"), "CELLS without CELL_TYPES"));
+  EXPECT_TRUE(
+      contains(read_error(head + "POINTS 4 bit\n"), "bad.vtk:5: unsupported data type 'bit'"));
+  EXPECT_TRUE(
+      contains(read_error(head + "POINTS 4 double\n0 0 0 1 0\n"), "unexpected end of file"));
+  EXPECT_TRUE(
+      contains(read_error(head + "POINTS 1 double\n0 x 0\n"), "bad.vtk:6: expected a number"));
   EXPECT_TRUE(contains(read_error(head + "SPOTS 1\n"), "bad.vtk:5: unexpected keyword 'SPOTS'"));
   EXPECT_TRUE(contains(read_error(head), "no POINTS section"));
-  const std::string v51 = "# vtk DataFile Version 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n" + points;
-  EXPECT_TRUE(contains(read_error(v51 + "CELLS 2 4\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1 2 3\n"),
-                       "offsets must run from 0 to the connectivity size 4"));
+  const std::string v51 =
+      "# vtk DataFile Version 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n" + points;
+  EXPECT_TRUE(contains(
+      read_error(v51 +
+                 "CELLS 2 4\nOFFSETS vtktypeint64\n0 3\nCONNECTIVITY vtktypeint64\n0 1 2 3\n"),
+      "offsets must run from 0 to the connectivity size 4"));
   EXPECT_TRUE(contains(read_error(v51 + "CELLS 2 4\nOFFSETS float\n0 4\n"), "must be integers"));
-  std::string binary = "# vtk DataFile Version 4.2\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n";
+  std::string binary =
+      "# vtk DataFile Version 4.2\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n";
   binary += std::string(40, '\0');
-  EXPECT_TRUE(contains(read_error(binary), "bad.vtk: byte 78: unexpected end of file in the point coordinates"));
+  EXPECT_TRUE(contains(read_error(binary),
+                       "bad.vtk: byte 78: unexpected end of file in the point coordinates"));
 }
 
 }  // namespace

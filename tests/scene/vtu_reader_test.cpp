@@ -26,7 +26,8 @@ std::filesystem::path mesh_path(const std::string& name) {
 // Writes `contents` to a file of this test's own temporary folder.
 std::filesystem::path write_temp(const std::string& name, std::string_view contents) {
   const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("fastcorot_vtu_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+                   ("fastcorot_vtu_" +
+                    std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::create_directories(dir);
   const auto path = dir / name;
   std::ofstream(path, std::ios::binary) << contents;
@@ -143,13 +144,17 @@ TEST(VtuReader, PiecesAreConcatenated) {
 
 TEST(VtuReader, BinaryHeaderAndDataEncodedApartOrTogether) {
   // offsets = {4} as Int64: header 8 (UInt32) then 04 00 00 00 00 00 00 00.
-  // Together: base64(08 00 00 00 04 00 ...) = "CAAAAAQAAAAAAAAA"; apart: "CAAAAA==" + "BAAAAAAAAAA=".
-  for (const char* encoded : {"CAAAAAQAAAAAAAAA", "CAAAAA==BAAAAAAAAAA=", "CAAA AA==\n BAAAAAAAAAA="}) {
+  // Together: base64(08 00 00 00 04 00 ...) = "CAAAAAQAAAAAAAAA"; apart: "CAAAAA==" +
+  // "BAAAAAAAAAA=".
+  for (const char* encoded :
+       {"CAAAAAQAAAAAAAAA", "CAAAAA==BAAAAAAAAAA=", "CAAA AA==\n BAAAAAAAAAA="}) {
     SCOPED_TRACE(encoded);
-    std::string text = replaced(std::string(kTetrahedron), R"(NumberOfCells="2")", R"(NumberOfCells="1")");
-    text = replaced(text, R"(<DataArray type="Int32" Name="offsets" format="ascii">4 7</DataArray>)",
-                    std::string(R"(<DataArray type="Int64" Name="offsets" format="binary">)") + encoded +
-                        "</DataArray>");
+    std::string text =
+        replaced(std::string(kTetrahedron), R"(NumberOfCells="2")", R"(NumberOfCells="1")");
+    text =
+        replaced(text, R"(<DataArray type="Int32" Name="offsets" format="ascii">4 7</DataArray>)",
+                 std::string(R"(<DataArray type="Int64" Name="offsets" format="binary">)") +
+                     encoded + "</DataArray>");
     text = replaced(text, ">10 5<", ">10<");
     text = replaced(text, "0 1 2 3 3 2 1", "0 1 2 3");
     const MeshData mesh = read_vtu(write_temp("binary.vtu", text));
@@ -162,52 +167,67 @@ TEST(VtuReader, ErrorsNameFileLineAndProblem) {
   const auto error = [&](std::string_view from, std::string_view to) {
     return read_error(replaced(tet, from, to));
   };
-  EXPECT_TRUE(contains(error(R"(type="UnstructuredGrid")", R"(type="PolyData")"),
-                       "bad.vtu:2: VTKFile type 'PolyData' is not supported (only UnstructuredGrid)"));
-  EXPECT_TRUE(contains(error(R"(byte_order="LittleEndian")", R"(byte_order="LittleEndian" compressor="vtkLZ4DataCompressor")"),
-                       "compressor 'vtkLZ4DataCompressor' is not supported (only vtkZLibDataCompressor)"));
+  EXPECT_TRUE(
+      contains(error(R"(type="UnstructuredGrid")", R"(type="PolyData")"),
+               "bad.vtu:2: VTKFile type 'PolyData' is not supported (only UnstructuredGrid)"));
+  EXPECT_TRUE(
+      contains(error(R"(byte_order="LittleEndian")",
+                     R"(byte_order="LittleEndian" compressor="vtkLZ4DataCompressor")"),
+               "compressor 'vtkLZ4DataCompressor' is not supported (only vtkZLibDataCompressor)"));
   EXPECT_TRUE(contains(error("LittleEndian", "MiddleEndian"), "unknown byte_order 'MiddleEndian'"));
   EXPECT_TRUE(contains(error(R"(version="0.1")", R"(version="0.1" header_type="UInt16")"),
                        "unknown header_type 'UInt16'"));
   EXPECT_TRUE(contains(error("</Points>", "</Pointz>"), "bad.vtu:5: XML error"));
-  EXPECT_TRUE(contains(error(R"(NumberOfPoints="4" )", ""), "bad.vtu:4: <Piece> needs an integer attribute NumberOfPoints"));
+  EXPECT_TRUE(contains(error(R"(NumberOfPoints="4" )", ""),
+                       "bad.vtu:4: <Piece> needs an integer attribute NumberOfPoints"));
   EXPECT_TRUE(contains(error("0 1 2 3 3 2 1", "0 1 2 4 3 2 1"),
                        "bad.vtu:11: cell 0: point index 4 out of range [0, 4)"));
   EXPECT_TRUE(contains(error("0 1 2 3 3 2 1", "0 1 2 3 3 2"),
                        "bad.vtu:11: DataArray 'connectivity': 6 values, expected 7"));
   EXPECT_TRUE(contains(error(">4 7<", ">4 3<"), "bad.vtu:12: offsets decrease at cell 1"));
-  EXPECT_TRUE(contains(error(">10 5<", ">10 10<"), "cell 1: a tetrahedron (type 10) with 3 points"));
-  EXPECT_TRUE(contains(error("0 0 0 1 0 0", "0 0 0 1 zero 0"), "bad.vtu:6: DataArray '': value 4 is not a number of type Float64: 'zero'"));
+  EXPECT_TRUE(
+      contains(error(">10 5<", ">10 10<"), "cell 1: a tetrahedron (type 10) with 3 points"));
+  EXPECT_TRUE(contains(error("0 0 0 1 0 0", "0 0 0 1 zero 0"),
+                       "bad.vtu:6: DataArray '': value 4 is not a number of type Float64: 'zero'"));
   EXPECT_TRUE(contains(error(R"(type="Int32" Name="offsets")", R"(type="Float32" Name="offsets")"),
                        "DataArray 'offsets': must hold integers, not Float32"));
   EXPECT_TRUE(contains(error(R"(type="Int32" Name="offsets")", R"(type="Int128" Name="offsets")"),
                        "DataArray 'offsets': unsupported type 'Int128'"));
   EXPECT_TRUE(contains(error(R"(Name="offsets" format="ascii")", R"(Name="offsets" format="hex")"),
                        "unknown format 'hex' (expected ascii, binary or appended)"));
-  EXPECT_TRUE(contains(error(R"(Name="types")", R"(Name="typos")"), "no <DataArray Name=\"types\"> in <Cells>"));
+  EXPECT_TRUE(contains(error(R"(Name="types")", R"(Name="typos")"),
+                       "no <DataArray Name=\"types\"> in <Cells>"));
   EXPECT_TRUE(contains(error("<UnstructuredGrid>", "<UnstructuredGrid><Nothing>"), "XML error"));
 
   const std::string binary_offsets = R"(<DataArray type="Int32" Name="offsets" format="binary">)";
-  const std::string ascii_offsets = R"(<DataArray type="Int32" Name="offsets" format="ascii">4 7</DataArray>)";
+  const std::string ascii_offsets =
+      R"(<DataArray type="Int32" Name="offsets" format="ascii">4 7</DataArray>)";
   // Two Int32 offsets are 8 bytes: "CAAAAA==" is the header 8, "EAAAAA==" says 16.
   EXPECT_TRUE(contains(error(ascii_offsets, binary_offsets + "CAAAAA==</DataArray>"),
                        "bad.vtu:12: DataArray 'offsets': data ends early (truncated data)"));
   EXPECT_TRUE(contains(error(ascii_offsets, binary_offsets + "EAAAAA==</DataArray>"),
                        "DataArray 'offsets': the header gives 16 bytes, expected 8"));
-  EXPECT_TRUE(contains(error(ascii_offsets, binary_offsets + "CA!AAA==</DataArray>"), "invalid base64 data"));
+  EXPECT_TRUE(contains(error(ascii_offsets, binary_offsets + "CA!AAA==</DataArray>"),
+                       "invalid base64 data"));
   EXPECT_TRUE(contains(error(ascii_offsets, binary_offsets + "</DataArray>"), "truncated header"));
 
-  const std::string appended_offsets = R"(<DataArray type="Int32" Name="offsets" format="appended" offset="0"/>)";
-  EXPECT_TRUE(contains(error(ascii_offsets, appended_offsets), "format=\"appended\" but no <AppendedData>"));
-  EXPECT_TRUE(contains(error("</VTKFile>", "<AppendedData encoding=\"hex\">_ABCD</AppendedData></VTKFile>"),
-                       "unknown AppendedData encoding 'hex' (expected raw or base64)"));
-  EXPECT_TRUE(contains(error("</VTKFile>", "<AppendedData encoding=\"raw\">ABCD</AppendedData></VTKFile>"),
-                       "bad.vtu:17: <AppendedData> does not start with the '_' marker"));
+  const std::string appended_offsets =
+      R"(<DataArray type="Int32" Name="offsets" format="appended" offset="0"/>)";
+  EXPECT_TRUE(contains(error(ascii_offsets, appended_offsets),
+                       "format=\"appended\" but no <AppendedData>"));
+  EXPECT_TRUE(
+      contains(error("</VTKFile>", "<AppendedData encoding=\"hex\">_ABCD</AppendedData></VTKFile>"),
+               "unknown AppendedData encoding 'hex' (expected raw or base64)"));
+  EXPECT_TRUE(
+      contains(error("</VTKFile>", "<AppendedData encoding=\"raw\">ABCD</AppendedData></VTKFile>"),
+               "bad.vtu:17: <AppendedData> does not start with the '_' marker"));
   std::string appended = replaced(tet, ascii_offsets, appended_offsets);
   appended = replaced(appended, "</VTKFile>", "<AppendedData encoding=\"raw\">\n_\x08");
-  EXPECT_TRUE(contains(read_error(appended), "DataArray 'offsets': data ends early (truncated header)"));
-  EXPECT_TRUE(contains(read_error("<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid/></VTKFile>"),
-                       "bad.vtu:1: no <Piece> element"));
+  EXPECT_TRUE(
+      contains(read_error(appended), "DataArray 'offsets': data ends early (truncated header)"));
+  EXPECT_TRUE(
+      contains(read_error("<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid/></VTKFile>"),
+               "bad.vtu:1: no <Piece> element"));
   EXPECT_TRUE(contains(read_error("<Grid/>"), "the root element is not <VTKFile>"));
 }
 

@@ -25,7 +25,8 @@ namespace {
 
 std::filesystem::path temp_path(const std::string& name) {
   const auto dir = std::filesystem::path(::testing::TempDir()) /
-                   ("fastcorot_vtu_writer_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+                   ("fastcorot_vtu_writer_" +
+                    std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
   std::filesystem::create_directories(dir);
   return dir / name;
 }
@@ -39,7 +40,8 @@ std::string file_text(const std::filesystem::path& path) {
 
 // Plain base64 decoding (RFC 4648) of one padded string, for checking the file independently.
 std::string base64_decode(std::string_view text) {
-  const std::string_view alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const std::string_view alphabet =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   std::uint32_t bits = 0;
   int count = 0;
@@ -75,7 +77,8 @@ std::vector<double> float64_array(const std::filesystem::path& path, const char*
       std::memcpy(values.data(), bytes.data() + 4, 8 * values.size());
       return values;
     }
-    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) stack.push_back(c);
+    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement())
+      stack.push_back(c);
   }
   ADD_FAILURE() << "no DataArray " << name;
   return {};
@@ -100,7 +103,8 @@ Grid two_tetrahedra() {
 TEST(VtuWriter, RoundTripIsExact) {
   const Grid grid = two_tetrahedra();
   const auto path = temp_path("grid.vtu");
-  write_vtu(path, grid.points, grid.cells, {VtuField{"displacement", 3, std::vector<double>(15, 0.5)}},
+  write_vtu(path, grid.points, grid.cells,
+            {VtuField{"displacement", 3, std::vector<double>(15, 0.5)}},
             {VtuField{"stress", 1, {1, 2, 3}}});
   const MeshData mesh = read_vtu(path);
   EXPECT_EQ(mesh.points, grid.points);
@@ -120,7 +124,8 @@ TEST(VtuWriter, FieldsAreFloat64WithAByteCountHeader) {
   const Grid grid = two_tetrahedra();
   const auto path = temp_path("fields.vtu");
   std::vector<double> displacement(15);
-  for (std::size_t i = 0; i < displacement.size(); ++i) displacement[i] = 0.1 * static_cast<double>(i) - 1e-300;
+  for (std::size_t i = 0; i < displacement.size(); ++i)
+    displacement[i] = 0.1 * static_cast<double>(i) - 1e-300;
   const std::vector<double> stress = {1.5, -2.25, std::numeric_limits<double>::max()};
   write_vtu(path, grid.points, grid.cells, {VtuField{"displacement", 3, displacement}},
             {VtuField{"von <Mises> & \"co\"", 1, stress}});
@@ -128,14 +133,18 @@ TEST(VtuWriter, FieldsAreFloat64WithAByteCountHeader) {
   EXPECT_EQ(float64_array(path, "von <Mises> & \"co\""), stress);
   const std::string text = file_text(path);
   EXPECT_NE(text.find(R"(header_type="UInt32")"), std::string::npos);
-  EXPECT_NE(text.find(R"(<DataArray type="Float64" Name="displacement" NumberOfComponents="3" format="binary">)"),
+  EXPECT_NE(text.find(R"(<DataArray type="Float64" Name="displacement" NumberOfComponents="3")"
+                      R"( format="binary">)"),
             std::string::npos);
-  EXPECT_NE(text.find(R"(<DataArray type="Int64" Name="connectivity" format="binary">)"), std::string::npos);
-  EXPECT_NE(text.find(R"(<DataArray type="UInt8" Name="types" format="binary">)"), std::string::npos);
+  EXPECT_NE(text.find(R"(<DataArray type="Int64" Name="connectivity" format="binary">)"),
+            std::string::npos);
+  EXPECT_NE(text.find(R"(<DataArray type="UInt8" Name="types" format="binary">)"),
+            std::string::npos);
   EXPECT_NE(text.find(R"(<Piece NumberOfPoints="5" NumberOfCells="3">)"), std::string::npos);
 }
 
-std::string write_error(const std::vector<VtuCellBlock>& cells, const std::vector<VtuField>& point_fields,
+std::string write_error(const std::vector<VtuCellBlock>& cells,
+                        const std::vector<VtuField>& point_fields,
                         const std::vector<VtuField>& cell_fields) {
   const auto path = temp_path("bad.vtu");
   try {
@@ -156,13 +165,15 @@ TEST(VtuWriter, BadInputIsRefused) {
   const std::vector<VtuCellBlock> cells = two_tetrahedra().cells;
   EXPECT_TRUE(contains(write_error({VtuCellBlock{10, 4, {0, 1, 2, 5}}}, {}, {}),
                        "cell block 0: cell 0: point index 5 out of range [0, 5)"));
-  EXPECT_TRUE(contains(write_error({VtuCellBlock{10, 4, {0, 1, 2}}}, {}, {}), "not a multiple of 4"));
+  EXPECT_TRUE(
+      contains(write_error({VtuCellBlock{10, 4, {0, 1, 2}}}, {}, {}), "not a multiple of 4"));
   EXPECT_TRUE(contains(write_error({VtuCellBlock{10, 0, {}}}, {}, {}), "bad cell type"));
   EXPECT_TRUE(contains(write_error(cells, {VtuField{"u", 3, std::vector<double>(14)}}, {}),
                        "point field 'u' has 14 values, expected 5 × 3"));
   EXPECT_TRUE(contains(write_error(cells, {}, {VtuField{"s", 2, std::vector<double>(6)}}),
                        "cell field 's' has 2 components (must be 1 or 3)"));
-  EXPECT_TRUE(contains(write_error(cells, {}, {VtuField{"", 1, std::vector<double>(3)}}), "has no name"));
+  EXPECT_TRUE(
+      contains(write_error(cells, {}, {VtuField{"", 1, std::vector<double>(3)}}), "has no name"));
   const auto nowhere = temp_path("missing_folder") / "grid.vtu";
   try {
     write_vtu(nowhere, {}, {}, {});

@@ -44,15 +44,24 @@ template <class Real>
 Mat3<Real> tetrahedron_rotation(const TetrahedronRest<Real>& rest, const TetPoints<Real>& x,
                                 RotationMethod method);
 
-// Forces on the four vertices (world frame) for rotation R: g_l += L_e u_e, g_k -= L_e^T u_e in
-// the rest frame with u_e = R^T d_e - (p_l - p_k); f_j = R g_j.
+// Forces on the four vertices (world frame) for rotation R. SPEC.md writes them per edge
+// (g_l += L_e u_e, g_k -= L_e^T u_e in the rest frame, f_j = R g_j); summing the edge blocks gives
+// the same forces through the rest-frame displacement gradient H = sum_j u_j s_j^T, with
+// u_j = R^T (x_j - x0) - (p_j - p0):  g_j = -(lambda' tr(H) I + mu' (H + H^T)) s_j. That form costs
+// a third of the edge form; tests keep the edge form as the reference (tests/support/reference_element.h).
 template <class Real>
 TetPoints<Real> tetrahedron_force(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
                                   const TetPoints<Real>& x, const Mat3<Real>& rotation);
 
-// Energy U = -1/2 sum_j u_j . g_j with u_j = R^T (x_j - x0) - (p_j - p0), for rotation R.
+// Energy U = -1/2 sum_j u_j . g_j = lambda'/2 tr(H)^2 + mu' |sym H|^2, for rotation R.
 template <class Real>
 Real tetrahedron_energy(const TetrahedronRest<Real>& rest, const TetPoints<Real>& p,
                         const TetPoints<Real>& x, const Mat3<Real>& rotation);
+
+// R L_e R^T for local edge e = (k, l), from the rotated shape vectors r_j = R s_j:
+// lambda' r_l r_k^T + mu' r_k r_l^T + mu' (s_l . s_k) I. With `transposed`, R L_e^T R^T.
+template <class Real>
+Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>& rest, const std::array<Vec3<Real>, 4>& rotated_shape,
+                              int e, bool transposed);
 
 }  // namespace fastcorot

@@ -1,22 +1,26 @@
 // Reading and writing tetrahedral mesh files: Gmsh .msh (formats 2.2 and 4.1, ASCII and binary),
-// legacy VTK .vtk (4.2 and 5.1, ASCII and binary) and VTK XML .vtu (ascii, base64 "binary" and raw or
-// base64 "appended" data, zlib-compressed or not) — whatever gmsh, meshio and ParaView write by
+// legacy VTK .vtk (4.2 and 5.1, ASCII and binary) and VTK XML .vtu (ascii, base64 "binary" and raw
+// or base64 "appended" data, zlib-compressed or not) — whatever gmsh, meshio and ParaView write by
 // default. Points are kept in file order (all of them, as SOFA's loaders keep them); tetrahedra are
 // the file's linear tetrahedra in file order; other cell types are skipped (triangles are kept
-// apart as the surface). Errors name the file, the line (text formats) or byte offset, and what is wrong.
+// apart as the surface). Errors name the file, the line (text formats) or byte offset, and the
+// fault.
 #pragma once
 
 #include "fastcorot/core/types.h"
 
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace fastcorot {
 
+// A mesh as a file holds it, in the file's units. Vertex order within each tetrahedron is the
+// file's (gmsh and VTK share the linear tetrahedron's node order); nothing is reoriented.
 struct MeshData {
-  std::vector<Vec3<double>> points;
-  std::vector<Tetrahedron> tetrahedra;
+  std::vector<Vec3<double>> points;     // #V points, file order
+  std::vector<Tetrahedron> tetrahedra;  // 0-based indices into points
   std::vector<Triangle> triangles;  // triangles the file holds (often the boundary), may be empty
 };
 
@@ -25,8 +29,16 @@ struct MeshData {
 // file, an unsupported format version or encoding, and indices out of range.
 MeshData read_mesh_file(const std::filesystem::path& path);
 
+// Gmsh .msh 2.2 (also 2.0, 2.1) and 4.1, ASCII or binary of either byte order. Node tags may
+// be any non-negative numbers, in any order and with gaps; they map to 0-based indices in file
+// order. Keeps element types 4 (tetrahedron) and 2 (triangle).
 MeshData read_gmsh(const std::filesystem::path& path);
+// Legacy VTK DATASET UNSTRUCTURED_GRID, versions up to 4.2 (CELLS with counts) and 5.1 (OFFSETS
+// and CONNECTIVITY), ASCII or BINARY. Keeps VTK cell types 10 (tetrahedron) and 5 (triangle).
 MeshData read_vtk_legacy(const std::filesystem::path& path);
+// VTK XML UnstructuredGrid: ascii, binary and appended (raw or base64) arrays, zlib-compressed
+// or not, UInt32 or UInt64 headers, either byte order; all pieces, concatenated. Keeps VTK cell
+// types 10 and 5.
 MeshData read_vtu(const std::filesystem::path& path);
 
 // A named per-point (or per-cell) field of 3-vectors or scalars for VTU output.
@@ -37,18 +49,22 @@ struct VtuField {
 };
 
 struct VtuCellBlock {
-  int vtk_cell_type = 10;          // 10 = tetrahedron, 5 = triangle
+  int vtk_cell_type = 10;  // 10 = tetrahedron, 5 = triangle
   int nodes_per_cell = 4;
   std::vector<Index> connectivity;  // cells × nodes_per_cell
 };
 
-// Writes an unstructured grid (.vtu, base64 binary, uncompressed) with the given point and cell
-// fields; cell fields cover the cells of all blocks in order.
+// Writes an unstructured grid (.vtu, base64 binary, uncompressed, UInt32 headers, little-endian)
+// with the given point and cell fields; cell fields cover the cells of all blocks in order. Points
+// and fields are written as Float64, connectivity and offsets as Int64, cell types as UInt8; a
+// read_vtu of the file gives the points back bitwise. Throws fastcorot::Error naming the file for
+// an index out of range, a field of the wrong size or component count, or a write failure.
 void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>>& points,
                const std::vector<VtuCellBlock>& cells, const std::vector<VtuField>& point_fields,
                const std::vector<VtuField>& cell_fields = {});
 
 // Writes a ParaView collection (.pvd) listing (time, file) pairs; file names relative to the .pvd.
+// Times are written in the shortest form that reads back exactly; a non-finite time is an error.
 void write_pvd(const std::filesystem::path& path,
                const std::vector<std::pair<double, std::string>>& time_steps);
 

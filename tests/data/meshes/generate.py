@@ -48,8 +48,9 @@ def gmsh_files():
 def clean(mesh):
     """A fresh copy with points, cells and the gmsh:geometrical cell data (an array the readers
     must skip); meshio's writers modify the mesh they write and stumble on gmsh's cell sets."""
-    return meshio.Mesh(mesh.points.copy(), [meshio.CellBlock(c.type, c.data.copy()) for c in mesh.cells],
-                       cell_data={"gmsh:geometrical": [d.copy() for d in mesh.cell_data["gmsh:geometrical"]]})
+    cells = [meshio.CellBlock(c.type, c.data.copy()) for c in mesh.cells]
+    geometrical = [d.copy() for d in mesh.cell_data["gmsh:geometrical"]]
+    return meshio.Mesh(mesh.points.copy(), cells, cell_data={"gmsh:geometrical": geometrical})
 
 
 def meshio_files(source):
