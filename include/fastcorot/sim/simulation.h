@@ -9,11 +9,30 @@
 #include "fastcorot/sim/ode_solver.h"
 #include "fastcorot/topology/tet_mesh.h"
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
 
 namespace fastcorot {
+
+// An RGBA colour, each component in [0, 1] (SOFA's RGBAColor).
+using Rgba = std::array<float, 4>;
+
+// How the scene asks one force field to be drawn: SOFA's `drawing` and `drawColor1..4` of
+// FastTetrahedralCorotationalForceField (defaults from SPEC.md). Display only: the physics never
+// reads it; the render layer does (include/fastcorot/render/).
+struct ForceFieldDrawing {
+  bool drawing = false;
+  std::array<Rgba, 4> colors{{{0.0f, 0.0f, 1.0f, 1.0f}, {0.0f, 0.5f, 1.0f, 1.0f}, {0.0f, 1.0f, 1.0f, 1.0f},
+                              {0.5f, 1.0f, 1.0f, 1.0f}}};  // drawColor1..4
+};
+
+// An axis-aligned box of a BoxROI, in the coordinates of the points it selects from.
+struct DrawnBox {
+  Vec3<double> min;
+  Vec3<double> max;
+};
 
 template <class Real>
 struct SimulatedObject {
@@ -22,6 +41,10 @@ struct SimulatedObject {
   MechanicalSystem<Real> system;
   std::unique_ptr<OdeSolver<Real>> ode_solver;
   std::unique_ptr<LinearSolver<Real>> linear_solver;
+  // Display information, never read by the physics: one entry per system.force_fields (same
+  // order), and the BoxROI boxes of the object's nodes (fixed points are system.fixed).
+  std::vector<ForceFieldDrawing> force_field_drawing;
+  std::vector<DrawnBox> boxes;
 };
 
 template <class Real>
