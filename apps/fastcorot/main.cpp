@@ -2,6 +2,7 @@
 // naming the problem and exit with status 2.
 #include "probe_command.h"
 #include "run_command.h"
+#include "view_command.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/scene/component_table.h"
@@ -10,6 +11,29 @@
 
 #include <exception>
 #include <iostream>
+
+namespace {
+
+// The options that shape a picture, shared by `run --png` and `view`. Returned so that `run` can
+// require --png with them.
+std::vector<CLI::Option*> add_picture_options(CLI::App* command, fastcorot::cli::PictureOptions& picture) {
+  return {
+      command->add_option("--size", picture.size, "picture or window size WIDTHxHEIGHT")->capture_default_str(),
+      command->add_option("--drawing", picture.drawing,
+                          "force fields drawn as shrunk tetrahedra: scene (each one's `drawing`), on, off")
+          ->capture_default_str(),
+      command->add_flag("--edges", picture.surface_edges, "outline the mesh on the boundary surface"),
+      command->add_option("--camera-eye", picture.camera_eye, "camera position X,Y,Z (default: framed automatically)"),
+      command->add_option("--camera-target", picture.camera_target, "point looked at X,Y,Z (default: the scene's centre)"),
+      command->add_option("--camera-up", picture.camera_up, "up direction X,Y,Z (default: against gravity)"),
+      command->add_option("--camera-fov", picture.camera_fov, "vertical field of view, degrees")->capture_default_str(),
+      command->add_option("--camera-azimuth", picture.camera_azimuth,
+                          "turn about up from the broadside view, degrees")->capture_default_str(),
+      command->add_option("--camera-elevation", picture.camera_elevation, "eye above the horizontal, degrees")
+          ->capture_default_str()};
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"fastcorot: fast corotational tetrahedral finite elements (SOFA-compatible)"};
@@ -39,6 +63,25 @@ int main(int argc, char** argv) {
   run->add_option("--threads", run_options.threads, "threads: independent objects are integrated concurrently")
       ->capture_default_str();
   run->add_flag("--quiet", run_options.quiet, "no progress bar, info lines or summary");
+  auto* png_option = run->add_option("--png", run_options.png_dir,
+                                     "render each written frame (see --every) to DIR/step_NNNNN.png, headless");
+  for (CLI::Option* option : add_picture_options(run, run_options.picture)) {
+    if (option->get_name() != "--drawing") option->needs(png_option);  // --drawing also shapes --vtu
+  }
+
+  fastcorot::cli::ViewOptions view_options;
+  double view_dt = 0;
+  CLI::App* view = app.add_subcommand(
+      "view", "Simulate a scene in an interactive window (orbit, pan, zoom; play, step; change method, E, nu)");
+  view->add_option("SCENE", view_options.scene, "scene or mesh file (default: the built-in beam)");
+  view_options.picture.size = "1280x720";
+  add_picture_options(view, view_options.picture);
+  view->add_flag("--paused", view_options.paused, "start paused");
+  view->add_option("--frames", view_options.frames, "close after N frames (0: when the window is closed)")
+      ->capture_default_str();
+  view->add_option("--screenshot", view_options.screenshot, "save the last frame shown as PNG");
+  auto* view_dt_option = view->add_option("--dt", view_dt, "time step (default: the scene's)");
+  view->add_option("--threads", view_options.threads, "threads across independent objects")->capture_default_str();
 
   app.add_subcommand("components", "Print the supported SOFA components and their attributes (Markdown)");
 
@@ -57,6 +100,10 @@ int main(int argc, char** argv) {
       if (*dt_option) run_options.dt = dt;
       if (!dump_steps.empty()) run_options.dump_steps = fastcorot::cli::parse_step_list(dump_steps);
       fastcorot::cli::run(run_options, std::cout, std::cerr);
+    }
+    if (view->parsed()) {
+      if (*view_dt_option) view_options.dt = view_dt;
+      fastcorot::cli::view(view_options, std::cout, std::cerr);
     }
     if (app.got_subcommand("components")) std::cout << fastcorot::component_documentation();
   } catch (const fastcorot::Error& error) {

@@ -2,8 +2,10 @@
 
 #include "default_scene.h"
 #include "json_io.h"
+#include "picture_series.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/render/drawing_vtu.h"
 #include "fastcorot/scene/mesh_file.h"
 #include "fastcorot/scene/scene_builder.h"
 
@@ -65,17 +67,25 @@ std::string mesh_scene_text(const std::string& mesh_path) {
   return scene.str();
 }
 
-namespace {
-
-LoadedScene load(const RunOptions& options) {
-  if (options.scene.empty()) return build_scene(parse_scene_text(kDefaultScene, "<built-in cantilever beam>"));
-  std::string extension = std::filesystem::path(options.scene).extension().string();
+LoadedScene load_scene_argument(const std::string& scene) {
+  if (scene.empty()) return build_scene(parse_scene_text(kDefaultScene, "<built-in cantilever beam>"));
+  std::string extension = std::filesystem::path(scene).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension == ".msh" || extension == ".vtk" || extension == ".vtu") {
-    return build_scene(parse_scene_text(mesh_scene_text(options.scene), options.scene + " (default mesh scene)"));
+    return build_scene(parse_scene_text(mesh_scene_text(scene), scene + " (default mesh scene)"));
   }
-  return load_scene_file(options.scene);
+  return load_scene_file(scene);
 }
+
+void make_output_folder(const std::string& dir, const std::string& option) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw make_error(option, " ", dir, ": cannot create the folder: ", error.message());
+  if (!std::filesystem::is_directory(dir)) throw make_error(option, " ", dir, ": not a folder");
+  if (access(dir.c_str(), W_OK) != 0) throw make_error(option, " ", dir, ": the folder is not writable");
+}
+
+namespace {
 
 std::string file_stem(const std::string& path) {
   std::string stem = path;
@@ -85,10 +95,12 @@ std::string file_stem(const std::string& path) {
 
 class VtuSeries {
  public:
-  VtuSeries(const std::string& dir, const Simulation<double>& simulation) : dir_(dir) {
-    std::filesystem::create_directories(dir_);
+  VtuSeries(const std::string& dir, const Simulation<double>& simulation, TetrahedronDrawing drawing)
+      : dir_(dir), drawing_(drawing) {
+    make_output_folder(dir_, "--out");
     for (const auto& object : simulation.objects) names_.push_back(file_stem(object.path));
     frames_.resize(simulation.objects.size());
+    drawing_frames_.resize(simulation.objects.size());
   }
 
   void write(Simulation<double>& simulation) {
@@ -117,13 +129,22 @@ class VtuSeries {
       write_vtu(std::filesystem::path(dir_) / file, x, cells, {displacement, velocity, force_field});
       frames_[o].push_back({simulation.time(), file});
       write_pvd(std::filesystem::path(dir_) / (names_[o] + ".pvd"), frames_[o]);
+      // The drawn tetrahedra go to a series of their own: their points are not the mesh's.
+      const DrawnTetrahedraGrid grid = drawn_tetrahedra_grid(object, drawing_);
+      if (grid.empty()) continue;
+      const std::string drawing_file = names_[o] + "_drawing_" + std::to_string(simulation.steps_done()) + ".vtu";
+      write_drawn_tetrahedra_vtu(std::filesystem::path(dir_) / drawing_file, grid);
+      drawing_frames_[o].push_back({simulation.time(), drawing_file});
+      write_pvd(std::filesystem::path(dir_) / (names_[o] + "_drawing.pvd"), drawing_frames_[o]);
     }
   }
 
  private:
   std::string dir_;
+  TetrahedronDrawing drawing_;
   std::vector<std::string> names_;
   std::vector<std::vector<std::pair<double, std::string>>> frames_;
+  std::vector<std::vector<std::pair<double, std::string>>> drawing_frames_;
 };
 
 void record(json& steps, const Simulation<double>& simulation) {
@@ -148,7 +169,8 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.steps < 0) throw make_error("--steps ", options.steps, ": must be >= 0");
   if (options.every < 1) throw make_error("--every ", options.every, ": must be >= 1");
   if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
-  LoadedScene scene = load(options);
+  const TetrahedronDrawing drawing = parse_tetrahedron_drawing(options.picture.drawing);
+  LoadedScene scene = load_scene_argument(options.scene);
   Simulation<double>& simulation = scene.simulation;
   if (options.dt) {
     if (!(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
@@ -165,10 +187,13 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     write_text(dump.dump(), options.dump_state);
   };
   std::optional<VtuSeries> vtu;
-  if (options.vtu) vtu.emplace(options.out_dir, simulation);
+  if (options.vtu) vtu.emplace(options.out_dir, simulation, drawing);
+  std::optional<PictureSeries> pictures;
+  if (!options.png_dir.empty()) pictures.emplace(options.png_dir, options.picture, simulation, options.steps);
   const bool dump_last = !options.dump_state.empty();
   if (options.dump_steps.count(0) || (dump_last && options.steps == 0)) record(steps, simulation);
   if (vtu) vtu->write(simulation);
+  if (pictures) pictures->write(simulation);
 
   const bool show_progress = !options.quiet && isatty(fileno(stderr));
   const auto start = std::chrono::steady_clock::now();
@@ -181,7 +206,9 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       solves += report.linear_solves;
       iterations += report.linear_iterations;
       if (options.dump_steps.count(step) || (dump_last && step == options.steps)) record(steps, simulation);
-      if (vtu && (step % options.every == 0 || step == options.steps)) vtu->write(simulation);
+      const bool frame = step % options.every == 0 || step == options.steps;
+      if (vtu && frame) vtu->write(simulation);
+      if (pictures && frame) pictures->write(simulation);
       if (show_progress && (elapsed() - last_draw > 0.1 || step == options.steps)) {
         last_draw = elapsed();
         progress(err, step, options.steps, last_draw);

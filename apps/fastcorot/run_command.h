@@ -1,8 +1,13 @@
 // `fastcorot run [SCENE] [--steps N] [--dt DT] [--out DIR] [--vtu] [--every K]
-//                [--dump-state FILE --dump-steps 0,1,10,100] [--threads N] [--quiet]`:
+//                [--dump-state FILE --dump-steps 0,1,10,100] [--threads N] [--quiet]
+//                [--png DIR [--size WxH] [--drawing scene|on|off] [--camera-...]]`:
 // runs a SOFA scene (.scn), a tetrahedral mesh (.msh/.vtk/.vtu, with documented defaults) or the
-// built-in cantilever beam, headless. See README.md, "fastcorot run".
+// built-in cantilever beam, headless. See README.md, "fastcorot run", and docs/rendering.md.
 #pragma once
+
+#include "picture_options.h"
+
+#include "fastcorot/scene/scene_builder.h"
 
 #include <iosfwd>
 #include <optional>
@@ -22,6 +27,8 @@ struct RunOptions {
   std::set<long> dump_steps = {0, 1, 10, 100};
   int threads = 1;
   bool quiet = false;
+  std::string png_dir;     // empty: no pictures; else one PNG per written frame
+  PictureOptions picture;  // what the pictures (and the drawn tetrahedra in --vtu) look like
 };
 
 // Parses "0,1,10,100"; throws fastcorot::Error on anything else.
@@ -29,6 +36,14 @@ std::set<long> parse_step_list(const std::string& text);
 
 // The scene text `fastcorot run MESH` simulates: the mesh fixed at its lowest z, under gravity.
 std::string mesh_scene_text(const std::string& mesh_path);
+
+// The scene `fastcorot run SCENE` and `fastcorot view SCENE` simulate: a .scn file, a mesh file
+// (.msh/.vtk/.vtu, through mesh_scene_text) or, for an empty argument, the built-in beam.
+LoadedScene load_scene_argument(const std::string& scene);
+
+// Makes `dir` and its parents; throws fastcorot::Error naming `option`, the folder and the reason
+// when it cannot, or when `dir` is not a writable folder.
+void make_output_folder(const std::string& dir, const std::string& option);
 
 // Runs; throws fastcorot::Error on bad input or divergence (after writing what it had).
 void run(const RunOptions& options, std::ostream& out, std::ostream& err);

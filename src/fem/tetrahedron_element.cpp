@@ -109,18 +109,6 @@ Real tetrahedron_energy(const TetrahedronRest<Real>& rest, const TetPoints<Real>
   return rest.lambda / 2 * trace * trace + rest.mu * strain.squaredNorm();
 }
 
-template <class Real>
-Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>& rest, const std::array<Vec3<Real>, 4>& rotated_shape,
-                              int e, bool transposed) {
-  const int k = kTetrahedronEdges[e][0];
-  const int l = kTetrahedronEdges[e][1];
-  const Vec3<Real>& rk = rotated_shape[transposed ? l : k];
-  const Vec3<Real>& rl = rotated_shape[transposed ? k : l];
-  Mat3<Real> block = rest.lambda * rl * rk.transpose() + rest.mu * rk * rl.transpose();
-  block.diagonal().array() += rest.mu * rest.shape[l].dot(rest.shape[k]);
-  return block;
-}
-
 #define FASTCOROT_INSTANTIATE(Real)                                                                \
   template TetrahedronRest<Real> tetrahedron_rest(const TetPoints<Real>&,                          \
                                                   const LameParameters<Real>&, RotationMethod);    \
@@ -131,9 +119,7 @@ Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>& rest, const std::arra
   template TetPoints<Real> tetrahedron_force(const TetrahedronRest<Real>&, const TetPoints<Real>&, \
                                              const TetPoints<Real>&, const Mat3<Real>&);           \
   template Real tetrahedron_energy(const TetrahedronRest<Real>&, const TetPoints<Real>&,           \
-                                   const TetPoints<Real>&, const Mat3<Real>&);                      \
-  template Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>&,                             \
-                                         const std::array<Vec3<Real>, 4>&, int, bool);
+                                   const TetPoints<Real>&, const Mat3<Real>&);
 FASTCOROT_INSTANTIATE(float)
 FASTCOROT_INSTANTIATE(double)
 #undef FASTCOROT_INSTANTIATE

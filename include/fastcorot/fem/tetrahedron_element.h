@@ -8,6 +8,7 @@
 #include "fastcorot/core/lame.h"
 #include "fastcorot/core/types.h"
 #include "fastcorot/fem/rotation_method.h"
+#include "fastcorot/topology/tet_mesh.h"
 
 #include <array>
 
@@ -60,8 +61,17 @@ Real tetrahedron_energy(const TetrahedronRest<Real>& rest, const TetPoints<Real>
 
 // R L_e R^T for local edge e = (k, l), from the rotated shape vectors r_j = R s_j:
 // lambda' r_l r_k^T + mu' r_k r_l^T + mu' (s_l . s_k) I. With `transposed`, R L_e^T R^T.
+// Defined here so that the per-edge stiffness refresh inlines it.
 template <class Real>
-Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>& rest, const std::array<Vec3<Real>, 4>& rotated_shape,
-                              int e, bool transposed);
+inline Mat3<Real> rotated_edge_block(const TetrahedronRest<Real>& rest,
+                                     const std::array<Vec3<Real>, 4>& rotated_shape, int e, bool transposed) {
+  const int k = kTetrahedronEdges[e][0];
+  const int l = kTetrahedronEdges[e][1];
+  const Vec3<Real>& rk = rotated_shape[transposed ? l : k];
+  const Vec3<Real>& rl = rotated_shape[transposed ? k : l];
+  Mat3<Real> block = rest.lambda * rl * rk.transpose() + rest.mu * rk * rl.transpose();
+  block.diagonal().array() += rest.mu * rest.shape[l].dot(rest.shape[k]);
+  return block;
+}
 
 }  // namespace fastcorot

@@ -1,0 +1,68 @@
+// The state behind `fastcorot view`, apart from any window so that it can be tested headless: the
+// simulation and where it came from, play/pause and single steps, the measured steps per second,
+// the drawing switches, and live changes of each object's rotation method and material. A failure
+// (a diverging step, a bad modulus) never ends the session: it pauses and leaves a message.
+#pragma once
+
+#include "view_command.h"
+
+#include "fastcorot/fem/rotation_method.h"
+#include "fastcorot/render/draw_geometry.h"
+#include "fastcorot/scene/scene_builder.h"
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace fastcorot::cli {
+
+// What the panel edits for one object; applied with set_method / set_material.
+struct ObjectMaterial {
+  RotationMethod method = RotationMethod::qr;
+  double young_modulus = 0;
+  double poisson_ratio = 0;
+};
+
+class ViewerSession {
+ public:
+  // Loads the scene (throws fastcorot::Error on a bad scene or option, like `run`).
+  explicit ViewerSession(const ViewOptions& options);
+
+  Simulation<double>& simulation() { return scene_.simulation; }
+  const Simulation<double>& simulation() const { return scene_.simulation; }
+  const std::string& title() const { return title_; }
+
+  bool playing = true;
+  int steps_per_frame = 1;
+  DrawOptions draw;
+  std::string message;                    // the last failure, shown until the next success
+  std::vector<ObjectMaterial> materials;  // one per object, as last applied
+
+  // Called once per frame: steps_per_frame steps while playing.
+  void advance();
+  // One step (pauses nothing); on failure pauses and sets `message`.
+  void step();
+  // Reloads the scene from its source (same options); on failure keeps the current one.
+  void reload();
+  // Applies `method` to every force field of object `o`.
+  void set_method(std::size_t o, RotationMethod method);
+  // Rebuilds every force field of object `o` with a uniform E and nu (same mesh, rest positions,
+  // method and Rayleigh stiffness); on failure (E <= 0, nu outside [0, 0.5)) keeps the old ones
+  // and sets `message`.
+  void set_material(std::size_t o, double young_modulus, double poisson_ratio);
+
+  // Steps per second over the last half second or so of stepping (0 before any).
+  double steps_per_second() const { return rate_; }
+
+ private:
+  void load();
+
+  ViewOptions options_;
+  LoadedScene scene_;
+  std::string title_;
+  double rate_ = 0;
+  long window_steps_ = 0;
+  double window_seconds_ = 0;
+};
+
+}  // namespace fastcorot::cli

@@ -1,0 +1,98 @@
+// What one picture of a simulation shows, as flat lists any renderer can take (OpenGL here, files
+// elsewhere): filled triangles with a normal and a colour per corner, line segments and points with
+// a colour each. `SceneDrawer` makes one from a Simulation as SOFA shows a scene with its force
+// fields displayed: force fields with `drawing` on as shrunk tetrahedra in drawColor1..4
+// (tetrahedron_drawing.h), the other objects as their shaded boundary surface, fixed points as
+// dots and BoxROI boxes as wire boxes. Nothing here touches OpenGL, so it is testable and usable
+// without a display.
+#pragma once
+
+#include "fastcorot/sim/simulation.h"
+
+#include <Eigen/Geometry>
+
+#include <map>
+#include <vector>
+
+namespace fastcorot {
+
+// Which force fields are drawn as shrunk tetrahedra: as the scene says (`drawing`), all, or none.
+enum class TetrahedronDrawing { scene, all, none };
+
+// Parses "scene", "on" (all) or "off" (none); throws fastcorot::Error naming the value otherwise.
+TetrahedronDrawing parse_tetrahedron_drawing(const std::string& text);
+
+struct DrawOptions {
+  TetrahedronDrawing tetrahedra = TetrahedronDrawing::scene;
+  bool fixed_points = true;
+  bool boxes = true;
+  bool surface_edges = false;  // outline the boundary triangles (shows the mesh)
+  Rgba surface_color{0.80f, 0.80f, 0.78f, 1.0f};
+  Rgba edge_color{0.15f, 0.15f, 0.17f, 1.0f};
+  Rgba fixed_point_color{0.90f, 0.15f, 0.10f, 1.0f};
+  Rgba box_color{1.00f, 0.75f, 0.10f, 1.0f};
+};
+
+// Triangles: corners i = 3t, 3t+1, 3t+2 of triangle t; one normal and colour per corner.
+struct TriangleList {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Eigen::Vector3f> normals;
+  std::vector<Rgba> colors;
+  std::size_t size() const { return positions.size() / 3; }
+};
+
+// Segments: ends 2s and 2s+1 of segment s.
+struct LineList {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Rgba> colors;
+  std::size_t size() const { return positions.size() / 2; }
+};
+
+struct PointList {
+  std::vector<Eigen::Vector3f> positions;
+  std::vector<Rgba> colors;
+  std::size_t size() const { return positions.size(); }
+};
+
+struct DrawGeometry {
+  TriangleList triangles;
+  LineList lines;
+  PointList points;
+
+  // The box holding everything drawn (empty when nothing is).
+  Eigen::AlignedBox3d bounds() const;
+  // The box a camera frames: the objects (triangles and points) without the lines, since BoxROI
+  // boxes often reach far beyond the objects they select from; all of it when there are no
+  // triangles or points.
+  Eigen::AlignedBox3d framing_bounds() const;
+};
+
+// True when force field `field` of `object` is drawn as shrunk tetrahedra under `mode`. An object
+// without drawing information (built by hand, not from a scene) counts as `drawing` off.
+template <class Real>
+bool draws_tetrahedra(const SimulatedObject<Real>& object, std::size_t field,
+                      TetrahedronDrawing mode);
+
+// Turns simulations into DrawGeometry. It keeps each mesh's boundary triangles between frames (they
+// are recomputed when the mesh's tetrahedron count changes), so reuse one drawer across frames.
+class SceneDrawer {
+ public:
+  template <class Real>
+  DrawGeometry draw(const Simulation<Real>& simulation, const DrawOptions& options);
+
+  // Appends one object's drawing to `geometry`.
+  template <class Real>
+  void draw_object(const SimulatedObject<Real>& object, const DrawOptions& options,
+                   DrawGeometry& geometry);
+
+ private:
+  const std::vector<BoundaryTriangle>& boundary_of(const TetMesh& mesh);
+
+  struct CachedBoundary {
+    Index tetrahedra = -1;
+    std::vector<BoundaryTriangle> triangles;
+  };
+  std::map<const TetMesh*, CachedBoundary> boundaries_;
+};
+
+}  // namespace fastcorot

@@ -1,0 +1,159 @@
+#include "fastcorot/render/draw_geometry.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/render/tetrahedron_drawing.h"
+
+namespace fastcorot {
+
+namespace {
+
+Eigen::Vector3f to_float(const Vec3<double>& v) {
+  return v.cast<float>();
+}
+Eigen::Vector3f to_float(const Vec3<float>& v) {
+  return v;
+}
+
+void add_triangle(TriangleList& list, const std::array<Eigen::Vector3f, 3>& corners,
+                  const Eigen::Vector3f& normal, const Rgba& color) {
+  for (const auto& corner : corners) {
+    list.positions.push_back(corner);
+    list.normals.push_back(normal);
+    list.colors.push_back(color);
+  }
+}
+
+void add_segment(LineList& list, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
+                 const Rgba& color) {
+  list.positions.push_back(a);
+  list.positions.push_back(b);
+  list.colors.push_back(color);
+  list.colors.push_back(color);
+}
+
+void add_box(LineList& list, const DrawnBox& box, const Rgba& color) {
+  auto corner = [&](int bits) {
+    return Eigen::Vector3f(static_cast<float>((bits & 1) ? box.max.x() : box.min.x()),
+                           static_cast<float>((bits & 2) ? box.max.y() : box.min.y()),
+                           static_cast<float>((bits & 4) ? box.max.z() : box.min.z()));
+  };
+  // The 12 edges join corners whose bit patterns differ in one bit.
+  for (int bits = 0; bits < 8; ++bits) {
+    for (int axis = 1; axis < 8; axis <<= 1) {
+      if (!(bits & axis)) add_segment(list, corner(bits), corner(bits | axis), color);
+    }
+  }
+}
+
+}  // namespace
+
+TetrahedronDrawing parse_tetrahedron_drawing(const std::string& text) {
+  if (text == "scene") return TetrahedronDrawing::scene;
+  if (text == "on") return TetrahedronDrawing::all;
+  if (text == "off") return TetrahedronDrawing::none;
+  throw make_error("--drawing \"", text,
+                   "\": expected scene (as each force field's drawing says), on or off");
+}
+
+Eigen::AlignedBox3d DrawGeometry::bounds() const {
+  Eigen::AlignedBox3d box;
+  for (const auto& p : triangles.positions) box.extend(p.cast<double>());
+  for (const auto& p : lines.positions) box.extend(p.cast<double>());
+  for (const auto& p : points.positions) box.extend(p.cast<double>());
+  return box;
+}
+
+Eigen::AlignedBox3d DrawGeometry::framing_bounds() const {
+  Eigen::AlignedBox3d box;
+  for (const auto& p : triangles.positions) box.extend(p.cast<double>());
+  for (const auto& p : points.positions) box.extend(p.cast<double>());
+  return box.isEmpty() ? bounds() : box;
+}
+
+template <class Real>
+bool draws_tetrahedra(const SimulatedObject<Real>& object, std::size_t field,
+                      TetrahedronDrawing mode) {
+  if (mode != TetrahedronDrawing::scene) return mode == TetrahedronDrawing::all;
+  return field < object.force_field_drawing.size() && object.force_field_drawing[field].drawing;
+}
+
+const std::vector<BoundaryTriangle>& SceneDrawer::boundary_of(const TetMesh& mesh) {
+  CachedBoundary& cached = boundaries_[&mesh];
+  if (cached.tetrahedra != mesh.num_tetrahedra()) {
+    cached.triangles = mesh.boundary_triangles();
+    cached.tetrahedra = mesh.num_tetrahedra();
+  }
+  return cached.triangles;
+}
+
+template <class Real>
+DrawGeometry SceneDrawer::draw(const Simulation<Real>& simulation, const DrawOptions& options) {
+  DrawGeometry geometry;
+  for (const auto& object : simulation.objects) draw_object(object, options, geometry);
+  return geometry;
+}
+
+template <class Real>
+void SceneDrawer::draw_object(const SimulatedObject<Real>& object, const DrawOptions& options,
+                              DrawGeometry& geometry) {
+  const auto& x = object.system.state.position;
+  const std::span<const Vec3<Real>> positions(x);
+  bool drew_tetrahedra = false;
+  for (std::size_t f = 0; f < object.system.force_fields.size(); ++f) {
+    if (!draws_tetrahedra(object, f, options.tetrahedra)) continue;
+    const ForceFieldDrawing drawing =
+        f < object.force_field_drawing.size() ? object.force_field_drawing[f] : ForceFieldDrawing{};
+    for (const Tetrahedron& t : object.system.force_fields[f]->mesh().tetrahedra()) {
+      const auto faces = drawn_tetrahedron_faces<Real>(tetrahedron_points<Real>(t, positions));
+      for (std::size_t k = 0; k < 4; ++k) {
+        const auto& face = faces[k];
+        add_triangle(
+            geometry.triangles,
+            {to_float(face.corners[0]), to_float(face.corners[1]), to_float(face.corners[2])},
+            to_float(face.normal), drawing.colors[k]);
+      }
+    }
+    drew_tetrahedra = true;
+  }
+  if (!drew_tetrahedra && object.mesh) {
+    for (const BoundaryTriangle& b : boundary_of(*object.mesh)) {
+      const std::array<Eigen::Vector3f, 3> corners = {
+          to_float(x[static_cast<std::size_t>(b.vertices[0])]),
+          to_float(x[static_cast<std::size_t>(b.vertices[1])]),
+          to_float(x[static_cast<std::size_t>(b.vertices[2])])};
+      Eigen::Vector3f n = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+      // Outward: away from the vertex of the tetrahedron opposite this face.
+      const Index opposite =
+          object.mesh->tetrahedron(b.tetrahedron)[static_cast<std::size_t>(b.face)];
+      if (n.dot(corners[0] - to_float(x[static_cast<std::size_t>(opposite)])) < 0) n = -n;
+      const float length = n.norm();
+      add_triangle(geometry.triangles, corners,
+                   length > 0 ? Eigen::Vector3f(n / length) : Eigen::Vector3f::Zero(),
+                   options.surface_color);
+      if (options.surface_edges) {
+        for (int e = 0; e < 3; ++e)
+          add_segment(geometry.lines, corners[e], corners[(e + 1) % 3], options.edge_color);
+      }
+    }
+  }
+  if (options.fixed_points) {
+    for (Index i : object.system.fixed) {
+      geometry.points.positions.push_back(to_float(x[static_cast<std::size_t>(i)]));
+      geometry.points.colors.push_back(options.fixed_point_color);
+    }
+  }
+  if (options.boxes) {
+    for (const DrawnBox& box : object.boxes) add_box(geometry.lines, box, options.box_color);
+  }
+}
+
+template bool draws_tetrahedra(const SimulatedObject<float>&, std::size_t, TetrahedronDrawing);
+template bool draws_tetrahedra(const SimulatedObject<double>&, std::size_t, TetrahedronDrawing);
+template DrawGeometry SceneDrawer::draw(const Simulation<float>&, const DrawOptions&);
+template DrawGeometry SceneDrawer::draw(const Simulation<double>&, const DrawOptions&);
+template void SceneDrawer::draw_object(const SimulatedObject<float>&, const DrawOptions&,
+                                       DrawGeometry&);
+template void SceneDrawer::draw_object(const SimulatedObject<double>&, const DrawOptions&,
+                                       DrawGeometry&);
+
+}  // namespace fastcorot

@@ -1,0 +1,119 @@
+// What SceneDrawer draws for scenes built through the real parser: the drawn tetrahedra with the
+// scene's colours, otherwise the boundary surface, fixed points and BoxROI boxes; and the switches.
+#include "fastcorot/render/draw_geometry.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/render/tetrahedron_drawing.h"
+#include "render/render_scenes.h"
+
+#include <gtest/gtest.h>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_test_scene;
+
+TEST(DrawGeometry, DrawnTetrahedronHasFourFacesInItsColours) {
+  const LoadedScene scene = build_test_scene(testing::kDrawnTetrahedron);
+  SceneDrawer drawer;
+  const DrawGeometry geometry = drawer.draw(scene.simulation, DrawOptions{});
+  ASSERT_EQ(geometry.triangles.size(), 4u);
+  const std::array<Rgba, 4> colors = {Rgba{1, 0, 0, 1}, Rgba{0, 1, 0, 1}, Rgba{0, 0, 1, 1},
+                                      Rgba{1, 1, 0, 1}};
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  const auto shrunk = shrunk_tetrahedron<double>({x[0], x[1], x[2], x[3]});
+  for (std::size_t k = 0; k < 4; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      EXPECT_EQ(geometry.triangles.colors[3 * k + c], colors[k]) << "triangle " << k;
+      EXPECT_TRUE(geometry.triangles.positions[3 * k + c].isApprox(
+          shrunk[kDrawnFaces[k][c]].cast<float>()));
+    }
+  }
+  // Point 0 is fixed; the BoxROI gives one box of 12 edges.
+  ASSERT_EQ(geometry.points.size(), 1u);
+  EXPECT_EQ(geometry.points.positions[0], Eigen::Vector3f::Zero());
+  EXPECT_EQ(geometry.lines.size(), 12u);
+  EXPECT_TRUE(geometry.bounds().contains(Eigen::Vector3d(0.1, 0.1, 0.1)));
+  EXPECT_TRUE(geometry.bounds().contains(Eigen::Vector3d(-0.1, -0.1, -0.1)));
+  // The camera frames the objects, not the boxes around them.
+  EXPECT_TRUE(geometry.framing_bounds().min().isApprox(Eigen::Vector3d::Zero()));
+  EXPECT_FALSE(geometry.framing_bounds().contains(Eigen::Vector3d(-0.1, -0.1, -0.1)));
+  DrawGeometry lines_only;
+  lines_only.lines = geometry.lines;
+  EXPECT_TRUE(lines_only.framing_bounds().isApprox(lines_only.bounds()));
+}
+
+TEST(DrawGeometry, WithoutDrawingTheBoundarySurfaceIsShaded) {
+  const LoadedScene scene = build_test_scene(testing::small_beam("false"));
+  SceneDrawer drawer;
+  DrawOptions options;
+  const DrawGeometry geometry = drawer.draw(scene.simulation, options);
+  // A 2×1×1 box of unit cubes, each square face split in two: 2·(2 + 2 + 1)·2 = 20 triangles.
+  EXPECT_EQ(geometry.triangles.size(), 20u);
+  for (const Rgba& c : geometry.triangles.colors) EXPECT_EQ(c, options.surface_color);
+  for (std::size_t t = 0; t < geometry.triangles.size(); ++t) {
+    // Outward normals: on the box's faces, pointing away from its centre (1, 0.5, 0.5).
+    const Eigen::Vector3f centre(1, 0.5f, 0.5f);
+    const Eigen::Vector3f mid =
+        (geometry.triangles.positions[3 * t] + geometry.triangles.positions[3 * t + 1] +
+         geometry.triangles.positions[3 * t + 2]) /
+        3;
+    EXPECT_GT(geometry.triangles.normals[3 * t].dot(mid - centre), 0) << "triangle " << t;
+  }
+  EXPECT_EQ(geometry.points.size(), 4u);  // the x = 0 face
+  EXPECT_EQ(geometry.lines.size(), 12u);
+  options.surface_edges = true;
+  EXPECT_EQ(drawer.draw(scene.simulation, options).lines.size(), 12u + 3 * 20u);
+}
+
+TEST(DrawGeometry, TheModeOverridesTheScene) {
+  const LoadedScene off = build_test_scene(testing::small_beam("false"));
+  const LoadedScene on = build_test_scene(testing::small_beam("true"));
+  SceneDrawer drawer;
+  DrawOptions options;
+  EXPECT_EQ(drawer.draw(on.simulation, options).triangles.size(), 4u * 12u);
+  options.tetrahedra = TetrahedronDrawing::all;
+  EXPECT_EQ(drawer.draw(off.simulation, options).triangles.size(), 4u * 12u);
+  options.tetrahedra = TetrahedronDrawing::none;
+  EXPECT_EQ(drawer.draw(on.simulation, options).triangles.size(), 20u);
+  options.fixed_points = false;
+  options.boxes = false;
+  const DrawGeometry bare = drawer.draw(on.simulation, options);
+  EXPECT_EQ(bare.points.size(), 0u);
+  EXPECT_EQ(bare.lines.size(), 0u);
+}
+
+TEST(DrawGeometry, FollowsThePositions) {
+  LoadedScene scene = build_test_scene(testing::kDrawnTetrahedron);
+  SceneDrawer drawer;
+  auto& x = scene.simulation.objects[0].system.state.position;
+  for (auto& p : x) p += Vec3<double>(5, 0, 0);
+  const DrawGeometry geometry = drawer.draw(scene.simulation, DrawOptions{});
+  EXPECT_EQ(geometry.points.positions[0], Eigen::Vector3f(5, 0, 0));
+  EXPECT_GT(geometry.triangles.positions[0].x(), 5.0f);
+}
+
+TEST(DrawGeometry, ObjectsWithoutDrawingInformationShowTheirSurface) {
+  LoadedScene scene = build_test_scene(testing::kDrawnTetrahedron);
+  scene.simulation.objects[0].force_field_drawing.clear();  // as a hand-built object has
+  EXPECT_FALSE(draws_tetrahedra(scene.simulation.objects[0], 0, TetrahedronDrawing::scene));
+  SceneDrawer drawer;
+  EXPECT_EQ(drawer.draw(scene.simulation, DrawOptions{}).triangles.size(), 4u);  // the boundary
+}
+
+TEST(DrawGeometry, ParsesTheDrawingMode) {
+  EXPECT_EQ(parse_tetrahedron_drawing("scene"), TetrahedronDrawing::scene);
+  EXPECT_EQ(parse_tetrahedron_drawing("on"), TetrahedronDrawing::all);
+  EXPECT_EQ(parse_tetrahedron_drawing("off"), TetrahedronDrawing::none);
+  try {
+    parse_tetrahedron_drawing("yes");
+    FAIL() << "accepted \"yes\"";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("--drawing \"yes\""), std::string::npos)
+        << error.what();
+  }
+  EXPECT_TRUE(DrawGeometry{}.bounds().isEmpty());
+}
+
+}  // namespace
+}  // namespace fastcorot
