@@ -5,6 +5,8 @@
 #include "fastcorot/core/error.h"
 #include "support/sofa_reference.h"
 
+#include "support/command.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -68,22 +70,8 @@ TEST_P(ProbeSofa, InProcessMatchesSofa) {
   expect_matches_sofa(cli::probe(probe_case_from_sofa(c), "case"), c);
 }
 
-struct CommandResult {
-  int status;
-  std::string output;  // stdout and stderr together
-};
-
-CommandResult run_fastcorot(const std::string& arguments) {
-  const std::string command = std::string(FASTCOROT_EXECUTABLE) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  CommandResult result{-1, ""};
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using testing::CommandResult;
+using testing::run_fastcorot;
 
 std::string write_case(const std::string& name, const std::string& text) {
   std::filesystem::create_directories(FASTCOROT_TEST_OUTPUT_DIR);

@@ -5,6 +5,8 @@
 #include "fastcorot/scene/mesh_file.h"
 #include "render/render_scenes.h"
 
+#include "support/command.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -20,25 +22,9 @@
 namespace fastcorot {
 namespace {
 
-struct CommandResult {
-  int status;
-  std::string output;
-};
-
-CommandResult shell(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  CommandResult result{-1, ""};
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-CommandResult run_fastcorot(const std::string& arguments) {
-  return shell(std::string(FASTCOROT_EXECUTABLE) + " " + arguments);
-}
+using testing::CommandResult;
+using testing::run_fastcorot;
+using testing::shell;
 
 std::filesystem::path output_dir(const std::string& name) {
   const auto dir = std::filesystem::path(FASTCOROT_TEST_OUTPUT_DIR) / name;

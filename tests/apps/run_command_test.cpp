@@ -4,6 +4,8 @@
 
 #include "fastcorot/scene/mesh_file.h"
 
+#include "support/command.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -18,22 +20,8 @@ namespace {
 
 using nlohmann::json;
 
-struct CommandResult {
-  int status;
-  std::string output;
-};
-
-CommandResult run_fastcorot(const std::string& arguments) {
-  const std::string command = std::string(FASTCOROT_EXECUTABLE) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  CommandResult result{-1, ""};
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using testing::CommandResult;
+using testing::run_fastcorot;
 
 std::filesystem::path output_dir(const std::string& name) {
   const auto dir = std::filesystem::path(FASTCOROT_TEST_OUTPUT_DIR) / name;
