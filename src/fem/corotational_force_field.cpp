@@ -1,8 +1,13 @@
 #include "fastcorot/fem/corotational_force_field.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/parallel.h"
+#include "fastcorot/core/rotation.h"
+#include "force_kernels.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <utility>
 
 namespace fastcorot {
@@ -34,6 +39,33 @@ LameParameters<Real> element_lame(const std::vector<Real>& young, const std::vec
   }
 }
 
+// Q (rows): world to the method's rest frame at the current edge vectors d_j = x_{j+1} - x0, given
+// the rest-frame shape vectors s~_1..s~_3. The element rotation (rest to world) is R = Q^T R0.
+template <class Real>
+void world_to_rest_frame(RotationMethod method, const Real d[3][3], const Real s[3][3], Real q[3][3]) {
+  Mat3<Real> frame = Mat3<Real>::Identity();
+  const Vec3<Real> d0(d[0][0], d[0][1], d[0][2]), d1(d[1][0], d[1][1], d[1][2]), d2(d[2][0], d[2][1], d[2][2]);
+  switch (method) {
+    case RotationMethod::qr:
+      frame = qr_frame<Real>(d0, d1);
+      break;
+    case RotationMethod::polar2:
+      frame = polar_frame<Real>(d0, d1, d2);
+      break;
+    case RotationMethod::polar: {
+      // R0 = I, so s~ = s and the deformation gradient is sum_j d_j s_j^T.
+      const Vec3<Real> s0(s[0][0], s[0][1], s[0][2]), s1(s[1][0], s[1][1], s[1][2]), s2(s[2][0], s[2][1], s[2][2]);
+      frame = polar_factor<Real>(d0 * s0.transpose() + d1 * s1.transpose() + d2 * s2.transpose()).transpose();
+      break;
+    }
+    case RotationMethod::none:
+      break;
+  }
+  for (int i = 0; i < 3; ++i) {
+    for (int c = 0; c < 3; ++c) q[i][c] = frame(i, c);
+  }
+}
+
 }  // namespace
 
 template <class Real>
@@ -54,28 +86,78 @@ CorotationalForceField<Real>::CorotationalForceField(std::shared_ptr<TetMesh> me
                      ": must be a finite value >= 0");
   }
   check_rest_volumes<Real>(*mesh_, rest_positions_);
-  lame_.reserve(static_cast<std::size_t>(n));
-  for (std::size_t t = 0; t < static_cast<std::size_t>(n); ++t) {
-    lame_.push_back(element_lame(parameters_.young_modulus, parameters_.poisson_ratio, t));
-  }
-  set_method(parameters_.method);
+  rebuild();
 }
 
 template <class Real>
-TetrahedronRest<Real> CorotationalForceField<Real>::compute_rest(Index t) const {
+TetrahedronRest<Real> CorotationalForceField<Real>::element_rest(Index t) const {
   const auto p = tetrahedron_points<Real>(mesh_->tetrahedron(t), rest_positions_);
-  return tetrahedron_rest(p, lame_[static_cast<std::size_t>(t)], parameters_.method);
+  const auto e = static_cast<std::size_t>(t);
+  return tetrahedron_rest(p, element_lame(parameters_.young_modulus, parameters_.poisson_ratio, e),
+                          parameters_.method);
+}
+
+template <class Real>
+void CorotationalForceField<Real>::rebuild() {
+  const auto n = static_cast<std::size_t>(mesh_->num_tetrahedra());
+  shape_.assign(9 * n, Real(0));
+  mu_.assign(n, Real(0));
+  lambda_.assign(n, Real(0));
+  for (std::size_t t = 0; t < n; ++t) {
+    const TetrahedronRest<Real> rest = element_rest(static_cast<Index>(t));
+    for (int j = 1; j < 4; ++j) {
+      const Vec3<Real> s = rest.rest_rotation * rest.shape[j];
+      for (int c = 0; c < 3; ++c) shape_[9 * t + 3 * (j - 1) + c] = s[c];
+    }
+    mu_[t] = rest.mu;
+    lambda_[t] = rest.lambda;
+  }
+  tetrahedron_schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra());
+
+  // Edges sorted by (lower, higher) vertex, then scheduled (which keeps that order within groups);
+  // slot i of the internal arrays holds the edge at position i of the schedule.
+  const auto edges = mesh_->edges();
+  std::vector<Index> by_vertex(edges.size());
+  std::iota(by_vertex.begin(), by_vertex.end(), Index(0));
+  const auto ordered = [&](Index e) {
+    const Edge& edge = edges[static_cast<std::size_t>(e)];
+    return Edge{std::min(edge[0], edge[1]), std::max(edge[0], edge[1])};
+  };
+  std::sort(by_vertex.begin(), by_vertex.end(), [&](Index a, Index b) { return ordered(a) < ordered(b); });
+  std::vector<Edge> sorted(edges.size());
+  for (std::size_t i = 0; i < sorted.size(); ++i) sorted[i] = ordered(by_vertex[i]);
+  const ScatterSchedule schedule = make_scatter_schedule<2>(mesh_->num_points(), std::span<const Edge>(sorted));
+  constexpr std::size_t lanes = kernels::kEdgeLanes<Real>;
+  edge_schedule_ = schedule;
+  edge_slot_.assign(edges.size(), 0);
+  edge_vertices_.clear();
+  edge_vertices_.reserve(edges.size() + lanes * static_cast<std::size_t>(schedule.num_groups()));
+  for (Index g = 0; g < schedule.num_groups(); ++g) {
+    const auto gi = static_cast<std::size_t>(g);
+    edge_schedule_.group_begin[gi] = static_cast<Index>(edge_vertices_.size());
+    for (Index i = schedule.group_begin[gi]; i < schedule.group_begin[gi + 1]; ++i) {
+      const Index e = by_vertex[static_cast<std::size_t>(schedule.order[static_cast<std::size_t>(i)])];
+      edge_slot_[static_cast<std::size_t>(e)] = static_cast<Index>(edge_vertices_.size());
+      edge_vertices_.push_back(ordered(e));
+    }
+    // Padding slots repeat the group's last edge with a zero block: they add nothing.
+    while (edge_vertices_.size() % lanes != 0) edge_vertices_.push_back(edge_vertices_.back());
+  }
+  edge_schedule_.group_begin.back() = static_cast<Index>(edge_vertices_.size());
+  edge_schedule_.order.resize(edge_vertices_.size());
+  std::iota(edge_schedule_.order.begin(), edge_schedule_.order.end(), Index(0));
+
+  // The linearisation at rest (rotations equal to the identity up to rounding).
+  blocks_.assign(9 * edge_vertices_.size(), Real(0));
+  std::vector<Vec3<Real>> scratch(rest_positions_.size(), Vec3<Real>::Zero());
+  accumulate_force<true>(rest_positions_, scratch);
+  last_positions_.clear();
 }
 
 template <class Real>
 void CorotationalForceField<Real>::set_method(RotationMethod method) {
   parameters_.method = method;
-  const Index n = mesh_->num_tetrahedra();
-  rest_.clear();
-  rest_.reserve(static_cast<std::size_t>(n));
-  for (Index t = 0; t < n; ++t) rest_.push_back(compute_rest(t));
-  rotations_.assign(static_cast<std::size_t>(n), Mat3<Real>::Identity());
-  rebuild_edge_stiffness();
+  rebuild();
 }
 
 template <class Real>
@@ -90,32 +172,100 @@ template <class Real>
 void CorotationalForceField<Real>::add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
   check_size(x, "x");
   check_size(f, "f");
-  const auto tetrahedra = mesh_->tetrahedra();
-  for (std::size_t t = 0; t < tetrahedra.size(); ++t) {
-    const auto p = tetrahedron_points<Real>(tetrahedra[t], rest_positions_);
-    const auto xt = tetrahedron_points(tetrahedra[t], x);
-    rotations_[t] = tetrahedron_rotation(rest_[t], xt, parameters_.method);
-    const auto ft = tetrahedron_force(rest_[t], p, xt, rotations_[t]);
-    for (int j = 0; j < 4; ++j) f[static_cast<std::size_t>(tetrahedra[t][j])] += ft[j];
-  }
-  rebuild_edge_stiffness();
+  const PhaseTimer timer(times_ ? &times_->add_force : nullptr);
+  accumulate_force<true>(x, f);
+  last_positions_.assign(x.begin(), x.end());
 }
 
 template <class Real>
-void CorotationalForceField<Real>::rebuild_edge_stiffness() {
-  edge_stiffness_.assign(static_cast<std::size_t>(mesh_->num_edges()), Mat3<Real>::Zero());
-  for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
-    const auto& rest = rest_[static_cast<std::size_t>(t)];
-    const Mat3<Real>& r = rotations_[static_cast<std::size_t>(t)];
-    const std::array<Vec3<Real>, 4> rotated = {r * rest.shape[0], r * rest.shape[1], r * rest.shape[2],
-                                               r * rest.shape[3]};
-    const auto& edges = mesh_->edges_of_tetrahedron(t);
-    for (int e = 0; e < 6; ++e) {
-      // The block couples local vertex l to k; it is stored from the mesh edge's first vertex.
-      edge_stiffness_[static_cast<std::size_t>(edges[e])] +=
-          rotated_edge_block(rest, rotated, e, !mesh_->edge_follows_mesh_edge(t, e));
-    }
+void CorotationalForceField<Real>::add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
+  check_size(x, "x");
+  check_size(f, "f");
+  accumulate_force<false>(x, f);
+}
+
+template <class Real>
+template <bool kRefresh>
+void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
+  if constexpr (kRefresh) {
+    parallel_ranges(threads_, blocks_.size(), [&](std::size_t begin, std::size_t end) {
+      std::fill(blocks_.begin() + static_cast<std::ptrdiff_t>(begin), blocks_.begin() + static_cast<std::ptrdiff_t>(end), Real(0));
+    });
   }
+  const Tetrahedron* tetrahedra = mesh_->tetrahedra().data();
+  const Real* xs = x.data()->data();
+  Real* fs = f.data()->data();
+  Real* blocks = blocks_.data();
+  const RotationMethod method = parameters_.method;
+  constexpr int W = kernels::kLanes<Real>;
+  run_schedule(tetrahedron_schedule_, threads_, [&](Index begin, Index end) {
+    kernels::ElementBatch<Real> batch;
+    Index lane_tetrahedron[W];
+    for (Index first = begin; first < end; first += W) {
+      const int count = static_cast<int>(std::min<Index>(W, end - first));
+      // Gather; lanes past the end repeat the first element and are not scattered.
+      for (int l = 0; l < W; ++l) {
+        const Index t = tetrahedron_schedule_.order[static_cast<std::size_t>(first + (l < count ? l : 0))];
+        lane_tetrahedron[l] = t;
+        const Tetrahedron& tet = tetrahedra[t];
+        const Real* x0 = xs + 3 * tet[0];
+        for (int j = 0; j < 3; ++j) {
+          const Real* xj = xs + 3 * tet[static_cast<std::size_t>(j) + 1];
+          for (int c = 0; c < 3; ++c) batch.d[j][c][l] = xj[c] - x0[c];
+        }
+        const Real* shape = shape_.data() + 9 * static_cast<std::size_t>(t);
+        for (int j = 0; j < 3; ++j) {
+          for (int c = 0; c < 3; ++c) batch.s[j + 1][c][l] = shape[3 * j + c];
+        }
+        batch.mu[l] = mu_[static_cast<std::size_t>(t)];
+        batch.lambda[l] = lambda_[static_cast<std::size_t>(t)];
+      }
+      kernels::first_shape_vector(batch);
+      if (method == RotationMethod::qr) {
+        kernels::qr_frames(batch);
+      } else {
+        for (int l = 0; l < W; ++l) {
+          Real d[3][3], sl[3][3], q[3][3];
+          for (int j = 0; j < 3; ++j) {
+            for (int c = 0; c < 3; ++c) {
+              d[j][c] = batch.d[j][c][l];
+              sl[j][c] = batch.s[j + 1][c][l];
+            }
+          }
+          world_to_rest_frame(method, d, sl, q);
+          for (int i = 0; i < 3; ++i) {
+            for (int c = 0; c < 3; ++c) batch.q[i][c][l] = q[i][c];
+          }
+        }
+      }
+      kernels::element_forces(batch);
+      for (int l = 0; l < count; ++l) {
+        const Tetrahedron& tet = tetrahedra[lane_tetrahedron[l]];
+        for (int j = 0; j < 4; ++j) {
+          Real* fj = fs + 3 * tet[static_cast<std::size_t>(j)];
+          for (int c = 0; c < 3; ++c) fj[c] += batch.f[j][c][l];
+        }
+      }
+      if constexpr (kRefresh) {
+        kernels::rotated_shapes(batch);
+        for (int e = 0; e < 6; ++e) {
+          const int k = kTetrahedronEdges[static_cast<std::size_t>(e)][0];
+          const int m = kTetrahedronEdges[static_cast<std::size_t>(e)][1];
+          for (int l = 0; l < W; ++l) {
+            const Tetrahedron& tet = tetrahedra[lane_tetrahedron[l]];
+            batch.swap[l] = tet[static_cast<std::size_t>(k)] > tet[static_cast<std::size_t>(m)];
+          }
+          kernels::edge_block(batch, k, m);
+          for (int l = 0; l < count; ++l) {
+            const Index edge = mesh_->edges_of_tetrahedron(lane_tetrahedron[l])[static_cast<std::size_t>(e)];
+            const auto slot = static_cast<std::size_t>(edge_slot_[static_cast<std::size_t>(edge)]);
+            Real* entry = blocks + kernels::edge_block_offset<Real>(slot, 0);
+            for (int i = 0; i < 9; ++i) entry[i * kernels::kEdgeLanes<Real>] += batch.block[i][l];
+          }
+        }
+      }
+    }
+  });
 }
 
 template <class Real>
@@ -124,34 +274,73 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   check_size(dx, "dx");
   check_size(df, "df");
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
-  const auto edges = mesh_->edges();
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const auto a = static_cast<std::size_t>(edges[e][0]);
-    const auto b = static_cast<std::size_t>(edges[e][1]);
-    const Vec3<Real> w = k * (dx[b] - dx[a]);
-    df[b] += edge_stiffness_[e] * w;
-    df[a] -= edge_stiffness_[e].transpose() * w;
+  const Real* in = dx.data()->data();
+  Real* out = df.data()->data();
+  const Real* blocks = blocks_.data();
+  const Edge* vertices = edge_vertices_.data();
+  constexpr int L = kernels::kEdgeLanes<Real>;
+  run_schedule(edge_schedule_, threads_, [&](Index begin, Index end) {
+    // Groups hold whole SIMD groups of edges sorted by lower vertex u: the products of a group are
+    // computed at once, then df[v] += K w and u's share -K^T w summed along u's run.
+    alignas(32) Real w[3][L], kw[3][L], ktw[3][L];
+    Index low = -1;
+    Real sum[3] = {0, 0, 0};
+    for (Index first = begin; first < end; first += L) {
+      const Edge* v = vertices + first;
+      for (int l = 0; l < L; ++l) {
+        const Real* xu = in + 3 * v[l][0];
+        const Real* xv = in + 3 * v[l][1];
+        for (int c = 0; c < 3; ++c) w[c][l] = xv[c] - xu[c];
+      }
+      kernels::edge_products(blocks + 9 * static_cast<std::size_t>(first), k, w, kw, ktw);
+      for (int l = 0; l < L; ++l) {
+        Real* dv = out + 3 * v[l][1];
+        for (int c = 0; c < 3; ++c) dv[c] += kw[c][l];
+        if (v[l][0] != low) {
+          if (low >= 0) {
+            for (int c = 0; c < 3; ++c) out[3 * low + c] += sum[c];
+          }
+          low = v[l][0];
+          sum[0] = sum[1] = sum[2] = 0;
+        }
+        for (int c = 0; c < 3; ++c) sum[c] -= ktw[c][l];
+      }
+    }
+    if (low >= 0) {
+      for (int c = 0; c < 3; ++c) out[3 * low + c] += sum[c];
+    }
+  });
+}
+
+template <class Real>
+Mat3<Real> CorotationalForceField<Real>::block(Index slot) const {
+  Mat3<Real> m;
+  for (int i = 0; i < 9; ++i) {
+    m.data()[i] = blocks_[kernels::edge_block_offset<Real>(static_cast<std::size_t>(slot), i)];
   }
+  return m;
 }
 
 template <class Real>
 void CorotationalForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset,
                                                  Real b_factor) const {
+  // Row sums of each element's stiffness vanish, so a vertex's diagonal block is minus the sum of
+  // its off-diagonal blocks: with block(lo, hi) = -k K^T and block(hi, lo) = -k K for the edge
+  // block K oriented from lo to hi, diagonal(lo) += k K^T and diagonal(hi) += k K.
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
-  for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
-    const Mat3<Real>& r = rotations_[static_cast<std::size_t>(t)];
-    const Tetrahedron& tet = mesh_->tetrahedron(t);
-    for (int j = 0; j < 4; ++j) {
-      const Mat3<Real> block = -k * (r * vertex_block(rest_[static_cast<std::size_t>(t)], j) * r.transpose());
-      sink.add_block(offset + 3 * tet[j], offset + 3 * tet[j], block);
-    }
+  std::vector<Mat3<Real>> diagonal(static_cast<std::size_t>(mesh_->num_points()), Mat3<Real>::Zero());
+  std::vector<bool> used(diagonal.size(), false);
+  for (const Index slot : edge_slot_) {
+    const Index a = edge_vertices_[static_cast<std::size_t>(slot)][0], b = edge_vertices_[static_cast<std::size_t>(slot)][1];
+    const Mat3<Real> block = k * this->block(slot);
+    diagonal[static_cast<std::size_t>(a)] += block.transpose();
+    diagonal[static_cast<std::size_t>(b)] += block;
+    used[static_cast<std::size_t>(a)] = used[static_cast<std::size_t>(b)] = true;
+    sink.add_block(offset + 3 * a, offset + 3 * b, -block.transpose());
+    sink.add_block(offset + 3 * b, offset + 3 * a, -block);
   }
-  const auto edges = mesh_->edges();
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const Index a = edges[e][0];
-    const Index b = edges[e][1];
-    sink.add_block(offset + 3 * a, offset + 3 * b, -k * edge_stiffness_[e].transpose());
-    sink.add_block(offset + 3 * b, offset + 3 * a, -k * edge_stiffness_[e]);
+  for (std::size_t v = 0; v < diagonal.size(); ++v) {
+    if (used[v]) sink.add_block(offset + 3 * static_cast<Index>(v), offset + 3 * static_cast<Index>(v), diagonal[v]);
   }
 }
 
@@ -168,73 +357,95 @@ Real CorotationalForceField<Real>::potential_energy(std::span<const Vec3<Real>> 
   Real energy = 0;
   const auto tetrahedra = mesh_->tetrahedra();
   for (std::size_t t = 0; t < tetrahedra.size(); ++t) {
+    const TetrahedronRest<Real> rest = element_rest(static_cast<Index>(t));
     const auto p = tetrahedron_points<Real>(tetrahedra[t], rest_positions_);
     const auto xt = tetrahedron_points(tetrahedra[t], x);
-    const Mat3<Real> r = tetrahedron_rotation(rest_[t], xt, parameters_.method);
-    energy += tetrahedron_energy(rest_[t], p, xt, r);
+    const Mat3<Real> r = tetrahedron_rotation(rest, xt, parameters_.method);
+    energy += tetrahedron_energy(rest, p, xt, r);
   }
   return energy;
 }
 
 template <class Real>
+std::vector<Mat3<Real>> CorotationalForceField<Real>::rotations() const {
+  std::vector<Mat3<Real>> result(static_cast<std::size_t>(mesh_->num_tetrahedra()), Mat3<Real>::Identity());
+  if (last_positions_.empty()) return result;
+  for (std::size_t t = 0; t < result.size(); ++t) {
+    const auto xt = tetrahedron_points<Real>(mesh_->tetrahedron(static_cast<Index>(t)), last_positions_);
+    result[t] = tetrahedron_rotation(element_rest(static_cast<Index>(t)), xt, parameters_.method);
+  }
+  return result;
+}
+
+template <class Real>
 std::vector<Real> CorotationalForceField<Real>::rest_volumes() const {
   std::vector<Real> volumes;
-  volumes.reserve(rest_.size());
-  for (const auto& rest : rest_) volumes.push_back(rest.volume);
+  volumes.reserve(static_cast<std::size_t>(mesh_->num_tetrahedra()));
+  for (const Tetrahedron& tet : mesh_->tetrahedra()) {
+    volumes.push_back(signed_volume(tetrahedron_points<Real>(tet, rest_positions_)));
+  }
   return volumes;
 }
 
 template <class Real>
+std::vector<Mat3<Real>> CorotationalForceField<Real>::edge_stiffness() const {
+  const auto edges = mesh_->edges();
+  std::vector<Mat3<Real>> result(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const Mat3<Real> block = this->block(edge_slot_[e]);
+    result[e] = edges[e][0] < edges[e][1] ? block : Mat3<Real>(block.transpose());
+  }
+  return result;
+}
+
+template <class Real>
+std::size_t CorotationalForceField<Real>::memory_bytes() const {
+  const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
+  const auto schedule_bytes = [&](const ScatterSchedule& s) { return bytes(s.order) + bytes(s.group_begin); };
+  return bytes(rest_positions_) + bytes(shape_) + bytes(mu_) + bytes(lambda_) + bytes(blocks_) +
+         bytes(edge_slot_) + bytes(edge_vertices_) +
+         schedule_bytes(tetrahedron_schedule_) + schedule_bytes(edge_schedule_) + bytes(last_positions_) +
+         sizeof(*this);
+}
+
+template <class Real>
 void CorotationalForceField<Real>::add_tetrahedra(std::span<const Tetrahedron> tetrahedra) {
-  const Index first = mesh_->num_tetrahedra();
   TetMesh grown = *mesh_;
   grown.add_tetrahedra(tetrahedra);
   // Validate the grown mesh before touching any state, so a failure leaves the field as it was.
   check_rest_volumes<Real>(grown, rest_positions_);
-  const LameParameters<Real> lame0 =
-      lame_parameters(parameters_.young_modulus.front(), parameters_.poisson_ratio.front());
-  std::vector<TetrahedronRest<Real>> added;
-  for (Index t = first; t < grown.num_tetrahedra(); ++t) {
-    const auto p = tetrahedron_points<Real>(grown.tetrahedron(t), rest_positions_);
-    added.push_back(tetrahedron_rest(p, lame0, parameters_.method));
-  }
   *mesh_ = std::move(grown);
-  for (auto& rest : added) {
-    rest_.push_back(rest);
-    lame_.push_back(lame0);
-    rotations_.push_back(Mat3<Real>::Identity());
+  // New tetrahedra take entry 0 of per-tetrahedron parameter lists.
+  for (std::size_t i = 0; i < tetrahedra.size(); ++i) {
     if (parameters_.young_modulus.size() > 1) parameters_.young_modulus.push_back(parameters_.young_modulus.front());
     if (parameters_.poisson_ratio.size() > 1) parameters_.poisson_ratio.push_back(parameters_.poisson_ratio.front());
   }
-  rebuild_edge_stiffness();
+  rebuild();
 }
 
 template <class Real>
 void CorotationalForceField<Real>::remove_tetrahedra(std::span<const Index> indices) {
+  const std::size_t before = static_cast<std::size_t>(mesh_->num_tetrahedra());
   mesh_->remove_tetrahedra(indices);  // validates the indices
-  std::vector<bool> removed(rest_.size(), false);
+  std::vector<bool> removed(before, false);
   for (Index t : indices) removed[static_cast<std::size_t>(t)] = true;
-  auto keep = [&](auto& values) {
-    if (values.size() != removed.size()) return;
+  auto keep = [&](std::vector<Real>& values) {
     std::size_t out = 0;
     for (std::size_t t = 0; t < removed.size(); ++t) {
       if (!removed[t]) values[out++] = values[t];
     }
     values.resize(out);
   };
-  keep(rest_);
-  keep(lame_);
-  keep(rotations_);
   // A single value applies to every tetrahedron and stays; per-tetrahedron lists follow.
   if (parameters_.young_modulus.size() > 1) keep(parameters_.young_modulus);
   if (parameters_.poisson_ratio.size() > 1) keep(parameters_.poisson_ratio);
-  rebuild_edge_stiffness();
+  rebuild();
 }
 
 template <class Real>
 void CorotationalForceField<Real>::update_topology_information() {
   mesh_->update_topology_information();
-  rebuild_edge_stiffness();
+  rebuild();
 }
 
 template class CorotationalForceField<float>;

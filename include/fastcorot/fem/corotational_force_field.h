@@ -1,15 +1,24 @@
 // CorotationalForceField<Real>: SOFA's FastTetrahedralCorotationalForceField over a whole
-// tetrahedral mesh (SPEC.md). It owns the rest data of every tetrahedron (shape vectors, scaled Lamé
-// values, rest rotation) and the linearisation of the last `add_force` call: one rotation per
-// tetrahedron and one 3×3 stiffness block per mesh edge, which `add_dforce` and the matrix assembly
-// reuse until the next `add_force`. Vertex arrays are spans of #V points (Vec3); forces accumulate
-// into the output (they are added, never overwritten).
+// tetrahedral mesh (SPEC.md). It owns the rest data of every tetrahedron and the linearisation of
+// the last `add_force` call: one 3×3 stiffness block per mesh edge, which `add_dforce` and the
+// matrix assembly reuse until the next `add_force`. Vertex arrays are spans of #V points (Vec3);
+// forces accumulate into the output (they are added, never overwritten).
+//
+// How it is fast (docs/performance.md): each tetrahedron keeps only its shape vectors expressed in
+// the rest frame of its rotation method and its scaled Lamé values (structure of arrays); one pass
+// per add_force computes the rotation, the forces and the rotated edge blocks together, so no
+// rotation is stored; edge blocks are kept oriented from the lower to the higher vertex index and
+// applied in vertex order. Loops that scatter into shared arrays follow a ScatterSchedule, so any
+// thread count gives bitwise the same results. The straightforward element-by-element form of the
+// same computation (tetrahedron_element.h) is what the tests compare against.
 #pragma once
 
+#include "fastcorot/core/phase_times.h"
 #include "fastcorot/core/types.h"
 #include "fastcorot/fem/matrix_sink.h"
 #include "fastcorot/fem/rotation_method.h"
 #include "fastcorot/fem/tetrahedron_element.h"
+#include "fastcorot/topology/scatter_schedule.h"
 #include "fastcorot/topology/tet_mesh.h"
 
 #include <Eigen/SparseCore>
@@ -42,9 +51,13 @@ class CorotationalForceField {
   const Parameters& parameters() const { return parameters_; }
   RotationMethod method() const { return parameters_.method; }
 
-  // f += forces at positions x (#V points each); records each tetrahedron's rotation and rebuilds
-  // the edge stiffness blocks used by add_dforce and the assembly.
+  // f += forces at positions x (#V points each); rebuilds the edge stiffness blocks used by
+  // add_dforce and the assembly (the linearisation at x).
   void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+
+  // f += forces at x without touching the linearisation (for explicit schemes and for measuring
+  // what the stiffness refresh costs inside add_force).
+  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
 
   // df += K(x_last) dx · (k_factor + b_factor · rayleighStiffness), K = df/dx as SPEC assembles it
   // from the edge blocks of the last add_force (rest state before the first one).
@@ -76,26 +89,53 @@ class CorotationalForceField {
   // blocks (SOFA's updateTopologyInformation).
   void update_topology_information();
 
-  // Rotation of each tetrahedron at the last add_force (identity before the first).
-  std::span<const Mat3<Real>> rotations() const { return rotations_; }
+  // Rotation of each tetrahedron (rest frame to world) at the positions of the last add_force
+  // (identity before the first); computed on demand.
+  std::vector<Mat3<Real>> rotations() const;
   // Signed rest volume V of each tetrahedron (SOFA's sign convention).
   std::vector<Real> rest_volumes() const;
-  std::span<const TetrahedronRest<Real>> rest_data() const { return rest_; }
-  // Stiffness block K_E of each mesh edge (SPEC.md, "Stiffness").
-  std::span<const Mat3<Real>> edge_stiffness() const { return edge_stiffness_; }
+  // Stiffness block K_E of each mesh edge, oriented as the mesh edge (SPEC.md, "Stiffness").
+  std::vector<Mat3<Real>> edge_stiffness() const;
+
+  // Threads for add_force, add_dforce and add_stiffness; results do not depend on it.
+  void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
+  int threads() const { return threads_; }
+  // Where add_force adds its time (null: not timed).
+  void set_phase_times(PhaseTimes* times) { times_ = times; }
+
+  // Bytes held by the force field (rest data, edge blocks, schedules, last positions), not
+  // counting the shared mesh.
+  std::size_t memory_bytes() const;
 
  private:
-  TetrahedronRest<Real> compute_rest(Index t) const;
-  void rebuild_edge_stiffness();
+  void rebuild();
+  template <bool kRefresh>
+  void accumulate_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
   void check_size(std::span<const Vec3<Real>> v, const char* what) const;
+  TetrahedronRest<Real> element_rest(Index t) const;
 
   std::shared_ptr<TetMesh> mesh_;
   std::vector<Vec3<Real>> rest_positions_;
   Parameters parameters_;
-  std::vector<LameParameters<Real>> lame_;  // per tetrahedron
-  std::vector<TetrahedronRest<Real>> rest_;
-  std::vector<Mat3<Real>> rotations_;
-  std::vector<Mat3<Real>> edge_stiffness_;
+  int threads_ = 1;
+  PhaseTimes* times_ = nullptr;
+
+  // Per tetrahedron (mesh order): shape vectors s~_1..s~_3 in the method's rest frame (R0 s_j;
+  // s~_0 = -(s~_1 + s~_2 + s~_3)), nine values each, and mu |V|, lambda |V|.
+  std::vector<Real> shape_;
+  std::vector<Real> mu_, lambda_;
+  ScatterSchedule tetrahedron_schedule_;
+  // Edges are stored in the order of their schedule (grouped like the tetrahedra, sorted by lower
+  // then higher vertex within a group, each group padded with empty slots to whole SIMD groups), so
+  // add_dforce streams through memory: edge_slot_ gives the slot of each mesh edge,
+  // edge_vertices_ the (lower, higher) vertices of each slot, and blocks_ the K_E of each slot
+  // oriented from the lower to the higher vertex (column-major 3×3, grouped as force_kernels.h says).
+  ScatterSchedule edge_schedule_;  // in slots
+  std::vector<Index> edge_slot_;
+  std::vector<Edge> edge_vertices_;
+  std::vector<Real> blocks_;
+  Mat3<Real> block(Index slot) const;
+  std::vector<Vec3<Real>> last_positions_;  // x of the last add_force (empty before the first)
 };
 
 }  // namespace fastcorot

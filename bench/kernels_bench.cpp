@@ -1,0 +1,76 @@
+// Google Benchmarks of the force-field kernels on the benchmark beams: add_force (forces and the
+// stiffness refresh), add_force_only (forces alone: the refresh costs the difference), add_dforce,
+// for every method, float and double, 1 and 2 threads. Counters: ns per tetrahedron (add_force) or
+// per edge (add_dforce).
+//   build-release/bench/fastcorot_bench_kernels --benchmark_filter='qr/double/.*threads:1'
+#include "beams.h"
+
+#include <benchmark/benchmark.h>
+
+namespace fastcorot::bench {
+namespace {
+
+const char* method_name(RotationMethod method) {
+  switch (method) {
+    case RotationMethod::qr: return "qr";
+    case RotationMethod::polar: return "polar";
+    case RotationMethod::polar2: return "polar2";
+    case RotationMethod::none: return "none";
+  }
+  return "?";
+}
+
+enum class Kernel { add_force, add_force_only, add_dforce };
+
+template <class Real>
+void run_kernel(benchmark::State& state, const Beam& beam, RotationMethod method, int threads, Kernel kernel) {
+  BeamField<Real> b = make_beam_field<Real>(beam, method, threads);
+  b.field->add_force(b.x, b.out);
+  for (auto _ : state) {
+    switch (kernel) {
+      case Kernel::add_force: b.field->add_force(b.x, b.out); break;
+      case Kernel::add_force_only: b.field->add_force_only(b.x, b.out); break;
+      case Kernel::add_dforce: b.field->add_dforce(b.dx, b.out, Real(-0.01)); break;
+    }
+    benchmark::DoNotOptimize(b.out.data());
+    benchmark::ClobberMemory();
+  }
+  const double items = kernel == Kernel::add_dforce ? b.mesh->num_edges() : b.mesh->num_tetrahedra();
+  // Seconds per item (printed with an SI prefix: "2.1n" is 2.1 ns).
+  state.counters[kernel == Kernel::add_dforce ? "per_edge" : "per_tet"] = benchmark::Counter(
+      items, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+template <class Real>
+void register_all(const char* real_name) {
+  const RotationMethod methods[] = {RotationMethod::qr, RotationMethod::polar, RotationMethod::polar2,
+                                    RotationMethod::none};
+  const std::pair<Kernel, const char*> kernels[] = {
+      {Kernel::add_force, "add_force"}, {Kernel::add_force_only, "add_force_only"}, {Kernel::add_dforce, "add_dforce"}};
+  for (const Beam& beam : beams()) {
+    for (const RotationMethod method : methods) {
+      for (const auto& [kernel, kernel_name] : kernels) {
+        if (kernel == Kernel::add_dforce && method != RotationMethod::qr) continue;  // independent of the method
+        for (const int threads : {1, 2}) {
+          const std::string name = std::string(kernel_name) + "/" + beam.name + "/" + method_name(method) + "/" +
+                                   real_name + "/threads:" + std::to_string(threads);
+          benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+            run_kernel<Real>(state, beam, method, threads, kernel);
+          })->Unit(benchmark::kMicrosecond)->UseRealTime();
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace fastcorot::bench
+
+int main(int argc, char** argv) {
+  fastcorot::bench::register_all<double>("double");
+  fastcorot::bench::register_all<float>("float");
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,70 @@
+// Deterministic parallel loops. Work is cut into tasks whose boundaries depend on the problem size
+// only, never on the thread count, and anything combined across tasks (sums, scatters into shared
+// arrays) is combined in task order. So results are bitwise the same for 1 thread or many.
+// Threads come from OpenMP (GCC's libgomp): its workers stay warm between the short parallel regions
+// of a time step, which costs about a microsecond each.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+
+namespace fastcorot {
+
+namespace detail {
+void run_tasks(int threads, int count, void (*call)(const void*, int), const void* context);
+}  // namespace detail
+
+// Calls task(i) for every i in [0, count), on up to `threads` threads; returns when all are done.
+// Tasks must not throw, and tasks that run concurrently must write disjoint memory.
+template <class Task>
+void run_tasks(int threads, int count, const Task& task) {
+  if (threads <= 1 || count <= 1) {
+    for (int i = 0; i < count; ++i) task(i);
+    return;
+  }
+  detail::run_tasks(
+      threads, count, [](const void* context, int i) { (*static_cast<const Task*>(context))(i); }, &task);
+}
+
+// A fixed cut of [0, n) into at most kMaxChunks ranges of at least kMinChunk items.
+struct Chunks {
+  static constexpr std::size_t kMaxChunks = 64;
+  static constexpr std::size_t kMinChunk = 1024;
+
+  explicit Chunks(std::size_t n)
+      : size(n), length(std::max(kMinChunk, (n + kMaxChunks - 1) / kMaxChunks)), count((n + length - 1) / length) {}
+
+  std::size_t begin(std::size_t chunk) const { return chunk * length; }
+  std::size_t end(std::size_t chunk) const { return std::min(size, (chunk + 1) * length); }
+
+  std::size_t size;
+  std::size_t length;
+  std::size_t count;
+};
+
+// Calls body(begin, end) on the chunks of [0, n).
+template <class Body>
+void parallel_ranges(int threads, std::size_t n, const Body& body) {
+  const Chunks chunks(n);
+  run_tasks(threads, static_cast<int>(chunks.count), [&](int c) {
+    body(chunks.begin(static_cast<std::size_t>(c)), chunks.end(static_cast<std::size_t>(c)));
+  });
+}
+
+// Sum over the chunks of [0, n) of body(begin, end), added in chunk order: the same bits for any
+// thread count.
+template <class Real, class Body>
+Real parallel_sum(int threads, std::size_t n, const Body& body) {
+  const Chunks chunks(n);
+  std::array<Real, Chunks::kMaxChunks> partial{};
+  run_tasks(threads, static_cast<int>(chunks.count), [&](int c) {
+    const auto i = static_cast<std::size_t>(c);
+    partial[i] = body(chunks.begin(i), chunks.end(i));
+  });
+  Real sum = 0;
+  for (std::size_t c = 0; c < chunks.count; ++c) sum += partial[c];
+  return sum;
+}
+
+}  // namespace fastcorot
