@@ -10,16 +10,6 @@
 namespace fastcorot::bench {
 namespace {
 
-const char* method_name(RotationMethod method) {
-  switch (method) {
-    case RotationMethod::qr: return "qr";
-    case RotationMethod::polar: return "polar";
-    case RotationMethod::polar2: return "polar2";
-    case RotationMethod::none: return "none";
-  }
-  return "?";
-}
-
 enum class Kernel { add_force, add_force_only, add_dforce };
 
 template <class Real>
@@ -52,7 +42,7 @@ void register_all(const char* real_name) {
       for (const auto& [kernel, kernel_name] : kernels) {
         if (kernel == Kernel::add_dforce && method != RotationMethod::qr) continue;  // independent of the method
         for (const int threads : {1, 2}) {
-          const std::string name = std::string(kernel_name) + "/" + beam.name + "/" + method_name(method) + "/" +
+          const std::string name = std::string(kernel_name) + "/" + beam.name + "/" + to_string(method) + "/" +
                                    real_name + "/threads:" + std::to_string(threads);
           benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
             run_kernel<Real>(state, beam, method, threads, kernel);

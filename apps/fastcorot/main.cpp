@@ -1,5 +1,6 @@
 // The fastcorot command-line program: one subcommand per task. Errors in the input print one line
 // naming the problem and exit with status 2.
+#include "bench_command.h"
 #include "probe_command.h"
 #include "run_command.h"
 #include "view_command.h"
@@ -60,7 +61,7 @@ int main(int argc, char** argv) {
   run->add_option("--every", run_options.every, "write a frame every K steps (and the last)")->capture_default_str();
   run->add_option("--dump-state", run_options.dump_state, "write positions as JSON to FILE");
   run->add_option("--dump-steps", dump_steps, "steps to dump, e.g. 0,1,10,100 (default; the last step is always dumped)");
-  run->add_option("--threads", run_options.threads, "threads: independent objects are integrated concurrently")
+  run->add_option("--threads", run_options.threads, "threads: independent objects concurrently, then each object's kernels")
       ->capture_default_str();
   run->add_flag("--quiet", run_options.quiet, "no progress bar, info lines or summary");
   auto* png_option = run->add_option("--png", run_options.png_dir,
@@ -83,6 +84,18 @@ int main(int argc, char** argv) {
   auto* view_dt_option = view->add_option("--dt", view_dt, "time step (default: the scene's)");
   view->add_option("--threads", view_options.threads, "threads across independent objects")->capture_default_str();
 
+  fastcorot::cli::BenchOptions bench_options;
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Time steps of a scene (default: the built-in 40x10x10 beam) and split the time per phase");
+  bench->add_option("SCENE", bench_options.scene, "scene or mesh file");
+  bench->add_option("--beam", bench_options.beam, "the built-in beam with NXxNYxNZ grid points, e.g. 76x16x16");
+  bench->add_option("--steps", bench_options.steps, "timed steps")->capture_default_str();
+  bench->add_option("--warmup", bench_options.warmup, "untimed steps first")->capture_default_str();
+  bench->add_option("--threads", bench_options.threads, "threads (objects, then each object's kernels)")
+      ->capture_default_str();
+  bench->add_option("--vtu", bench_options.vtu_dir, "write a VTU frame per step to DIR (timed as output)");
+  bench->add_flag("--json", bench_options.json, "print the figures as JSON");
+
   app.add_subcommand("components", "Print the supported SOFA components and their attributes (Markdown)");
 
   try {
@@ -101,6 +114,7 @@ int main(int argc, char** argv) {
       if (!dump_steps.empty()) run_options.dump_steps = fastcorot::cli::parse_step_list(dump_steps);
       fastcorot::cli::run(run_options, std::cout, std::cerr);
     }
+    if (bench->parsed()) fastcorot::cli::bench(bench_options, std::cout);
     if (view->parsed()) {
       if (*view_dt_option) view_options.dt = view_dt;
       fastcorot::cli::view(view_options, std::cout, std::cerr);

@@ -1,6 +1,7 @@
 #include "fastcorot/sim/conjugate_gradient.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/parallel.h"
 
 #include <cmath>
 
@@ -24,40 +25,77 @@ LinearSolveReport ConjugateGradientSolver<Real>::solve(const MechanicalSystem<Re
                                                        const MatrixFactors<Real>& factors,
                                                        std::span<const Vec3<Real>> rhs,
                                                        std::span<Vec3<Real>> x) {
+  // SOFA's iteration with its vector work fused into three passes per iteration (direction,
+  // curvature, update with the new residual norm); every sum is a parallel_sum, so any thread
+  // count gives the same bits.
   const std::size_t n = rhs.size();
-  r_.assign(rhs.begin(), rhs.end());
+  const int threads = system.threads();
+  double* vector_time = system.timer_slot(&PhaseTimes::solver_vectors);
+  r_.resize(n);
   p_.resize(n);
   q_.resize(n);
-  set_zero(x);
   const bool first_solve = solves_++ == 0;
-  const Real norm_b = std::sqrt(dot<Real>(rhs, rhs));
+  Real rho = 0;  // r^T r of the current residual
+  {
+    const PhaseTimer timer(vector_time);
+    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+      Real sum = 0;
+      for (std::size_t i = begin; i < end; ++i) {
+        r_[i] = rhs[i];
+        x[i].setZero();
+        sum += rhs[i].dot(rhs[i]);
+      }
+      return sum;
+    });
+  }
+  const Real norm_b = std::sqrt(rho);
   LinearSolveReport report;
   if (norm_b == 0) return report;
   Real rho_previous = 0;
   for (int iteration = 1; iteration <= parameters_.iterations; ++iteration) {
     const bool may_stop = !(iteration == 1 && first_solve);
-    const Real rho = dot<Real>(r_, r_);
     report.relative_residual = std::sqrt(rho) / norm_b;
     if (report.relative_residual <= parameters_.tolerance && may_stop) break;
-    if (iteration == 1) {
-      p_ = r_;
-    } else {
-      const Real beta = rho / rho_previous;
-      for (std::size_t i = 0; i < n; ++i) p_[i] = r_[i] + beta * p_[i];
+    {
+      const PhaseTimer timer(vector_time);
+      const Real beta = iteration == 1 ? Real(0) : rho / rho_previous;
+      parallel_ranges(threads, n, [&](std::size_t begin, std::size_t end) {
+        if (iteration == 1) {
+          for (std::size_t i = begin; i < end; ++i) p_[i] = r_[i];
+        } else {
+          for (std::size_t i = begin; i < end; ++i) p_[i] = r_[i] + beta * p_[i];
+        }
+      });
     }
     system.multiply(factors, p_, q_);
-    const Real den = dot<Real>(p_, q_);
+    Real den = 0;
+    {
+      const PhaseTimer timer(vector_time);
+      den = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+        Real sum = 0;
+        for (std::size_t i = begin; i < end; ++i) sum += p_[i].dot(q_[i]);
+        return sum;
+      });
+    }
     if (den == 0) break;
     if (std::abs(den) <= parameters_.threshold && may_stop) break;
     const Real alpha = rho / den;
-    for (std::size_t i = 0; i < n; ++i) {
-      x[i] += alpha * p_[i];
-      r_[i] -= alpha * q_[i];
-    }
     rho_previous = rho;
+    {
+      const PhaseTimer timer(vector_time);
+      rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+        Real sum = 0;
+        for (std::size_t i = begin; i < end; ++i) {
+          x[i] += alpha * p_[i];
+          r_[i] -= alpha * q_[i];
+          sum += r_[i].dot(r_[i]);
+        }
+        return sum;
+      });
+    }
     report.iterations = iteration;
   }
-  report.relative_residual = std::sqrt(dot<Real>(r_, r_)) / norm_b;
+  report.relative_residual = std::sqrt(rho) / norm_b;
   return report;
 }
 

@@ -35,12 +35,30 @@ void MechanicalSystem<Real>::finalize() {
     throw make_error("the state has ", n, " positions, ", state.velocity.size(), " velocities and ",
                      state.rest_position.size(), " rest positions");
   }
+  set_threads(threads_);
+  set_phase_times(times_);
+}
+
+template <class Real>
+void MechanicalSystem<Real>::set_threads(int threads) {
+  threads_ = std::max(threads, 1);
+  for (auto& field : force_fields) field->set_threads(threads_);
+}
+
+template <class Real>
+void MechanicalSystem<Real>::set_phase_times(PhaseTimes* times) {
+  times_ = times;
+  for (auto& field : force_fields) field->set_phase_times(times);
 }
 
 template <class Real>
 void MechanicalSystem<Real>::compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
-  set_zero(f);
-  for (auto& field : force_fields) field->add_force(x, f);
+  {
+    const PhaseTimer timer(timer_slot(&PhaseTimes::mass_constraints));
+    set_zero(f);
+  }
+  for (auto& field : force_fields) field->add_force(x, f);  // times itself (add_force)
+  const PhaseTimer timer(timer_slot(&PhaseTimes::mass_constraints));
   if (mass.size() != 0) mass.add_gravity(gravity, f);
   for (const auto& constant : constant_forces) {
     for (std::size_t i = 0; i < constant.indices.size(); ++i) {
@@ -52,6 +70,7 @@ void MechanicalSystem<Real>::compute_force(std::span<const Vec3<Real>> x, std::s
 template <class Real>
 void MechanicalSystem<Real>::multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
                                       std::span<Vec3<Real>> out) const {
+  const PhaseTimer timer(timer_slot(&PhaseTimes::matrix_vector));
   set_zero(out);
   if (factors.m != 0 && mass.size() != 0) mass.add_mdx(dx, out, factors.m);
   for (const auto& field : force_fields) field->add_dforce(dx, out, factors.k, factors.b);

@@ -47,6 +47,7 @@ StepReport ImplicitEulerSolver<Real>::step(MechanicalSystem<Real>& system, Linea
   } else {
     // b += (h tr + rs) K v - rm M v through the matrix-free products (component Rayleigh
     // coefficients do not enter the right-hand side, as in SOFA).
+    const PhaseTimer timer(system.timer_slot(&PhaseTimes::matrix_vector));
     for (const auto& field : system.force_fields) field->add_dforce(v, rhs_, h * tr + rs, Real(0));
     if (rm != 0 && system.mass.size() != 0) system.mass.add_mdx(v, rhs_, -rm);
     for (auto& b : rhs_) b *= h;
@@ -54,6 +55,7 @@ StepReport ImplicitEulerSolver<Real>::step(MechanicalSystem<Real>& system, Linea
   }
   system.project(rhs_);
   const LinearSolveReport solved = solver.solve(system, factors, rhs_, dv_);
+  const PhaseTimer timer(system.timer_slot(&PhaseTimes::mass_constraints));
   if (parameters_.first_order) {
     v = dv_;
   } else {

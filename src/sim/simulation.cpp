@@ -33,6 +33,11 @@ StepReport Simulation<Real>::step() {
   std::vector<StepReport> reports(objects.size());
   std::vector<std::exception_ptr> failures(objects.size());
   const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), objects.size());
+  // Threads left over when there are fewer objects than threads go to each object's own kernels.
+  const int per_object = std::max(1, std::max(threads, 1) / static_cast<int>(std::max<std::size_t>(objects.size(), 1)));
+  for (auto& object : objects) {
+    if (object.system.threads() != per_object) object.system.set_threads(per_object);
+  }
   auto work = [&](std::size_t first) {
     for (std::size_t o = first; o < objects.size(); o += workers) {
       try {

@@ -10,6 +10,7 @@ template <class Real>
 LinearSolveReport SparseDirectSolver<Real>::solve(const MechanicalSystem<Real>& system,
                                                   const MatrixFactors<Real>& factors,
                                                   std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) {
+  const PhaseTimer timer(system.timer_slot(&PhaseTimes::solver_vectors));  // assembly and factorisation
   Eigen::SparseMatrix<Real> matrix = system.assemble(factors);
   matrix.makeCompressed();
   // The pattern of the assembled matrix depends only on the topology and the fixed points, so one

@@ -6,6 +6,7 @@
 // the force fields' own Rayleigh stiffness.
 #pragma once
 
+#include "fastcorot/core/phase_times.h"
 #include "fastcorot/core/types.h"
 #include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/mass.h"
@@ -73,6 +74,20 @@ class MechanicalSystem {
   // Elastic energy of the force fields plus the potential of gravity and constant forces, at x.
   Real potential_energy(std::span<const Vec3<Real>> x) const;
   Real kinetic_energy() const;
+
+  // Threads for the force fields and the solvers' vector work (applied to the force fields here
+  // and again by finalize); results are bitwise the same for any count.
+  void set_threads(int threads);
+  int threads() const { return threads_; }
+  // Where the force fields, the products and the solvers add their time (null: not timed).
+  void set_phase_times(PhaseTimes* times);
+  PhaseTimes* phase_times() const { return times_; }
+  // Slot of `times` for a phase, or null when not timed (for PhaseTimer).
+  double* timer_slot(double PhaseTimes::*phase) const { return times_ ? &(times_->*phase) : nullptr; }
+
+ private:
+  int threads_ = 1;
+  PhaseTimes* times_ = nullptr;
 };
 
 }  // namespace fastcorot

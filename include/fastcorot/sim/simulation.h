@@ -54,7 +54,8 @@ class Simulation {
   Vec3<Real> gravity{Real(0), Real(-9.81), Real(0)};
   std::vector<SimulatedObject<Real>> objects;
   // Objects are independent; with threads > 1 they are integrated concurrently (like SOFA's
-  // parallelODESolving). Each object's result is the same whatever the thread count.
+  // parallelODESolving), and threads beyond one per object go to each object's kernels (force
+  // field, products, solver vectors). Each object's result is bitwise the same whatever the count.
   int threads = 1;
 
   // Advances every object by dt. Throws fastcorot::Error "diverged at step N ..." when a state

@@ -1,0 +1,181 @@
+#include "bench_command.h"
+
+#include "default_scene.h"
+#include "json_io.h"
+#include "run_command.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/core/phase_times.h"
+#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/scene/scene_builder.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <filesystem>
+#include <iomanip>
+#include <ostream>
+#include <regex>
+
+namespace fastcorot::cli {
+
+std::string beam_scene_text(const std::string& grid) {
+  static const std::regex pattern(R"(([0-9]{1,5})x([0-9]{1,5})x([0-9]{1,5}))");
+  std::smatch match;
+  if (!std::regex_match(grid, match, pattern) || std::stol(match[1]) < 2 || std::stol(match[2]) < 2 ||
+      std::stol(match[3]) < 2) {
+    throw make_error("--beam \"", grid, "\": expected NXxNYxNZ, three numbers of grid points >= 2 (e.g. 76x16x16)");
+  }
+  std::string text = kDefaultScene;
+  const std::string original = "n=\"40 10 10\"";
+  const auto at = text.find(original);
+  if (at == std::string::npos) throw make_error("the built-in beam scene has no grid size to replace");
+  text.replace(at, original.size(), "n=\"" + std::string(match[1]) + " " + std::string(match[2]) + " " +
+                                        std::string(match[3]) + "\"");
+  return text;
+}
+
+namespace {
+
+double peak_memory_bytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) * 1024.0;  // Linux reports KiB
+}
+
+struct SceneSize {
+  long points = 0, tetrahedra = 0, edges = 0;
+  double force_field_bytes = 0;
+};
+
+SceneSize measure(const Simulation<double>& simulation) {
+  SceneSize size;
+  for (const auto& object : simulation.objects) {
+    size.points += object.system.size();
+    for (const auto& field : object.system.force_fields) {
+      size.tetrahedra += field->mesh().num_tetrahedra();
+      size.edges += field->mesh().num_edges();
+      size.force_field_bytes += static_cast<double>(field->memory_bytes());
+    }
+  }
+  return size;
+}
+
+void write_frame(const std::string& dir, const Simulation<double>& simulation) {
+  for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
+    const auto& object = simulation.objects[o];
+    std::vector<VtuCellBlock> cells;
+    if (object.mesh) {
+      VtuCellBlock block;
+      for (const auto& t : object.mesh->tetrahedra()) block.connectivity.insert(block.connectivity.end(), t.begin(), t.end());
+      cells.push_back(std::move(block));
+    }
+    const std::string file = "object" + std::to_string(o) + "_" + std::to_string(simulation.steps_done()) + ".vtu";
+    write_vtu(std::filesystem::path(dir) / file, object.system.state.position, cells, {});
+  }
+}
+
+}  // namespace
+
+void bench(const BenchOptions& options, std::ostream& out) {
+  if (options.steps < 1) throw make_error("--steps ", options.steps, ": must be >= 1");
+  if (options.warmup < 0) throw make_error("--warmup ", options.warmup, ": must be >= 0");
+  if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
+  if (!options.beam.empty() && !options.scene.empty()) throw make_error("--beam replaces SCENE: give one of them");
+  LoadedScene scene = options.beam.empty()
+                          ? load_scene_argument(options.scene)
+                          : build_scene(parse_scene_text(beam_scene_text(options.beam), "<built-in beam " + options.beam + ">"));
+  Simulation<double>& simulation = scene.simulation;
+  simulation.threads = options.threads;
+  if (!options.vtu_dir.empty()) make_output_folder(options.vtu_dir, "--vtu");
+  const std::string name = !options.beam.empty() ? "beam " + options.beam
+                           : options.scene.empty() ? "built-in beam 40x10x10" : options.scene;
+
+  for (long step = 0; step < options.warmup; ++step) simulation.step();
+  // Each object adds to its own phase times (objects may run concurrently).
+  std::vector<PhaseTimes> times(simulation.objects.size());
+  for (std::size_t o = 0; o < times.size(); ++o) simulation.objects[o].system.set_phase_times(&times[o]);
+  PhaseTimes total;
+  const auto start = std::chrono::steady_clock::now();
+  for (long step = 0; step < options.steps; ++step) {
+    simulation.step();
+    if (!options.vtu_dir.empty()) {
+      const PhaseTimer timer(&total.output);
+      write_frame(options.vtu_dir, simulation);
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (auto& object : simulation.objects) object.system.set_phase_times(nullptr);
+  for (const auto& t : times) {
+    total.add_force += t.add_force;
+    total.matrix_vector += t.matrix_vector;
+    total.solver_vectors += t.solver_vectors;
+    total.mass_constraints += t.mass_constraints;
+  }
+  // add_force computes the forces and refreshes the edge blocks in one pass; the forces alone are
+  // timed here on the final positions, as many times as there were steps, and the refresh is the rest.
+  double forces_only = 0;
+  for (auto& object : simulation.objects) {
+    std::vector<Vec3<double>> f(object.system.state.position.size(), Vec3<double>::Zero());
+    const PhaseTimer timer(&forces_only);
+    for (long step = 0; step < options.steps; ++step) {
+      for (auto& field : object.system.force_fields) field->add_force_only(object.system.state.position, f);
+    }
+  }
+  forces_only = std::min(forces_only, total.add_force);
+  const double refresh = total.add_force - forces_only;
+  // Whatever the phases do not cover (the step loop itself, concurrent objects' overlap).
+  const double other = std::max(0.0, seconds - total.total());
+  const SceneSize size = measure(simulation);
+  const double per_step = 1e3 / static_cast<double>(options.steps);
+  const double steps_per_second = static_cast<double>(options.steps) / seconds;
+
+  if (options.json) {
+    json result = {{"scene", name},
+                   {"steps", options.steps},
+                   {"warmup", options.warmup},
+                   {"threads", options.threads},
+                   {"points", size.points},
+                   {"tetrahedra", size.tetrahedra},
+                   {"edges", size.edges},
+                   {"seconds", seconds},
+                   {"steps_per_second", steps_per_second},
+                   {"ms_per_step",
+                    {{"total", seconds * per_step},
+                     {"add_force", forces_only * per_step},
+                     {"stiffness_refresh", refresh * per_step},
+                     {"matrix_vector", total.matrix_vector * per_step},
+                     {"solver_vectors", total.solver_vectors * per_step},
+                     {"mass_constraints", total.mass_constraints * per_step},
+                     {"output", total.output * per_step},
+                     {"other", other * per_step}}},
+                   {"force_field_bytes", size.force_field_bytes},
+                   {"force_field_bytes_per_tetrahedron",
+                    size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0},
+                   {"peak_memory_bytes", peak_memory_bytes()}};
+    out << result.dump(2) << '\n';
+    return;
+  }
+  out << "fastcorot bench: " << name << ", " << size.points << " points, " << size.tetrahedra << " tetrahedra, "
+      << size.edges << " edges, " << options.threads << " thread(s)\n"
+      << std::fixed << std::setprecision(1) << options.steps << " steps in " << std::setprecision(3) << seconds
+      << " s: " << std::setprecision(1) << steps_per_second << " steps/s, " << std::setprecision(3)
+      << seconds * per_step << " ms per step\n";
+  auto line = [&](const char* phase, double s) {
+    out << "  " << std::left << std::setw(20) << phase << std::right << std::setw(9) << std::setprecision(3)
+        << s * per_step << " ms  " << std::setw(5) << std::setprecision(1) << (seconds > 0 ? 100 * s / seconds : 0.0)
+        << " %\n";
+  };
+  line("add_force", forces_only);
+  line("stiffness refresh", refresh);
+  line("matrix-vector", total.matrix_vector);
+  line("solver vectors", total.solver_vectors);
+  line("mass/constraints", total.mass_constraints);
+  line("output", total.output);
+  line("other", other);
+  out << std::setprecision(0) << "force field memory " << size.force_field_bytes / 1024 << " KiB ("
+      << (size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0)
+      << " bytes per tetrahedron); peak process memory " << peak_memory_bytes() / (1024 * 1024) << " MiB\n";
+}
+
+}  // namespace fastcorot::cli

@@ -1,0 +1,75 @@
+// `fastcorot bench`: the figures it prints (JSON) are consistent with each other and with the scene,
+// and bad options are clear errors with exit status 2. (Its speed is measured by hand, never here.)
+#include "support/command.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+
+namespace fastcorot {
+namespace {
+
+using nlohmann::json;
+using testing::run_fastcorot;
+
+TEST(Bench, JsonFiguresAddUpAndDescribeTheBeam) {
+  const auto result = run_fastcorot("bench --beam 9x3x3 --steps 4 --warmup 1 --threads 2 --json");
+  ASSERT_EQ(result.status, 0) << result.output;
+  const json figures = json::parse(result.output);
+  EXPECT_EQ(figures["points"], 9 * 3 * 3);
+  EXPECT_EQ(figures["tetrahedra"], 6 * 8 * 2 * 2);  // 8 x 2 x 2 cells, 6 tetrahedra each (Hexa2Tetra)
+  EXPECT_EQ(figures["steps"], 4);
+  EXPECT_EQ(figures["threads"], 2);
+  const json& ms = figures["ms_per_step"];
+  double phases = 0;
+  for (const char* phase : {"add_force", "stiffness_refresh", "matrix_vector", "solver_vectors", "mass_constraints",
+                            "output", "other"}) {
+    ASSERT_TRUE(ms.contains(phase)) << phase;
+    EXPECT_GE(ms[phase].get<double>(), 0.0) << phase;
+    phases += ms[phase].get<double>();
+  }
+  EXPECT_GE(phases, 0.999 * ms["total"].get<double>());
+  EXPECT_GT(ms["add_force"].get<double>(), 0.0);
+  EXPECT_GT(ms["matrix_vector"].get<double>(), 0.0);
+  EXPECT_EQ(ms["output"].get<double>(), 0.0);  // nothing written without --vtu
+  EXPECT_NEAR(figures["steps_per_second"].get<double>() * figures["seconds"].get<double>(), 4.0, 1e-9);
+  EXPECT_GT(figures["force_field_bytes_per_tetrahedron"].get<double>(), 0.0);
+  EXPECT_GT(figures["peak_memory_bytes"].get<double>(), figures["force_field_bytes"].get<double>());
+}
+
+TEST(Bench, VtuFramesAreTimedAsOutput) {
+  const auto dir = std::filesystem::path(FASTCOROT_TEST_OUTPUT_DIR) / "bench_vtu";
+  std::filesystem::remove_all(dir);
+  const auto result = run_fastcorot("bench --beam 5x2x2 --steps 3 --warmup 0 --json --vtu " + dir.string());
+  ASSERT_EQ(result.status, 0) << result.output;
+  EXPECT_GT(json::parse(result.output)["ms_per_step"]["output"].get<double>(), 0.0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "object0_3.vtu"));
+}
+
+TEST(Bench, TextReportNamesEveryPhase) {
+  const auto result = run_fastcorot("bench --beam 5x2x2 --steps 2");
+  ASSERT_EQ(result.status, 0) << result.output;
+  for (const char* phase : {"steps/s", "add_force", "stiffness refresh", "matrix-vector", "solver vectors",
+                            "mass/constraints", "output", "bytes per tetrahedron"}) {
+    EXPECT_NE(result.output.find(phase), std::string::npos) << phase << " in\n" << result.output;
+  }
+}
+
+TEST(Bench, BadOptionsAreErrors) {
+  for (const auto& [arguments, message] :
+       std::initializer_list<std::pair<const char*, const char*>>{
+           {"bench --beam 40x10", "--beam \"40x10\": expected NXxNYxNZ"},
+           {"bench --beam 1x10x10", "three numbers of grid points >= 2"},
+           {"bench --steps 0", "--steps 0: must be >= 1"},
+           {"bench --threads 0", "--threads 0: must be >= 1"},
+           {"bench --beam 4x4x4 some.scn", "--beam replaces SCENE"},
+           {"bench missing.scn", "missing.scn"}}) {
+    const auto result = run_fastcorot(arguments);
+    EXPECT_EQ(result.status, 2) << arguments << "\n" << result.output;
+    EXPECT_NE(result.output.find(message), std::string::npos) << arguments << "\n" << result.output;
+  }
+}
+
+}  // namespace
+}  // namespace fastcorot

@@ -1,0 +1,100 @@
+// ScatterSchedule: every item scheduled once, in order within its group, and no two groups of one
+// phase sharing a point (so they may run concurrently); run_schedule visits every group once on any
+// thread count.
+#include "fastcorot/topology/scatter_schedule.h"
+
+#include "fastcorot/topology/regular_grid.h"
+#include "fastcorot/topology/tet_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <numeric>
+#include <random>
+#include <set>
+
+namespace fastcorot {
+namespace {
+
+template <std::size_t K>
+void check_schedule(Index num_points, std::span<const std::array<Index, K>> items, const ScatterSchedule& s) {
+  // A permutation of the items, each group in increasing item order.
+  std::vector<Index> sorted = s.order;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<Index> all(items.size());
+  std::iota(all.begin(), all.end(), 0);
+  EXPECT_EQ(sorted, all);
+  ASSERT_EQ(s.group_begin.front(), 0);
+  ASSERT_EQ(s.group_begin.back(), static_cast<Index>(items.size()));
+  EXPECT_EQ(s.phase_begin.front(), 0);
+  EXPECT_EQ(s.phase_begin.back(), s.num_groups());
+  for (Index g = 0; g < s.num_groups(); ++g) {
+    EXPECT_TRUE(std::is_sorted(s.order.begin() + s.group_begin[g], s.order.begin() + s.group_begin[g + 1]));
+  }
+  // Groups of one phase touch disjoint points.
+  for (int phase = 0; phase < ScatterSchedule::kPhases; ++phase) {
+    std::vector<Index> owner(static_cast<std::size_t>(num_points), -1);
+    for (Index g = s.phase_begin[phase]; g < s.phase_begin[phase + 1]; ++g) {
+      for (Index i = s.group_begin[g]; i < s.group_begin[g + 1]; ++i) {
+        for (Index v : items[static_cast<std::size_t>(s.order[i])]) {
+          auto& o = owner[static_cast<std::size_t>(v)];
+          EXPECT_TRUE(o == -1 || o == g) << "point " << v << " in groups " << o << " and " << g << " of phase " << phase;
+          o = g;
+        }
+      }
+    }
+  }
+}
+
+TEST(ScatterSchedule, GridTetrahedraAndEdges) {
+  RegularGrid grid;
+  grid.n = {10, 6, 40};  // z slowest: parts of at least 256 points
+  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const auto tets = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
+  EXPECT_GE(tets.parts, 3);
+  check_schedule<4>(mesh.num_points(), mesh.tetrahedra(), tets);
+  const auto edges = make_scatter_schedule<2>(mesh.num_points(), mesh.edges());
+  check_schedule<2>(mesh.num_points(), mesh.edges(), edges);
+}
+
+TEST(ScatterSchedule, PartsAreCutFromTheBandwidth) {
+  // Random tetrahedra over many points span nearly everything: one part, and still a valid schedule.
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<Index> pick(0, 1999);
+  std::vector<std::array<Index, 4>> items;
+  for (int i = 0; i < 500; ++i) items.push_back({pick(rng), pick(rng), pick(rng), pick(rng)});
+  const auto wide = make_scatter_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), 16);
+  EXPECT_EQ(wide.parts, 1);
+  check_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), wide);
+  // Narrow items (span 9) over 2000 points with parts of at least 2 * 9 + 1 points: capped at 64 parts.
+  items.clear();
+  for (Index i = 0; i + 9 < 2000; i += 3) items.push_back({i, i + 9, i + 4, i + 1});
+  const auto narrow = make_scatter_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), 16);
+  EXPECT_EQ(narrow.parts, 64);
+  check_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), narrow);
+}
+
+TEST(ScatterSchedule, SmallMeshIsOnePart) {
+  const std::vector<std::array<Index, 2>> items = {{0, 1}, {1, 2}, {0, 2}};
+  const auto s = make_scatter_schedule<2>(3, std::span<const std::array<Index, 2>>(items));
+  EXPECT_EQ(s.parts, 1);
+  check_schedule<2>(3, std::span<const std::array<Index, 2>>(items), s);
+}
+
+TEST(ScatterSchedule, RunScheduleVisitsEveryGroupOnceOnAnyThreadCount) {
+  RegularGrid grid;
+  grid.n = {8, 5, 16};
+  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const auto s = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
+  for (int threads : {1, 2, 4}) {
+    std::vector<std::atomic<int>> visits(static_cast<std::size_t>(mesh.num_tetrahedra()));
+    run_schedule(s, threads, [&](Index begin, Index end) {
+      for (Index i = begin; i < end; ++i) visits[static_cast<std::size_t>(s.order[i])]++;
+    });
+    for (const auto& v : visits) EXPECT_EQ(v.load(), 1) << threads << " threads";
+  }
+}
+
+}  // namespace
+}  // namespace fastcorot
