@@ -1,5 +1,7 @@
 #include "fastcorot/scene/component_table.h"
 
+#include "fastcorot/core/error.h"
+
 #include <algorithm>
 #include <array>
 #include <sstream>
@@ -135,6 +137,18 @@ constexpr std::array<std::string_view, 40> kIgnored = {
     "BarycentricMapping", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
     "PositionalLight", "BackgroundSetting", "Camera", "OglLabel"};
 
+std::string join_names(std::span<const AttributeSpec> attributes) {
+  std::string list;
+  for (const auto& a : attributes) list += (list.empty() ? "" : ", ") + std::string(a.name);
+  return list;
+}
+
+std::string supported_names() {
+  std::string list;
+  for (const auto& spec : table()) list += (list.empty() ? "" : ", ") + std::string(spec.name);
+  return list;
+}
+
 constexpr std::array<std::string_view, 8> kCommon = {"name", "template", "tags", "printLog", "listening",
                                                      "bbox", "componentState", "src"};
 
@@ -159,6 +173,26 @@ std::span<const std::string_view> ignored_components() { return kIgnored; }
 bool is_common_attribute(std::string_view name) {
   return std::find(kCommon.begin(), kCommon.end(), name) != kCommon.end() || name.starts_with("draw") ||
          name.starts_with("show");
+}
+
+const ComponentSpec* check_scene_object(const SceneObject& object) {
+  const ComponentSpec* spec = find_component(object.type);
+  if (!spec) {
+    if (is_ignored_component(object.type)) return nullptr;
+    throw make_error(object.location.to_string(), ": unknown component '", object.type, "'; supported: ",
+                     supported_names(),
+                     " (and display or collision components, which are ignored); see `fastcorot components`");
+  }
+  for (const auto& [attribute, value] : object.attributes) {
+    if (is_common_attribute(attribute)) continue;
+    bool known = false;
+    for (const auto& a : spec->attributes) known = known || a.name == attribute;
+    if (!known) {
+      throw make_error(object.location.to_string(), ": ", spec->name, ": unknown attribute '", attribute,
+                       "'; supported: ", join_names(spec->attributes));
+    }
+  }
+  return spec;
 }
 
 std::string component_documentation() {

@@ -107,7 +107,11 @@ class Builder {
       throw make_error(root.location.file.string(), ": the scene has no node with an ODE solver "
                        "(EulerImplicitSolver or StaticSolver) and a MechanicalObject: nothing to simulate");
     }
-    return {std::move(simulation_), std::move(info_)};
+    std::map<const SceneObject*, std::size_t> rank;
+    rank_objects(root, rank);
+    std::vector<std::size_t> state_objects;
+    for (const SceneObject* state : states_) state_objects.push_back(rank.at(state));
+    return {std::move(simulation_), std::move(info_), std::move(state_objects)};
   }
 
  private:
@@ -128,6 +132,11 @@ class Builder {
                       " has no ODE solver above it: it is not simulated (as in SOFA)");
     }
     for (auto& child : node.children) visit(*child, under_solver);
+  }
+
+  static void rank_objects(const SceneNode& node, std::map<const SceneObject*, std::size_t>& rank) {
+    for (const auto& object : node.objects) rank.emplace(&object, rank.size());
+    for (const auto& child : node.children) rank_objects(child, rank);
   }
 
   // Nodes taking part in the mechanics under a solver node: the node and its descendants, minus
@@ -209,6 +218,7 @@ class Builder {
     }
     object.linear_solver = build_linear_solver(*linear_solvers.front());
     simulation_.objects.push_back(std::move(object));
+    states_.push_back(state.object);
   }
 
   std::shared_ptr<TetMesh> mesh_of(Component& user, Index num_points) {
@@ -437,6 +447,7 @@ class Builder {
   std::vector<std::string> info_;
   SceneData data_;
   Simulation<double> simulation_;
+  std::vector<const SceneObject*> states_;  // the MechanicalObject of each simulated object
   std::map<const Component*, std::shared_ptr<TetMesh>> meshes_;
 };
 

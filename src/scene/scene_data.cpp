@@ -34,18 +34,6 @@ Mat3<double> euler_rotation(const Vec3<double>& degrees) {
 
 namespace {
 
-std::string join_names(std::span<const AttributeSpec> attributes) {
-  std::string list;
-  for (const auto& a : attributes) list += (list.empty() ? "" : ", ") + std::string(a.name);
-  return list;
-}
-
-std::string supported_names() {
-  std::string list;
-  for (const auto& spec : supported_components()) list += (list.empty() ? "" : ", ") + std::string(spec.name);
-  return list;
-}
-
 // Applies scale, then rotation, then translation (SOFA's MechanicalObject and loaders).
 std::vector<Vec3<double>> transformed(std::vector<Vec3<double>> points, const Vec3<double>& scale,
                                       const Vec3<double>& rotation_degrees, const Vec3<double>& translation) {
@@ -92,25 +80,9 @@ std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNo
     auto component = std::make_unique<Component>();
     component->object = &object;
     component->node = node.get();
-    component->spec = find_component(object.type);
+    component->spec = check_scene_object(object);
     if (!component->spec) {
-      if (is_ignored_component(object.type)) {
-        info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
-        node->components.push_back(std::move(component));
-        continue;
-      }
-      throw make_error(object.location.to_string(), ": unknown component '", object.type,
-                       "'; supported: ", supported_names(),
-                       " (and display or collision components, which are ignored); see `fastcorot components`");
-    }
-    for (const auto& [attribute, value] : object.attributes) {
-      if (is_common_attribute(attribute)) continue;
-      bool known = false;
-      for (const auto& a : component->spec->attributes) known = known || a.name == attribute;
-      if (!known) {
-        throw make_error(object.location.to_string(), ": ", component->spec->name, ": unknown attribute '",
-                         attribute, "'; supported: ", join_names(component->spec->attributes));
-      }
+      info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
     }
     node->components.push_back(std::move(component));
   }

@@ -245,5 +245,31 @@ TEST(SceneBuilder, FixedPointsKeepTheirVelocityUnlessProjected) {
   EXPECT_EQ(held.simulation.objects[0].system.state.velocity[0], Vec3<double>(0, 0, 0));
 }
 
+// state_objects ranks every object of the tree in document order: here the root's VisualStyle is 0,
+// the first beam's objects are 1..10 (its MechanicalObject 4th, rank 4), the second beam's 11..20.
+TEST(SceneBuilder, StateObjectsRankTheMechanicalObjectInDocumentOrder) {
+  std::string second = kSmallBeam;
+  second.replace(second.find("name=\"beam\""), 11, "name=\"other\"");
+  const LoadedScene scene = build("<VisualStyle/>" + kSmallBeam + second);
+  ASSERT_EQ(scene.simulation.objects.size(), 2u);
+  EXPECT_EQ(scene.simulation.objects[1].path, "root/other");
+  EXPECT_EQ(scene.state_objects, (std::vector<std::size_t>{4, 14}));
+}
+
+TEST(SceneBuilder, CheckSceneObjectGivesTheBuildersMessages) {
+  SceneObject object{"UniformMass", {{"totalMass", "1"}, {"weight", "3"}}, {"made.py", 12}};
+  try {
+    check_scene_object(object);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("made.py:12: UniformMass: unknown attribute 'weight'; supported: ", 0), 0u)
+        << error.what();
+  }
+  object.type = "VisualStyle";  // ignored components take any attribute
+  EXPECT_EQ(check_scene_object(object), nullptr);
+  object = {"FixedConstraint", {{"indices", "0"}, {"drawSize", "2"}}, {}};  // an alias; a display option
+  EXPECT_EQ(check_scene_object(object), find_component("FixedProjectiveConstraint"));
+}
+
 }  // namespace
 }  // namespace fastcorot

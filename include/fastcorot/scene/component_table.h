@@ -5,6 +5,8 @@
 // are accepted with one info line: they only draw, configure plugins or handle collisions.
 #pragma once
 
+#include "fastcorot/scene/scene_graph.h"
+
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,6 +40,12 @@ std::span<const std::string_view> ignored_components();
 // Attributes every component accepts (name, template, tags, printLog, ...) and the rule that
 // attributes beginning with "draw" or "show" are display options with no effect on mechanics.
 bool is_common_attribute(std::string_view name);
+
+// Checks one scene object against the table as the scene builder does: returns its spec, or nullptr
+// for an ignored component; throws fastcorot::Error naming the object's file and line for an unknown
+// component or an unknown attribute, with the supported names. (Front ends that assemble scenes in
+// memory, like the Python module, call it to report mistakes where they are made.)
+const ComponentSpec* check_scene_object(const SceneObject& object);
 
 // A Markdown table of the supported components (used by `fastcorot components` and the README).
 std::string component_documentation();

@@ -17,6 +17,10 @@ namespace fastcorot {
 struct LoadedScene {
   Simulation<double> simulation;
   std::vector<std::string> info;  // one line per ignored component or node, for the user
+  // For each simulated object (same order as simulation.objects), the MechanicalObject it was built
+  // from, as its rank among all the scene's objects in document order (a node's objects, then its
+  // child nodes' depth first). Front ends that keep the scene tree use it to find an object's state.
+  std::vector<std::size_t> state_objects;
 };
 
 LoadedScene build_scene(const SceneNode& root);

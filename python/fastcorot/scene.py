@@ -1,0 +1,396 @@
+"""Scenes in SofaPython3's shape: a tree of nodes holding objects (SOFA components) and their data.
+
+    root = fastcorot.Node("root", dt=0.01, gravity=[0, -9.81, 0])
+    beam = root.add_child("beam")
+    beam.add_object("MechanicalObject", name="dofs", position=points)
+    root = fastcorot.load("scene.scn")
+
+The tree is a description, exactly what a .scn file holds: `fastcorot.Simulation(root)` hands it
+to the same scene builder as `fastcorot run`. Every object remembers where it was made (the
+Python file and line of its add_object, or its place in the .scn file), and errors name that
+place, as the command line's do. Relative file names (a mesh loader's `filename`) are relative to
+the folder of that file, as in a .scn file.
+
+Once a Simulation is built from a root, the simulated MechanicalObjects' `position` and
+`velocity` are numpy arrays viewing the simulation's state (writing into them, or assigning them,
+changes the state), `rest_position` is a read-only view, and the root's `dt` and `gravity` are the
+simulation's. Other data stay the description: a change takes effect in the next Simulation built
+from the tree (as SOFA applies most changes at the next init).
+"""
+
+import functools
+import os
+import sys
+
+import numpy as np
+
+from . import _core
+from ._values import canonical, from_text, to_text
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+_STATE_VIEWS = ("position", "velocity", "rest_position")
+
+
+def _caller_location():
+    """(file, line) of the first caller outside this package."""
+    frame = sys._getframe(1)
+    while frame is not None and os.path.dirname(os.path.abspath(frame.f_code.co_filename)) == _PACKAGE_DIR:
+        frame = frame.f_back
+    return (frame.f_code.co_filename, frame.f_lineno) if frame is not None else ("<python>", 0)
+
+
+@functools.lru_cache(maxsize=None)
+def _spec(type_name):
+    """The component table's entry for a type: (canonical name, {attribute: (type, default, doc)}, doc)."""
+    spec = _core.component_spec(type_name)
+    if spec is None:
+        return None
+    attributes = {name: (kind, default, doc) for name, kind, default, doc in spec["attributes"]}
+    return spec["name"], attributes, spec["doc"]
+
+
+class Object:
+    """One component of a node: its type (e.g. "MechanicalObject") and its data, read and written
+    by name as attributes (``obj.youngModulus``) or items (``obj["youngModulus"]``). Made by
+    Node.add_object or fastcorot.load. ``help_text()`` lists its data with their meaning."""
+
+    def __init__(self, node, type_name, attributes, location, check=True):
+        object.__setattr__(self, "_node", node)
+        object.__setattr__(self, "_type", type_name)
+        object.__setattr__(self, "_location", location)
+        object.__setattr__(self, "_data", {})
+        object.__setattr__(self, "_binding", None)  # (SimulationCore, object index) once simulated
+        if check:
+            _core.check_object(type_name, list(attributes), *location)
+        for name, value in attributes.items():
+            self._data[name] = value if not check else self._canonical(name, value)
+
+    # --- what it is -------------------------------------------------------------------------
+    @property
+    def type(self):
+        """The component type as written (an alias such as FixedConstraint stays as given)."""
+        return self._type
+
+    @property
+    def node(self):
+        return self._node
+
+    @property
+    def location(self):
+        """Where the object was made: "file:line"."""
+        return f"{self._location[0]}:{self._location[1]}"
+
+    def _label(self):
+        name = self._data.get("name")
+        return f"{self._type} '{name}'" if isinstance(name, str) and name else self._type
+
+    def _kind(self, name):
+        spec = _spec(self._type)
+        if spec and name in spec[1]:
+            return spec[1][name][0]
+        return None
+
+    def data_names(self):
+        """The data this object has: those given, then the others its component supports."""
+        names = list(self._data)
+        spec = _spec(self._type)
+        if spec:
+            names += [name for name in spec[1] if name not in self._data]
+        return names
+
+    def help_text(self):
+        """The component's description and its data (type, default, meaning), from the table that
+        `fastcorot components` prints."""
+        spec = _spec(self._type)
+        if spec is None:
+            return f"{self._type}: accepted without effect on the mechanics"
+        lines = [f"{spec[0]}: {spec[2]}"]
+        for name, (kind, default, doc) in spec[1].items():
+            lines.append(f"  {name} ({kind}, default {default or '-'}): {doc}")
+        return "\n".join(lines)
+
+    def link(self, data=None):
+        """The link to this object (``"@/beam/clamp"``) or to one of its data (``"@/beam/clamp.indices"``),
+        for another object's attribute."""
+        name = self._data.get("name")
+        if not isinstance(name, str) or not name:
+            raise ValueError(f"{self.location}: {self._type}: an object needs a name to be linked to")
+        # From the root, its name included: SOFA drops a leading root name, so the link holds even
+        # when a child has the root's name.
+        text = "@/" + self._node.path + "/" + name
+        return text + ("." + data if data else "")
+
+    # --- data -----------------------------------------------------------------------------------
+    def _canonical(self, name, value):
+        kind = self._kind(name)
+        if isinstance(value, Object) and kind == "link":
+            value = value.link()
+        return canonical(kind, name, value, f"{self.location}: {self._label()}")
+
+    def _read(self, name):
+        if self._binding is not None and name in _STATE_VIEWS:
+            core, k = self._binding
+            return getattr(core, name)(k)
+        kind = self._kind(name)
+        where = f"{self.location}: {self._label()}"
+        if name in self._data:
+            value = self._data[name]
+            return from_text(kind, name, value, where) if isinstance(value, str) else value
+        spec = _spec(self._type)
+        if spec and name in spec[1]:
+            default = spec[1][name][1]
+            if not default:
+                return None
+            try:
+                return from_text(kind, name, default, where)
+            except ValueError:
+                return None  # a default that is a rule rather than a value (velocity "0": zero everywhere)
+        if _core.is_common_attribute(name):
+            return None
+        raise AttributeError(f"{where} has no data '{name}'; its data: {', '.join(self.data_names())}")
+
+    def _write(self, name, value):
+        if self._binding is not None and name in _STATE_VIEWS:
+            core, k = self._binding
+            if name == "rest_position":
+                raise ValueError(f"{self.location}: {self._label()}: rest_position cannot change once the "
+                                 "Simulation is built (the force fields' rest data come from it)")
+            getattr(core, "set_" + name)(k, value)
+            return
+        _core.check_object(self._type, [name], *self._location)
+        self._data[name] = self._canonical(name, value)
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        return self._read(name)
+
+    def __setattr__(self, name, value):
+        if name.startswith("_") or isinstance(getattr(type(self), name, None), property):
+            object.__setattr__(self, name, value)
+        else:
+            self._write(name, value)
+
+    def __getitem__(self, name):
+        return self._read(name)
+
+    def __setitem__(self, name, value):
+        self._write(name, value)
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | set(self.data_names()))
+
+    def __repr__(self):
+        return f"<{self._label()} in {self._node.path} ({self.location})>"
+
+    def _text_attributes(self):
+        return {name: to_text(value) for name, value in self._data.items()}
+
+
+class Node:
+    """A node of the scene tree: a name, data (``dt``, ``gravity``; only the root's count), objects
+    and child nodes. ``node.beam`` and ``node["beam"]`` give the child or object of that name;
+    ``node["beam/dofs"]`` walks a path."""
+
+    def __init__(self, name="root", **data):
+        if not isinstance(name, str):
+            raise TypeError(f"Node: name must be a str, got {type(name).__name__}")
+        object.__setattr__(self, "_name", name)
+        object.__setattr__(self, "_data", {})  # node attributes other than name
+        object.__setattr__(self, "_objects", [])
+        object.__setattr__(self, "_children", [])
+        object.__setattr__(self, "_parent", None)
+        object.__setattr__(self, "_location", _caller_location())
+        object.__setattr__(self, "_core", None)  # the SimulationCore built from this node as root
+        for key, value in data.items():
+            setattr(self, key, value)
+
+    # --- the tree -------------------------------------------------------------------------------
+    @property
+    def name(self):
+        return self._name
+
+    @name.setter
+    def name(self, value):
+        if not isinstance(value, str):
+            raise TypeError(f"Node '{self._name}': name must be a str, got {type(value).__name__}")
+        object.__setattr__(self, "_name", value)
+
+    @property
+    def parent(self):
+        return self._parent
+
+    @property
+    def children(self):
+        return tuple(self._children)
+
+    @property
+    def objects(self):
+        return tuple(self._objects)
+
+    @property
+    def location(self):
+        return f"{self._location[0]}:{self._location[1]}"
+
+    def _lineage(self):
+        nodes = [self]
+        while nodes[0]._parent is not None:
+            nodes.insert(0, nodes[0]._parent)
+        return nodes
+
+    @property
+    def path(self):
+        """Node names from the root joined by '/', as the command line's state dumps name objects."""
+        return "/".join(n._name for n in self._lineage())
+
+    def add_child(self, name, **data):
+        """A new child node (``data``: dt, gravity)."""
+        child = Node(name, **data)
+        object.__setattr__(child, "_location", _caller_location())
+        object.__setattr__(child, "_parent", self)
+        self._children.append(child)
+        return child
+
+    def add_object(self, type_name, /, **attributes):
+        """A new object of a SOFA component type with its data, checked against the component
+        table: an unknown type or attribute is a ValueError with the scene loader's message; a
+        value of the wrong type a TypeError, of the wrong shape a ValueError."""
+        obj = Object(self, type_name, attributes, _caller_location())
+        self._objects.append(obj)
+        return obj
+
+    addChild = add_child  # SofaPython3's spellings
+    addObject = add_object
+
+    # --- data -----------------------------------------------------------------------------------
+    def _node_data(self, name, kind, default):
+        value = self._data.get(name)
+        if value is None:
+            return default
+        return from_text(kind, name, value, f"{self.location}: Node '{self._name}'") if isinstance(value, str) else value
+
+    @property
+    def dt(self):
+        """The time step (only the root's counts; SOFA's default 0.01)."""
+        if self._core is not None:
+            return self._core.dt
+        return self._node_data("dt", "real", _core.DEFAULT_DT)
+
+    @dt.setter
+    def dt(self, value):
+        value = canonical("real", "dt", value, f"Node '{self._name}'")
+        if isinstance(value, str):
+            value = from_text("real", "dt", value, f"Node '{self._name}'")
+        if not (np.isfinite(value) and value > 0):
+            raise ValueError(f"Node '{self._name}': dt = {value!r}: must be a finite number > 0")
+        if self._core is not None:
+            self._core.dt = value
+        self._data["dt"] = value
+
+    @property
+    def gravity(self):
+        """Gravity (only the root's counts; SOFA's default (0, -9.81, 0))."""
+        if self._core is not None:
+            return np.array(self._core.gravity)
+        return self._node_data("gravity", "vec3", np.array(_core.DEFAULT_GRAVITY))
+
+    @gravity.setter
+    def gravity(self, value):
+        value = canonical("vec3", "gravity", value, f"Node '{self._name}'")
+        if isinstance(value, str):
+            value = from_text("vec3", "gravity", value, f"Node '{self._name}'")
+        if not np.all(np.isfinite(value)):
+            raise ValueError(f"Node '{self._name}': gravity = {value!r}: expected 3 finite numbers")
+        if self._core is not None:
+            self._core.gravity = value
+        self._data["gravity"] = value
+
+    @property
+    def attributes(self):
+        """The node's attributes as a scene file writes them (name included)."""
+        return {"name": self._name, **{key: to_text(value) for key, value in self._data.items()}}
+
+    # --- lookup -----------------------------------------------------------------------------------
+    def _find(self, name):
+        for child in self._children:
+            if child._name == name:
+                return child
+        for obj in self._objects:
+            if obj._data.get("name") == name:
+                return obj
+        return None
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        found = self._find(name)
+        if found is None:
+            names = [c._name for c in self._children] + [o._data["name"] for o in self._objects if "name" in o._data]
+            raise AttributeError(f"Node '{self.path}' has no child or object named '{name}'"
+                                 f"{'; it has: ' + ', '.join(map(str, names)) if names else ''}")
+        return found
+
+    def __setattr__(self, name, value):
+        if name.startswith("_") or isinstance(getattr(type(self), name, None), property):
+            object.__setattr__(self, name, value)
+        else:
+            raise AttributeError(f"Node '{self._name}' has no data '{name}' (a node's data are name, dt and "
+                                 "gravity; add objects with add_object and children with add_child)")
+
+    def __getitem__(self, path):
+        found = self
+        for part in path.split("/"):
+            found = found._find(part) if isinstance(found, Node) else None
+            if found is None:
+                raise KeyError(f"Node '{self.path}': nothing at '{path}' (stopped at '{part}')")
+        return found
+
+    def __repr__(self):
+        return f"<Node {self.path}: {len(self._objects)} objects, {len(self._children)} children>"
+
+    # --- to and from the compiled scene graph ------------------------------------------------------
+    def _tree(self, objects):
+        """The tree the scene builder takes; appends this subtree's objects to `objects` in
+        document order (a node's objects, then its children's), the order the builder ranks them in."""
+        objects.extend(self._objects)
+        items = [(obj._type, obj._text_attributes(), *obj._location) for obj in self._objects]
+        children = [child._tree(objects) for child in self._children]
+        return (self._name, self.attributes, items, children, *self._location)
+
+
+def _node_from_tree(tree, parent):
+    name, attributes, objects, children, file, line = tree
+    node = Node.__new__(Node)
+    for key, value in (("_name", name), ("_objects", []), ("_children", []), ("_parent", parent),
+                       ("_location", (file, line)), ("_core", None)):
+        object.__setattr__(node, key, value)
+    object.__setattr__(node, "_data", {k: v for k, v in attributes.items() if k != "name"})
+    for type_name, values, object_file, object_line in objects:
+        node._objects.append(Object(node, type_name, values, (object_file, object_line), check=False))
+    for child in children:
+        node._children.append(_node_from_tree(child, node))
+    return node
+
+
+def load(path):
+    """The root node of a SOFA scene file (.scn; includes expanded). Its objects keep their file
+    and line, so errors read as `fastcorot run`'s. A missing file raises FileNotFoundError, a
+    malformed one or an unknown component or attribute ValueError."""
+    root = _node_from_tree(_core.parse_scene_file(os.fspath(path)), None)
+    pending = [root]
+    while pending:
+        node = pending.pop()
+        for obj in node._objects:
+            _core.check_object(obj._type, list(obj._data), *obj._location)
+        pending.extend(node._children)
+    return root
+
+
+def walk(node):
+    """The node and its descendants, depth first."""
+    yield node
+    for child in node._children:
+        yield from walk(child)
+
+
+__all__ = ["Node", "Object", "load", "walk"]

@@ -1,0 +1,169 @@
+// A running simulation for Python: built by the scene builder from a scene tree (scene.cpp), stepped
+// with the GIL released (one step at a time, so that Ctrl-C is seen between steps), and exposing
+// each object's positions and velocities as numpy arrays that view the state's own memory. The
+// solvers update the state vectors in place and never reallocate them, so a view stays valid for the
+// life of the simulation (a test steps and reads through a view taken before).
+#include "arrays.h"
+#include "bindings.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/scene/scene_builder.h"
+
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <mutex>
+
+namespace fastcorot::python {
+
+namespace {
+
+struct SimulationCore {
+  LoadedScene scene;
+  std::mutex stepping;  // one step at a time, whichever Python thread asks
+
+  explicit SimulationCore(LoadedScene loaded) : scene(std::move(loaded)) {}
+
+  Simulation<double>& simulation() { return scene.simulation; }
+
+  MechanicalState<double>& state(std::size_t k) {
+    if (k >= simulation().objects.size()) {
+      throw py::index_error("object " + std::to_string(k) + " out of range (" +
+                            std::to_string(simulation().objects.size()) + " objects)");
+    }
+    return simulation().objects[k].system.state;
+  }
+};
+
+std::unique_ptr<SimulationCore> build(py::handle tree) {
+  return std::make_unique<SimulationCore>(build_scene(scene_node_from_tree(tree)));
+}
+
+void step(SimulationCore& core, long count) {
+  if (count < 0) throw py::value_error("step: n = " + std::to_string(count) + ": must be >= 0");
+  for (long i = 0; i < count; ++i) {
+    std::string failure;
+    {
+      // The GIL is given up before taking the lock: a Python thread that holds the GIL and waits
+      // for the lock (a setter) can then never block this step.
+      py::gil_scoped_release release;
+      std::lock_guard lock(core.stepping);
+      try {
+        core.simulation().step();
+      } catch (const Error& error) {
+        failure = error.what();
+      }
+    }
+    if (!failure.empty()) throw StepFailure(failure);
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  }
+}
+
+// An (n, 3) float64 array viewing `points`; `owner` keeps the memory alive.
+py::array view(std::vector<Vec3<double>>& points, py::handle owner, bool writeable) {
+  py::array_t<double> array({static_cast<py::ssize_t>(points.size()), py::ssize_t(3)},
+                            {py::ssize_t(3 * sizeof(double)), py::ssize_t(sizeof(double))},
+                            reinterpret_cast<double*>(points.data()), owner);
+  if (!writeable) array.attr("setflags")(py::arg("write") = false);
+  return array;
+}
+
+// Copies an (n, 3) array into one of object k's state vectors (`what` names it), between steps.
+void assign(SimulationCore& core, std::size_t k, std::vector<Vec3<double>> MechanicalState<double>::*vector,
+            py::handle value, const std::string& what) {
+  auto& points = core.state(k).*vector;
+  const auto given = point_array<double>(value, what, static_cast<py::ssize_t>(points.size()), "");
+  std::lock_guard lock(core.stepping);
+  std::copy_n(as_points<double>(given).begin(), points.size(), points.begin());
+}
+
+Vec3<double> vec3_of(py::handle value, const std::string& what) {
+  const auto numbers = number_list(value, what);
+  if (numbers.size() != 3) throw py::value_error(what + ": expected 3 numbers, got " + std::to_string(numbers.size()));
+  const Vec3<double> v(numbers[0], numbers[1], numbers[2]);
+  if (!v.allFinite()) throw py::value_error(what + ": expected 3 finite numbers");
+  return v;
+}
+
+}  // namespace
+
+void bind_simulation(py::module_& m) {
+  py::class_<SimulationCore>(m, "SimulationCore",
+                             "The compiled simulation behind fastcorot.Simulation (built from a scene tree).")
+      .def(py::init(&build), py::arg("tree"))
+      .def("step", &step, py::arg("n") = 1, "Advances n time steps (the GIL is released while stepping).")
+      .def_property(
+          "dt", [](SimulationCore& c) { return c.simulation().dt; },
+          [](SimulationCore& c, double dt) {
+            if (!(dt > 0) || !std::isfinite(dt)) throw py::value_error("dt = " + std::to_string(dt) + ": must be a finite number > 0");
+            std::lock_guard lock(c.stepping);
+            c.simulation().dt = dt;
+          })
+      .def_property(
+          "gravity",
+          [](SimulationCore& c) {
+            const auto& g = c.simulation().gravity;
+            return py::make_tuple(g.x(), g.y(), g.z());
+          },
+          [](SimulationCore& c, py::handle value) {
+            const Vec3<double> g = vec3_of(value, "gravity");
+            std::lock_guard lock(c.stepping);
+            c.simulation().gravity = g;
+            for (auto& object : c.simulation().objects) object.system.gravity = g;
+          })
+      .def_property(
+          "threads", [](SimulationCore& c) { return c.simulation().threads; },
+          [](SimulationCore& c, int threads) {
+            if (threads < 1) throw py::value_error("threads = " + std::to_string(threads) + ": must be at least 1");
+            std::lock_guard lock(c.stepping);
+            c.simulation().threads = threads;
+          })
+      .def_property_readonly("time", [](SimulationCore& c) { return c.simulation().time(); })
+      .def_property_readonly("steps_done", [](SimulationCore& c) { return c.simulation().steps_done(); })
+      .def_property_readonly("info", [](SimulationCore& c) { return c.scene.info; })
+      .def_property_readonly("state_objects", [](SimulationCore& c) { return c.scene.state_objects; })
+      .def_property_readonly("paths",
+                             [](SimulationCore& c) {
+                               std::vector<std::string> paths;
+                               for (const auto& object : c.simulation().objects) paths.push_back(object.path);
+                               return paths;
+                             })
+      .def(
+          "position", [](py::object self, std::size_t k) { return view(self.cast<SimulationCore&>().state(k).position, self, true); },
+          py::arg("k"))
+      .def(
+          "velocity", [](py::object self, std::size_t k) { return view(self.cast<SimulationCore&>().state(k).velocity, self, true); },
+          py::arg("k"))
+      .def(
+          "rest_position",
+          [](py::object self, std::size_t k) { return view(self.cast<SimulationCore&>().state(k).rest_position, self, false); },
+          py::arg("k"))
+      .def(
+          "tetrahedra",
+          [](SimulationCore& c, std::size_t k) {
+            c.state(k);  // checks k
+            const auto& mesh = c.simulation().objects[k].mesh;
+            const auto count = mesh ? static_cast<py::ssize_t>(mesh->num_tetrahedra()) : 0;
+            py::array_t<Index> out({count, py::ssize_t(4)});
+            auto o = out.mutable_unchecked<2>();
+            for (py::ssize_t t = 0; t < count; ++t) {
+              for (py::ssize_t j = 0; j < 4; ++j) o(t, j) = mesh->tetrahedron(static_cast<Index>(t))[static_cast<std::size_t>(j)];
+            }
+            return out;
+          },
+          py::arg("k"), "(m, 4) tetrahedra of object k's force field (empty without one).")
+      .def(
+          "set_position",
+          [](SimulationCore& c, std::size_t k, py::handle value) {
+            assign(c, k, &MechanicalState<double>::position, value, "position");
+          },
+          py::arg("k"), py::arg("value"))
+      .def(
+          "set_velocity",
+          [](SimulationCore& c, std::size_t k, py::handle value) {
+            assign(c, k, &MechanicalState<double>::velocity, value, "velocity");
+          },
+          py::arg("k"), py::arg("value"));
+}
+
+}  // namespace fastcorot::python

@@ -1,0 +1,184 @@
+"""Scenes built in Python and read from .scn files: a scene built with add_child/add_object steps
+exactly as the same scene read from its file, through the module and through `fastcorot run`; data
+are read and written by name; simulated positions and velocities are views of the state."""
+
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import fastcorot
+from conftest import REPOSITORY, beam_example, dump_state
+
+BEAM_SCN = REPOSITORY / "examples/cantilever_beam_40x10x10.scn"
+
+
+def python_beam():
+    """examples/cantilever_beam_40x10x10.scn, written in Python (numbers as numbers, not text) by
+    examples/python/beam.py."""
+    return beam_example().build_beam()
+
+
+def trajectory(root, steps):
+    sim = fastcorot.Simulation(root)
+    states = {0: root.beam.state.position.copy()}
+    for step in range(1, max(steps) + 1):
+        sim.step()
+        if step in steps:
+            states[step] = root.beam.state.position.copy()
+    return states
+
+
+def test_a_python_scene_steps_as_its_scn_file_in_the_module_and_the_program(tmp_path):
+    steps = [1, 10, 20]
+    built = trajectory(python_beam(), steps)
+    loaded = trajectory(fastcorot.load(BEAM_SCN), steps)
+    program = dump_state(BEAM_SCN, [0] + steps, tmp_path)
+    assert np.abs(built[20] - built[0]).max() > 1e-3  # it moved
+    for step in [0] + steps:
+        np.testing.assert_array_equal(built[step], loaded[step])
+        np.testing.assert_array_equal(built[step], np.array(program[step]["root/beam"]))
+
+
+def test_explicit_arrays_in_float32_and_float64_step_as_the_same_scene_written_as_text(tmp_path):
+    rng = np.random.default_rng(5)
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [1, 1, 1]], float) + 0.01 * rng.standard_normal((5, 3))
+    tets = np.array([[0, 1, 2, 3], [1, 2, 3, 4]])
+
+    def text(values):  # numbers as a scene file writes them, with Python's round-trip repr
+        return " ".join(repr(float(v)) for v in np.ravel(values))
+
+    (tmp_path / "two.scn").write_text(f"""<Node name="root" gravity="0 0 -9.81" dt="0.02">
+  <Node name="body">
+    <EulerImplicitSolver/> <EigenSimplicialLDLT/>
+    <MechanicalObject name="dofs" position="{text(points.astype(np.float32))}"/>
+    <TetrahedronSetTopologyContainer tetrahedra="{' '.join(map(str, tets.ravel()))}"/>
+    <UniformMass totalMass="2"/>
+    <FastTetrahedralCorotationalForceField youngModulus="300 500" poissonRatio="0.3" method="polar"/>
+    <FixedProjectiveConstraint indices="0 1"/>
+  </Node>
+</Node>""")
+    results = []
+    for dtype in (np.float32, np.float64):
+        root = fastcorot.Node("root", gravity=[0, 0, -9.81], dt=0.02)
+        body = root.add_child("body")
+        body.add_object("EulerImplicitSolver")
+        body.add_object("EigenSimplicialLDLT")
+        body.add_object("MechanicalObject", name="dofs", position=points.astype(np.float32).astype(dtype))
+        body.add_object("TetrahedronSetTopologyContainer", tetrahedra=tets.astype(np.int32))
+        body.add_object("UniformMass", totalMass=2)
+        body.add_object("FastTetrahedralCorotationalForceField", youngModulus=np.array([300, 500]), poissonRatio=0.3,
+                        method="polar")
+        body.add_object("FixedProjectiveConstraint", indices=[0, 1])
+        sim = fastcorot.Simulation(root)
+        sim.step(5)
+        results.append(body.dofs.position.copy())
+    program = dump_state(tmp_path / "two.scn", [5], tmp_path)
+    np.testing.assert_array_equal(results[0], program[5]["root/body"])
+    np.testing.assert_array_equal(results[1], program[5]["root/body"])
+
+
+def test_data_are_read_and_written_by_name():
+    root = fastcorot.load(BEAM_SCN)
+    fem = root.beam.FEM
+    assert fem.type == "FastTetrahedralCorotationalForceField" and fem.name == "FEM"
+    np.testing.assert_array_equal(fem.youngModulus, [2000])  # text in the file, an array here
+    assert fem.method == "large" and fem["poissonRatio"][0] == 0.3
+    assert fem.rayleighStiffness == 0.0  # the table's default
+    np.testing.assert_array_equal(root.beam.grid.n, [40, 10, 10])
+    np.testing.assert_array_equal(root.gravity, [0, -9, 0])
+    assert root["beam/clamp"].box.shape == (6,) and root.dt == 0.01
+    assert "youngModulus" in dir(fem) and "FastTetrahedralCorotationalForceField" in fem.help_text()
+    fem.youngModulus = 500
+    fem["poissonRatio"] = 0.1
+    np.testing.assert_array_equal(fem.youngModulus, [500])
+    # A change of description shows in the next simulation: the softer beam sags more (after 0.1 s
+    # the beam is still mostly falling, hence the small margin).
+    stiff, soft = trajectory(fastcorot.load(BEAM_SCN), [10])[10], trajectory(root, [10])[10]
+    rest = fastcorot.Simulation(fastcorot.load(BEAM_SCN)).objects[0].rest_position
+    assert (rest - soft)[:, 1].max() > 1.05 * (rest - stiff)[:, 1].max()
+
+
+def test_positions_and_velocities_are_views_of_the_state():
+    root = python_beam()
+    sim = fastcorot.Simulation(root)
+    state = root.beam.state
+    view = state.position
+    assert not view.flags.owndata and view.flags.writeable
+    before = view.copy()
+    sim.step(3)
+    # The view taken before stepping sees the new state (same memory, never reallocated).
+    assert np.shares_memory(view, state.position)
+    np.testing.assert_array_equal(view, state.position)
+    assert np.abs(view - before).max() > 0
+    assert not state.rest_position.flags.writeable
+    with pytest.raises(ValueError, match="rest_position cannot change"):
+        state.rest_position = before
+
+
+def test_writing_the_view_is_setting_the_initial_state():
+    # Velocity written into the live view after building = velocity given in the description.
+    push = np.zeros((4000, 3))
+    push[:, 2] = 0.5
+    through_view = python_beam()
+    sim_view = fastcorot.Simulation(through_view)
+    through_view.beam.state.velocity[:] = push
+    described = python_beam()
+    described.beam.state.velocity = push
+    sim_described = fastcorot.Simulation(described)
+    sim_view.step(4)
+    sim_described.step(4)
+    np.testing.assert_array_equal(through_view.beam.state.position, described.beam.state.position)
+    # Assigning copies into the state (the view stays the same memory).
+    view = through_view.beam.state.position
+    through_view.beam.state.position = np.zeros((4000, 3))
+    assert np.all(view == 0)
+
+
+def test_dt_and_gravity_of_the_root_are_the_simulations():
+    root = python_beam()
+    sim = fastcorot.Simulation(root)
+    root.dt = 0.005
+    assert sim.dt == 0.005
+    sim.step(4)
+    assert sim.time == pytest.approx(0.02)
+    sim.gravity = [0, 0, 0]
+    np.testing.assert_array_equal(root.gravity, [0, 0, 0])
+
+
+def test_the_gil_is_released_while_stepping():
+    root = python_beam()
+    sim = fastcorot.Simulation(root)
+    started = threading.Event()
+
+    def work():
+        started.set()
+        sim.step(40)
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    started.wait()
+    count = 0
+    begin = time.perf_counter()
+    while worker.is_alive():
+        count += 1
+    worker.join()
+    elapsed = time.perf_counter() - begin
+    # Holding the GIL through step(40) would leave this loop almost no turns while the steps run.
+    assert elapsed > 0.05 and count > 1000, (elapsed, count)
+    assert sim.steps_done == 40
+
+
+def test_the_example_measures_the_tip_as_the_program_moves_it(tmp_path):
+    example = beam_example()
+    times, displacements = example.tip_displacement(example.build_beam(), 10)
+    program = dump_state(BEAM_SCN, [0, 10], tmp_path)
+    rest, moved = np.array(program[0]["root/beam"]), np.array(program[10]["root/beam"])
+    tip = rest[:, 0] == 16  # the free end of the 16-long beam (the .scn's max x)
+    assert tip.sum() == 100  # a 10 x 10 face of grid points
+    assert displacements[0] == 0 and times[10] == pytest.approx(0.1)
+    assert displacements[10] == pytest.approx(np.mean(moved[tip, 1] - rest[tip, 1]), rel=1e-12)
+    assert displacements[10] < -1e-3  # it fell
+    example.plot(times, displacements, tmp_path / "tip.png")
+    assert (tmp_path / "tip.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
