@@ -103,7 +103,7 @@ void write_stream_atomically(const std::filesystem::path& path,
                              const std::function<void(std::ostream& out)>& write) {
   write_file_atomically(path, [&](const std::filesystem::path& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw make_error(path.string(), ": cannot open file for writing: ", std::strerror(errno));
+    if (!out) throw make_error(path.string(), ": cannot open for writing: ", std::strerror(errno));
     write(out);
     out.close();
     if (!out) throw make_error(path.string(), ": write error (disk full?)");

@@ -5,6 +5,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include "support/file_bytes.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -25,13 +27,6 @@ fs::path fresh_folder(const std::string& name) {
   return dir;
 }
 
-std::string content(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
 std::vector<std::string> names_in(const fs::path& dir) {
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(dir))
@@ -43,10 +38,10 @@ TEST(AtomicFile, WritesTheWholeFileAndLeavesNothingElse) {
   const fs::path dir = fresh_folder("writes");
   const fs::path path = dir / "frame.vtu";
   write_stream_atomically(path, [](std::ostream& out) { out << "complete"; });
-  EXPECT_EQ(content(path), "complete");
+  EXPECT_EQ(testing::read_file_bytes(path), "complete");
   EXPECT_EQ(names_in(dir), std::vector<std::string>{"frame.vtu"});
   write_stream_atomically(path, [](std::ostream& out) { out << "replaced"; });
-  EXPECT_EQ(content(path), "replaced");
+  EXPECT_EQ(testing::read_file_bytes(path), "replaced");
   EXPECT_EQ(names_in(dir), std::vector<std::string>{"frame.vtu"});
 }
 
@@ -58,9 +53,9 @@ TEST(AtomicFile, WhileWritingTheFinalNameHoldsTheOldContentAndTheTemporaryIsBesi
     EXPECT_EQ(temporary.parent_path(), path.parent_path());
     EXPECT_EQ(temporary.filename().string().rfind("state.json.partial-", 0), 0u) << temporary;
     std::ofstream(temporary) << "new, half";
-    EXPECT_EQ(content(path), "old");  // a reader now sees the old file, whole
+    EXPECT_EQ(testing::read_file_bytes(path), "old");  // a reader now sees the old file, whole
   });
-  EXPECT_EQ(content(path), "new, half");
+  EXPECT_EQ(testing::read_file_bytes(path), "new, half");
 }
 
 TEST(AtomicFile, AFailingWriterLeavesThePreviousFileAndNoTemporary) {
@@ -73,7 +68,7 @@ TEST(AtomicFile, AFailingWriterLeavesThePreviousFileAndNoTemporary) {
                                          throw make_error("disk full");
                                        }),
                Error);
-  EXPECT_EQ(content(path), "previous");
+  EXPECT_EQ(testing::read_file_bytes(path), "previous");
   EXPECT_EQ(names_in(dir), std::vector<std::string>{"checkpoint.ckpt"});
 }
 

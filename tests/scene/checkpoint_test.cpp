@@ -7,6 +7,8 @@
 #include "fastcorot/scene/scene_builder.h"
 #include "support/deformations.h"
 
+#include "support/file_bytes.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -72,17 +74,6 @@ fs::path folder() {
   const fs::path dir = fs::temp_directory_path() / "fastcorot_checkpoint_test";
   fs::create_directories(dir);
   return dir;
-}
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-void write_bytes(const fs::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
 
 void run_to(Simulation<double>& simulation, long step) {
@@ -163,13 +154,13 @@ TEST(Checkpoint, TheCarriedSolverStateIsWhatMakesItBitwise) {
 }
 
 TEST(Checkpoint, EveryFlippedByteIsRefused) {
-  const std::string good = read_bytes(checkpoint_at(4, "flip_source.ckpt"));
+  const std::string good = testing::read_file_bytes(checkpoint_at(4, "flip_source.ckpt"));
   const fs::path path = folder() / "flipped.ckpt";
   ASSERT_GT(good.size(), 1000u);
   for (std::size_t i = 0; i < good.size(); ++i) {
     std::string bad = good;
     bad[i] = static_cast<char>(bad[i] ^ 0xff);
-    write_bytes(path, bad);
+    testing::write_file_bytes(path, bad);
     const std::string message = refusal(path);
     EXPECT_NE(message.find(path.string()), std::string::npos) << "byte " << i << ": " << message;
     if (i >= 24 && i < good.size() - 8) {
@@ -180,26 +171,26 @@ TEST(Checkpoint, EveryFlippedByteIsRefused) {
 }
 
 TEST(Checkpoint, TruncatedFilesAreRefused) {
-  const std::string good = read_bytes(checkpoint_at(2, "truncate_source.ckpt"));
+  const std::string good = testing::read_file_bytes(checkpoint_at(2, "truncate_source.ckpt"));
   const fs::path path = folder() / "truncated.ckpt";
   for (const std::size_t size :
        {std::size_t(0), std::size_t(3), std::size_t(8), std::size_t(23), std::size_t(24),
         good.size() / 2, good.size() - 8, good.size() - 1}) {
-    write_bytes(path, good.substr(0, size));
+    testing::write_file_bytes(path, good.substr(0, size));
     const std::string message = refusal(path);
     EXPECT_NE(message.find("truncated"), std::string::npos) << size << " bytes: " << message;
   }
 }
 
 TEST(Checkpoint, OtherFormatVersionsAndOtherFilesAreRefusedAsSuch) {
-  std::string bytes = read_bytes(checkpoint_at(2, "version_source.ckpt"));
+  std::string bytes = testing::read_file_bytes(checkpoint_at(2, "version_source.ckpt"));
   const fs::path path = folder() / "version.ckpt";
   bytes[8] = 2;  // the u32 version at offset 8, little-endian
-  write_bytes(path, bytes);
+  testing::write_file_bytes(path, bytes);
   EXPECT_NE(refusal(path).find("checkpoint format version 2; this fastcorot reads version 1"),
             std::string::npos)
       << refusal(path);
-  write_bytes(path, "<?xml version=\"1.0\"?>\n<VTKFile/>\n");
+  testing::write_file_bytes(path, "<?xml version=\"1.0\"?>\n<VTKFile/>\n");
   EXPECT_NE(refusal(path).find("not a fastcorot checkpoint"), std::string::npos) << refusal(path);
   EXPECT_NE(refusal(folder() / "does_not_exist.ckpt").find("cannot open"), std::string::npos);
 }
@@ -235,7 +226,7 @@ TEST(Checkpoint, ACheckpointOfAnotherSceneIsRefusedNamingTheDifference) {
 }
 
 TEST(Checkpoint, TheFileStartsWithTheDocumentedHeader) {
-  const std::string bytes = read_bytes(checkpoint_at(1, "header.ckpt"));
+  const std::string bytes = testing::read_file_bytes(checkpoint_at(1, "header.ckpt"));
   ASSERT_GE(bytes.size(), 32u);
   EXPECT_EQ(bytes.substr(0, 8), "FCOROTCK");
   EXPECT_EQ(bytes.substr(8, 4), std::string("\x01\x00\x00\x00", 4));   // version 1

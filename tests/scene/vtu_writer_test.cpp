@@ -180,7 +180,7 @@ TEST(VtuWriter, BadInputIsRefused) {
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()),
-              nowhere.string() + ": cannot open file for writing: No such file or directory");
+              nowhere.string() + ": cannot open for writing: No such file or directory");
   }
 }
 
