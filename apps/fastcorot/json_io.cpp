@@ -1,6 +1,7 @@
 #include "json_io.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/scene/atomic_file.h"
 
 #include <cmath>
 #include <fstream>
@@ -109,11 +110,7 @@ void write_text(const std::string& text, const std::string& path) {
     if (!std::cout) throw make_error("cannot write to standard output");
     return;
   }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw make_error(path, ": cannot open for writing");
-  out << text << '\n';
-  out.close();
-  if (!out) throw make_error(path, ": write failed");
+  write_stream_atomically(path, [&](std::ostream& out) { out << text << '\n'; });
 }
 
 }  // namespace fastcorot::cli

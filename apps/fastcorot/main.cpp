@@ -64,6 +64,18 @@ int main(int argc, char** argv) {
   run->add_option("--threads", run_options.threads, "threads: independent objects concurrently, then each object's kernels")
       ->capture_default_str();
   run->add_flag("--quiet", run_options.quiet, "no progress bar, info lines or summary");
+  auto* checkpoint_every = run->add_option("--checkpoint-every", run_options.checkpoint_every,
+                                           "save the whole state every K steps (to --checkpoint)");
+  run->add_option("--checkpoint", run_options.checkpoint_file,
+                  "checkpoint file (default: OUT/checkpoint.ckpt)")
+      ->needs(checkpoint_every);
+  run->add_option(
+      "--resume", run_options.resume,
+      "continue from a checkpoint of the same scene up to step --steps; bitwise the same run");
+  run->add_option(
+         "--divergence-factor", run_options.divergence_factor,
+         "stop when a point moves more than F x the scene's size from rest (0: only NaN/Inf)")
+      ->capture_default_str();
   auto* png_option = run->add_option("--png", run_options.png_dir,
                                      "render each written frame (see --every) to DIR/step_NNNNN.png, headless");
   for (CLI::Option* option : add_picture_options(run, run_options.picture)) {

@@ -6,6 +6,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/render/drawing_vtu.h"
+#include "fastcorot/scene/checkpoint.h"
 #include "fastcorot/scene/mesh_file.h"
 #include "fastcorot/scene/scene_builder.h"
 
@@ -139,6 +140,24 @@ class VtuSeries {
     }
   }
 
+  // For a run resumed at `simulation`'s step: lists in the collections the frames an uninterrupted
+  // run would have written up to that step (step 0 and every K-th) that are in the folder, so that
+  // the .pvd files come out as an uninterrupted run writes them.
+  void adopt_earlier_frames(const Simulation<double>& simulation, long every) {
+    for (long step = 0; step <= simulation.steps_done(); step += every) {
+      const double time = static_cast<double>(step) * simulation.dt;  // as Simulation::time()
+      for (std::size_t o = 0; o < names_.size(); ++o) {
+        const std::string file = names_[o] + "_" + std::to_string(step) + ".vtu";
+        if (std::filesystem::exists(std::filesystem::path(dir_) / file))
+          frames_[o].push_back({time, file});
+        const std::string drawing_file = names_[o] + "_drawing_" + std::to_string(step) + ".vtu";
+        if (std::filesystem::exists(std::filesystem::path(dir_) / drawing_file)) {
+          drawing_frames_[o].push_back({time, drawing_file});
+        }
+      }
+    }
+  }
+
  private:
   std::string dir_;
   TetrahedronDrawing drawing_;
@@ -169,6 +188,12 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.steps < 0) throw make_error("--steps ", options.steps, ": must be >= 0");
   if (options.every < 1) throw make_error("--every ", options.every, ": must be >= 1");
   if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
+  if (options.checkpoint_every < 0)
+    throw make_error("--checkpoint-every ", options.checkpoint_every, ": must be >= 1");
+  if (!(options.divergence_factor >= 0)) {
+    throw make_error("--divergence-factor ", options.divergence_factor,
+                     ": must be >= 0 (0: no bound)");
+  }
   const TetrahedronDrawing drawing = parse_tetrahedron_drawing(options.picture.drawing);
   LoadedScene scene = load_scene_argument(options.scene);
   Simulation<double>& simulation = scene.simulation;
@@ -177,6 +202,15 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     simulation.dt = *options.dt;
   }
   simulation.threads = options.threads;
+  simulation.divergence_factor = options.divergence_factor;
+  const std::string checkpoint_file =
+      options.checkpoint_file.empty()
+          ? (std::filesystem::path(options.out_dir) / "checkpoint.ckpt").string()
+          : options.checkpoint_file;
+  if (options.checkpoint_every > 0) {
+    const auto folder = std::filesystem::path(checkpoint_file).parent_path();
+    if (!folder.empty()) make_output_folder(folder.string(), "--checkpoint");
+  }
   if (!options.quiet) {
     for (const auto& line : scene.info) err << "info: " << line << '\n';
   }
@@ -186,14 +220,31 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     json dump = {{"dt", simulation.dt}, {"steps", steps}};
     write_text(dump.dump(), options.dump_state);
   };
+  // Outputs are set up on the scene as built (the pictures' camera is framed on it), also when
+  // resuming, so that a resumed run writes what the uninterrupted one would have.
   std::optional<VtuSeries> vtu;
   if (options.vtu) vtu.emplace(options.out_dir, simulation, drawing);
   std::optional<PictureSeries> pictures;
   if (!options.png_dir.empty()) pictures.emplace(options.png_dir, options.picture, simulation, options.steps);
   const bool dump_last = !options.dump_state.empty();
-  if (options.dump_steps.count(0) || (dump_last && options.steps == 0)) record(steps, simulation);
-  if (vtu) vtu->write(simulation);
-  if (pictures) pictures->write(simulation);
+  if (!options.resume.empty()) {
+    restore_checkpoint(options.resume, simulation);
+    if (simulation.steps_done() > options.steps) {
+      throw make_error("--resume ", options.resume, ": the checkpoint is at step ",
+                       simulation.steps_done(), ", past --steps ", options.steps,
+                       " (--steps is the last step number, not a count)");
+    }
+    if (vtu) vtu->adopt_earlier_frames(simulation, options.every);
+    if (options.dump_steps.count(simulation.steps_done()) ||
+        (dump_last && options.steps == simulation.steps_done())) {
+      record(steps, simulation);
+    }
+  } else {
+    if (options.dump_steps.count(0) || (dump_last && options.steps == 0)) record(steps, simulation);
+    if (vtu) vtu->write(simulation);
+    if (pictures) pictures->write(simulation);
+  }
+  const long first_step = simulation.steps_done() + 1;
 
   const bool show_progress = !options.quiet && isatty(fileno(stderr));
   const auto start = std::chrono::steady_clock::now();
@@ -201,7 +252,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   long solves = 0, iterations = 0;
   double last_draw = -1;
   try {
-    for (long step = 1; step <= options.steps; ++step) {
+    for (long step = first_step; step <= options.steps; ++step) {
       const StepReport report = simulation.step();
       solves += report.linear_solves;
       iterations += report.linear_iterations;
@@ -209,9 +260,14 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       const bool frame = step % options.every == 0 || step == options.steps;
       if (vtu && frame) vtu->write(simulation);
       if (pictures && frame) pictures->write(simulation);
+      // After the frames, so that a run resumed here finds them in the folder.
+      if (options.checkpoint_every > 0 && step % options.checkpoint_every == 0) {
+        write_checkpoint(checkpoint_file, simulation,
+                         options.scene.empty() ? "<built-in cantilever beam>" : options.scene);
+      }
       if (show_progress && (elapsed() - last_draw > 0.1 || step == options.steps)) {
         last_draw = elapsed();
-        progress(err, step, options.steps, last_draw);
+        progress(err, step - first_step + 1, options.steps - first_step + 1, last_draw);
       }
     }
   } catch (const Error&) {
@@ -222,10 +278,12 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (show_progress) err << '\n';
   write_dump();
   const double seconds = elapsed();
+  const long steps_run = options.steps - first_step + 1;
   if (!options.quiet) {
-    out << "fastcorot run: " << options.steps << " steps in " << std::fixed << std::setprecision(3) << seconds
-        << " s (" << std::setprecision(1) << (seconds > 0 ? static_cast<double>(options.steps) / seconds : 0.0)
-        << " steps/s), " << simulation.objects.size() << " object(s), " << solves << " linear solves";
+    out << "fastcorot run: " << steps_run << " steps in " << std::fixed << std::setprecision(3)
+        << seconds << " s (" << std::setprecision(1)
+        << (seconds > 0 ? static_cast<double>(steps_run) / seconds : 0.0) << " steps/s), "
+        << simulation.objects.size() << " object(s), " << solves << " linear solves";
     if (iterations > 0) {
       out << ", mean linear-solver iterations " << std::setprecision(2)
           << static_cast<double>(iterations) / static_cast<double>(solves);

@@ -1,6 +1,8 @@
 // `fastcorot run [SCENE] [--steps N] [--dt DT] [--out DIR] [--vtu] [--every K]
 //                [--dump-state FILE --dump-steps 0,1,10,100] [--threads N] [--quiet]
-//                [--png DIR [--size WxH] [--drawing scene|on|off] [--camera-...]]`:
+//                [--png DIR [--size WxH] [--drawing scene|on|off] [--camera-...]]
+//                [--checkpoint-every K [--checkpoint FILE]] [--resume FILE] [--divergence-factor
+//                F]`:
 // runs a SOFA scene (.scn), a tetrahedral mesh (.msh/.vtk/.vtu, with documented defaults) or the
 // built-in cantilever beam, headless. See README.md, "fastcorot run", and docs/rendering.md.
 #pragma once
@@ -29,6 +31,10 @@ struct RunOptions {
   bool quiet = false;
   std::string png_dir;     // empty: no pictures; else one PNG per written frame
   PictureOptions picture;  // what the pictures (and the drawn tetrahedra in --vtu) look like
+  long checkpoint_every = 0;    // 0: no checkpoints; else save the state every K steps
+  std::string checkpoint_file;  // empty: OUT/checkpoint.ckpt
+  std::string resume;           // a checkpoint to continue from; `steps` stays the last step number
+  double divergence_factor = 1e6;  // Simulation::divergence_factor; 0 turns the bound off
 };
 
 // Parses "0,1,10,100"; throws fastcorot::Error on anything else.

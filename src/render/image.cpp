@@ -1,6 +1,7 @@
 #include "fastcorot/render/image.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/scene/atomic_file.h"
 
 #include <png.h>
 
@@ -47,34 +48,36 @@ void write_png(const std::filesystem::path& path, const Image& image) {
     throw make_error(path.string(), ": cannot write an image of ", image.width, "x", image.height,
                      " with ", image.rgb.size(), " bytes");
   }
-  File file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw make_error(path.string(), ": cannot write: ", std::strerror(errno));
-  std::string error;
-  png_structp png =
-      png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, record_error, ignore_warning);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!info) {
-    png_destroy_write_struct(&png, nullptr);
-    throw make_error(path.string(), ": out of memory for the PNG writer");
-  }
-  if (setjmp(png_jmpbuf(png))) {
+  write_file_atomically(path, [&](const std::filesystem::path& temporary) {
+    File file(std::fopen(temporary.c_str(), "wb"));
+    if (!file) throw make_error(path.string(), ": cannot write: ", std::strerror(errno));
+    std::string error;
+    png_structp png =
+        png_create_write_struct(PNG_LIBPNG_VER_STRING, &error, record_error, ignore_warning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+      png_destroy_write_struct(&png, nullptr);
+      throw make_error(path.string(), ": out of memory for the PNG writer");
+    }
+    if (setjmp(png_jmpbuf(png))) {
+      png_destroy_write_struct(&png, &info);
+      throw make_error(path.string(), ": cannot write the PNG: ", error);
+    }
+    png_init_io(png, file.get());
+    png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
+                 static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_compression_level(png, 6);
+    png_write_info(png, info);
+    for (int y = 0; y < image.height; ++y) {
+      png_write_row(png, image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3);
+    }
+    png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
-    throw make_error(path.string(), ": cannot write the PNG: ", error);
-  }
-  png_init_io(png, file.get());
-  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width),
-               static_cast<png_uint_32>(image.height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_compression_level(png, 6);
-  png_write_info(png, info);
-  for (int y = 0; y < image.height; ++y) {
-    png_write_row(png, image.rgb.data() + static_cast<std::size_t>(y) * image.width * 3);
-  }
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  if (std::fflush(file.get()) != 0 || std::ferror(file.get())) {
-    throw make_error(path.string(), ": cannot write: ", std::strerror(errno));
-  }
+    if (std::fflush(file.get()) != 0 || std::ferror(file.get())) {
+      throw make_error(path.string(), ": cannot write: ", std::strerror(errno));
+    }
+  });
 }
 
 Image read_png(const std::filesystem::path& path) {

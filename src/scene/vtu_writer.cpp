@@ -1,15 +1,19 @@
 // VTK XML writers: an UnstructuredGrid (.vtu) with every DataArray inline as format="binary"
 // (base64 of a UInt32 byte count followed by the little-endian data, uncompressed: what VTK
 // itself writes for an uncompressed inline array), and a ParaView collection (.pvd) that lists
-// the files of a time series.
+// the files of a time series. Both are written atomically (atomic_file.h): a reader never sees
+// half a file.
 #include "fastcorot/scene/mesh_file.h"
+
+#include "fastcorot/scene/atomic_file.h"
 
 #include "mesh_file_detail.h"
 
 #include <charconv>
 #include <cmath>
 #include <cstdint>
-#include <fstream>
+#include <ostream>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -91,7 +95,7 @@ std::string shortest(double value) {
 
 class DataArrayWriter {
  public:
-  DataArrayWriter(std::ofstream& out, std::string file) : out_(out), file_(std::move(file)) {}
+  DataArrayWriter(std::ostream& out, std::string file) : out_(out), file_(std::move(file)) {}
 
   // `data` holds the little-endian values; the UInt32 header is their byte count.
   void write(std::string_view indent, std::string_view type, std::string_view name, int components,
@@ -112,7 +116,7 @@ class DataArrayWriter {
   }
 
  private:
-  std::ofstream& out_;
+  std::ostream& out_;
   std::string file_;
 };
 
@@ -136,11 +140,6 @@ void check_fields(const std::string& file, const std::vector<VtuField>& fields, 
                        " values, expected ", count, " × ", field.components);
     }
   }
-}
-
-void check_written(std::ofstream& out, const std::string& file) {
-  out.flush();
-  if (!out) throw make_error(file, ": write error");
 }
 
 }  // namespace
@@ -173,8 +172,7 @@ void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>
   check_fields(file, point_fields, points.size(), "point");
   check_fields(file, cell_fields, num_cells, "cell");
 
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw make_error(file, ": cannot open file for writing");
+  std::ostringstream out;  // the file is written whole once complete (atomic_file.h)
   DataArrayWriter arrays(out, file);
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" "
@@ -222,7 +220,7 @@ void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>
       << "    </Piece>\n"
       << "  </UnstructuredGrid>\n"
       << "</VTKFile>\n";
-  check_written(out, file);
+  write_stream_atomically(path, [&](std::ostream& file_out) { file_out << out.view(); });
 }
 
 void write_pvd(const std::filesystem::path& path,
@@ -234,8 +232,7 @@ void write_pvd(const std::filesystem::path& path,
                        time_steps[i].first);
     }
   }
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw make_error(file, ": cannot open file for writing");
+  std::ostringstream out;
   out << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n";
@@ -245,7 +242,7 @@ void write_pvd(const std::filesystem::path& path,
   }
   out << "  </Collection>\n"
       << "</VTKFile>\n";
-  check_written(out, file);
+  write_stream_atomically(path, [&](std::ostream& file_out) { file_out << out.view(); });
 }
 
 }  // namespace fastcorot

@@ -21,6 +21,15 @@ ConjugateGradientSolver<Real>::ConjugateGradientSolver(Parameters parameters) : 
 }
 
 template <class Real>
+void ConjugateGradientSolver<Real>::restore_carried_state(const std::vector<std::int64_t>& state) {
+  if (state.size() != 1 || state[0] < 0) {
+    throw make_error("CGLinearSolver: expected one solve count >= 0 to restore, got ", state.size(),
+                     " values");
+  }
+  solves_ = state[0];
+}
+
+template <class Real>
 LinearSolveReport ConjugateGradientSolver<Real>::solve(const MechanicalSystem<Real>& system,
                                                        const MatrixFactors<Real>& factors,
                                                        std::span<const Vec3<Real>> rhs,

@@ -3,24 +3,88 @@
 #include "fastcorot/core/error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
+#include <optional>
+#include <sstream>
+#include <string>
 #include <thread>
+#include <utility>
 
 namespace fastcorot {
 
 namespace {
 
+// Divergence messages: 6 significant digits are enough to see what happened (t = 0.06, not
+// 0.059999999999999998).
+template <class... Parts>
+std::string brief(Parts&&... parts) {
+  std::ostringstream out;
+  out.precision(6);
+  (out << ... << std::forward<Parts>(parts));
+  return out.str();
+}
+
+// The first sign of divergence in one object's state after a step, if any: the first vertex with a
+// non-finite position or velocity, else the vertex that went farthest beyond `bound`.
 template <class Real>
-StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number) {
+std::optional<std::string> find_divergence(const MechanicalState<Real>& state, Real dt, Real bound,
+                                           Real factor, Real scene_size) {
+  const auto& x = state.position;
+  const auto& v = state.velocity;
+  const auto& rest = state.rest_position;
+  auto vector_text = [](const Vec3<Real>& a) -> std::string {
+    return brief("(", a.x(), ", ", a.y(), ", ", a.z(), ")");
+  };
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (!x[i].allFinite())
+      return "vertex " + std::to_string(i) + " has a non-finite position " + vector_text(x[i]);
+    if (!v[i].allFinite())
+      return "vertex " + std::to_string(i) + " has a non-finite velocity " + vector_text(v[i]);
+  }
+  if (!(bound > 0) || !std::isfinite(bound)) return std::nullopt;
+  std::size_t worst = 0;
+  Real worst_excess = 0, worst_distance = 0;
+  bool by_velocity = false;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const Real moved = (x[i] - rest[i]).norm();
+    const Real stride = dt * v[i].norm();
+    const Real distance = std::max(moved, stride);
+    // Overflow in norm() makes a finite but huge state infinite here: still divergence.
+    if (!(distance <= bound) && (worst_excess == 0 || distance / bound > worst_excess)) {
+      worst = i;
+      worst_excess = distance / bound;
+      worst_distance = distance;
+      by_velocity = stride > moved;
+    }
+  }
+  if (worst_excess == 0) return std::nullopt;
+  const std::string limit = brief(", beyond the divergence bound ", bound, " (", factor,
+                                  " x the scene's size ", scene_size, ")");
+  if (by_velocity) {
+    return brief("vertex ", worst, " has velocity ", vector_text(v[worst]), " that carries it ",
+                 worst_distance, " in one step", limit);
+  }
+  return brief("vertex ", worst, " is ", worst_distance, " from its rest position (now at ",
+               vector_text(x[worst]), ")", limit);
+}
+
+template <class Real>
+StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number, Real bound,
+                       Real factor, Real scene_size) {
   StepReport report;
+  const Real time = static_cast<Real>(step_number) * dt;
   try {
     report = object.ode_solver->step(object.system, *object.linear_solver, dt);
   } catch (const Error& error) {
-    throw make_error("diverged at step ", step_number, " in ", object.path, ": ", error.what());
+    throw Error(
+        brief("diverged at step ", step_number, " (t = ", time, ") in ", object.path, ": ") +
+        error.what());
   }
   for (Index i : object.system.zero_velocity) object.system.state.velocity[static_cast<std::size_t>(i)].setZero();
-  if (!all_finite<Real>(object.system.state.position) || !all_finite<Real>(object.system.state.velocity)) {
-    throw make_error("diverged at step ", step_number, ": ", object.path, " has non-finite positions or velocities");
+  if (auto problem = find_divergence(object.system.state, dt, bound, factor, scene_size)) {
+    throw Error(
+        brief("diverged at step ", step_number, " (t = ", time, "): ", object.path, " ", *problem));
   }
   return report;
 }
@@ -28,8 +92,32 @@ StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number)
 }  // namespace
 
 template <class Real>
+void Simulation<Real>::set_steps_done(long steps) {
+  if (steps < 0) throw make_error("step count ", steps, ": must be >= 0");
+  steps_done_ = steps;
+}
+
+template <class Real>
+Real Simulation<Real>::scene_size() const {
+  bool any = false;
+  Vec3<Real> lo = Vec3<Real>::Zero(), hi = Vec3<Real>::Zero();
+  for (const auto& object : objects) {
+    for (const auto& p : object.system.state.rest_position) {
+      lo = any ? lo.cwiseMin(p).eval() : p;
+      hi = any ? hi.cwiseMax(p).eval() : p;
+      any = true;
+    }
+  }
+  const Real size = (hi - lo).norm();
+  return size > 0 && std::isfinite(size) ? size : Real(1);
+}
+
+template <class Real>
 StepReport Simulation<Real>::step() {
   const long step_number = steps_done_ + 1;
+  const Real size =
+      divergence_factor > 0 && std::isfinite(divergence_factor) ? scene_size() : Real(0);
+  const Real bound = divergence_factor * size;
   std::vector<StepReport> reports(objects.size());
   std::vector<std::exception_ptr> failures(objects.size());
   const std::size_t workers = std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), objects.size());
@@ -41,7 +129,7 @@ StepReport Simulation<Real>::step() {
   auto work = [&](std::size_t first) {
     for (std::size_t o = first; o < objects.size(); o += workers) {
       try {
-        reports[o] = step_object(objects[o], dt, step_number);
+        reports[o] = step_object(objects[o], dt, step_number, bound, divergence_factor, size);
       } catch (...) {
         failures[o] = std::current_exception();
       }

@@ -168,6 +168,26 @@ TEST(ConjugateGradient, OnlyTheFirstSolveIgnoresToleranceAtIterationOne) {
   EXPECT_EQ(fresh.solve(t.system, kMassOnly, t.b, t.x).iterations, 1);
 }
 
+TEST(ConjugateGradient, CarriedStateIsTheSolveCountAndRestoresTheFirstSolveRule) {
+  // The only thing a CG instance carries between solves is whether it has solved before (the
+  // example above): a checkpoint saves it so that a resumed run's next solve stops as it would
+  // have.
+  TwoByTwo t;
+  CG used(parameters(25, 1.0, 0.0));
+  EXPECT_EQ(used.carried_state(), std::vector<std::int64_t>{0});
+  used.solve(t.system, kMassOnly, t.b, t.x);
+  used.solve(t.system, kMassOnly, t.b, t.x);
+  EXPECT_EQ(used.carried_state(), std::vector<std::int64_t>{2});
+  CG restored(parameters(25, 1.0, 0.0));
+  restored.restore_carried_state(used.carried_state());
+  EXPECT_EQ(restored.solve(t.system, kMassOnly, t.b, t.x).iterations,
+            0);  // as a third solve: stops at once
+  EXPECT_EQ(t.x[0], Vec3<double>::Zero());
+  EXPECT_THROW(restored.restore_carried_state({}), Error);
+  EXPECT_THROW(restored.restore_carried_state({1, 2}), Error);
+  EXPECT_THROW(restored.restore_carried_state({-1}), Error);
+}
+
 TEST(ConjugateGradient, ThresholdIsAbsoluteOnCurvatureAndSparesOnlyTheFirstSolve) {
   // A = I, b = 1e-4 e_x at one point: p^T A p = 1e-8 <= threshold 1e-5.
   auto system = mass_system({1.0});

@@ -1,6 +1,6 @@
-// Simulation: SOFA's DefaultAnimationLoop over independent solver nodes (docs/sofa-solvers.md §5.2):
-// each object integrated by its own ODE and linear solver, then time += dt; a non-finite state stops
-// the run with an error naming the step and the object.
+// Simulation: SOFA's DefaultAnimationLoop over independent solver nodes (docs/sofa-solvers.md
+// §5.2): each object integrated by its own ODE and linear solver, then time += dt; a non-finite or
+// exploding state stops the run with an error naming the step, the time, the object and the vertex.
 #include "fastcorot/sim/simulation.h"
 
 #include "fastcorot/core/error.h"
@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <random>
@@ -49,7 +50,10 @@ SimulatedObject<double> make_object(const std::string& path, Kind kind, unsigned
   system.force_fields.push_back(std::make_shared<Field>(object.mesh, two_tets_rest(), p));
   system.mass = Mass<double>::lumped({0.75, 0.75, 0.75, 0.25, 0.5});
   system.gravity = Vec3<double>(0, -9.81, 0);
-  system.fixed = {0, 1};
+  // The static object needs its rigid motions held: with points 0 and 1 alone, the rotation about
+  // their axis is free, its stiffness singular, and the Newton step throws point 4 some 1e15 away
+  // (which the divergence bound reports).
+  system.fixed = kind == Kind::static_direct ? std::vector<Index>{0, 1, 2} : std::vector<Index>{0, 1};
   system.finalize();
   ImplicitEulerSolver<double>::Parameters euler;
   euler.rayleigh_stiffness = 0.1;
@@ -231,6 +235,71 @@ TEST(Simulation, SolverErrorsAreReportedWithStepAndObject) {
   EXPECT_NE(message.find("diverged at step 1"), std::string::npos) << message;
   EXPECT_NE(message.find("root/loose"), std::string::npos) << message;
   EXPECT_NE(message.find("factoris"), std::string::npos) << message;  // the solver's own message follows
+}
+
+TEST(Simulation, NonFiniteStatesNameTheVertexAndTheTime) {
+  auto simulation = three_objects();
+  simulation.step();
+  // The static solver leaves velocities alone: vertex 3 of object c is the only non-finite one.
+  simulation.objects[2].system.state.velocity[3].y() = std::numeric_limits<double>::infinity();
+  const std::string message = message_of(simulation);
+  // Step 2 of dt = 0.02: t = 0.04.
+  EXPECT_NE(message.find("diverged at step 2 (t = 0.04"), std::string::npos) << message;
+  EXPECT_NE(message.find("root/c vertex 3 has a non-finite velocity ("), std::string::npos) << message;
+  EXPECT_NE(message.find(", inf, "), std::string::npos) << message;
+  EXPECT_NE(message.find("non-finite"), std::string::npos) << message;
+}
+
+TEST(Simulation, SceneSizeIsTheDiagonalOfTheRestBoundingBox) {
+  // two_tets_rest spans (0, 0, -2) to (1, 1, 1): diagonal sqrt(1 + 1 + 9).
+  auto simulation = three_objects();
+  EXPECT_DOUBLE_EQ(simulation.scene_size(), std::sqrt(11.0));
+  Simulation<double> empty;
+  EXPECT_EQ(empty.scene_size(), 1.0);
+}
+
+TEST(Simulation, AVelocityThatCarriesAPointBeyondTheBoundStopsTheRunNamingIt) {
+  // The static solver leaves velocities alone, so vertex 3 of object c keeps the velocity given
+  // here: 1e9 scene sizes per step, finite but far beyond the default 1e6 sizes.
+  auto simulation = three_objects();
+  const double size = simulation.scene_size();
+  simulation.objects[2].system.state.velocity[3] = Vec3<double>(0, 0, 1e9 * size / simulation.dt);
+  const std::string message = message_of(simulation);
+  EXPECT_NE(message.find("diverged at step 1 (t = 0.02"), std::string::npos) << message;
+  EXPECT_NE(message.find("root/c vertex 3 has velocity"), std::string::npos) << message;
+  EXPECT_NE(message.find("divergence bound"), std::string::npos) << message;
+  EXPECT_EQ(simulation.steps_done(), 0);
+}
+
+TEST(Simulation, TheBoundIsAFactorOfTheSceneSizeAndCanBeTurnedOff) {
+  // A point displaced by 50 scene sizes before the step: an implicit Euler step with a fixed
+  // neighbour and an elastic pull moves it back by much less than that in one step of 0.02 s.
+  for (const double factor : {10.0, 1000.0, 0.0}) {
+    auto simulation = three_objects();
+    simulation.divergence_factor = factor;
+    auto& x = simulation.objects[1].system.state.position;
+    x[4] += Vec3<double>(50 * simulation.scene_size(), 0, 0);
+    bool threw = false;
+    try {
+      simulation.step();
+    } catch (const Error& error) {
+      threw = true;
+      EXPECT_NE(std::string(error.what()).find("root/b vertex 4"), std::string::npos)
+          << error.what();
+    }
+    EXPECT_EQ(threw, factor == 10.0) << "factor " << factor;
+  }
+}
+
+TEST(Simulation, SetStepsDoneSetsTheTime) {
+  Simulation<double> simulation;
+  simulation.dt = 0.02;
+  simulation.set_steps_done(7);
+  EXPECT_EQ(simulation.steps_done(), 7);
+  EXPECT_EQ(simulation.time(), 7 * 0.02);
+  simulation.step();
+  EXPECT_EQ(simulation.steps_done(), 8);
+  EXPECT_THROW(simulation.set_steps_done(-1), Error);
 }
 
 }  // namespace

@@ -28,9 +28,13 @@ class ConjugateGradientSolver final : public LinearSolver<Real> {
 
   const Parameters& parameters() const { return parameters_; }
 
+  // The number of solves done: the first solve behaves differently (see above).
+  std::vector<std::int64_t> carried_state() const override { return {solves_}; }
+  void restore_carried_state(const std::vector<std::int64_t>& state) override;
+
  private:
   Parameters parameters_;
-  long solves_ = 0;
+  std::int64_t solves_ = 0;
   std::vector<Vec3<Real>> r_, p_, q_;  // work vectors, kept to avoid allocating per solve
 };
 

@@ -2,9 +2,12 @@
 // MechanicalSystem. Iterative solvers use the matrix-free product; direct ones assemble.
 #pragma once
 
+#include "fastcorot/core/error.h"
 #include "fastcorot/sim/mechanical_system.h"
 
+#include <cstdint>
 #include <span>
+#include <vector>
 
 namespace fastcorot {
 
@@ -22,6 +25,16 @@ class LinearSolver {
   // Solves A x = rhs with A = factors applied to `system`; x is overwritten.
   virtual LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
                                   std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) = 0;
+
+  // What the solver carries from one solve to the next that changes later results, as integers
+  // (empty when nothing): checkpoints save it so that a resumed run continues bitwise. Work
+  // vectors overwritten by every solve and caches that do not change results are not part of it.
+  virtual std::vector<std::int64_t> carried_state() const { return {}; }
+  // Restores what carried_state() returned; throws fastcorot::Error when it does not fit.
+  virtual void restore_carried_state(const std::vector<std::int64_t>& state) {
+    if (!state.empty())
+      throw make_error("this linear solver carries no state; got ", state.size(), " values");
+  }
 };
 
 }  // namespace fastcorot

@@ -8,6 +8,7 @@
 #include "fastcorot/sim/linear_solver.h"
 #include "fastcorot/sim/mechanical_system.h"
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -25,6 +26,15 @@ class OdeSolver {
   virtual ~OdeSolver() = default;
   // Advances `system` by dt in place.
   virtual StepReport step(MechanicalSystem<Real>& system, LinearSolver<Real>& solver, Real dt) = 0;
+
+  // What the solver carries from one step to the next that changes later results, as integers
+  // (see LinearSolver::carried_state). Neither solver here carries any: their work vectors are
+  // overwritten by every step, and StaticSolver::converged() only reports on the last step.
+  virtual std::vector<std::int64_t> carried_state() const { return {}; }
+  virtual void restore_carried_state(const std::vector<std::int64_t>& state) {
+    if (!state.empty())
+      throw make_error("this ODE solver carries no state; got ", state.size(), " values");
+  }
 };
 
 template <class Real>

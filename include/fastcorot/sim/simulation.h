@@ -1,7 +1,9 @@
 // Simulation<Real>: the objects of a scene, each with its ODE solver and linear solver (one SOFA
 // solver node each), advanced together one time step at a time as SOFA's DefaultAnimationLoop
 // does: each object is integrated in scene order, then time advances by dt. A step that leaves a
-// non-finite position or velocity stops the simulation with an error naming the step and object.
+// diverged state (a non-finite position or velocity, or a point thrown absurdly far: see
+// divergence_factor) stops the simulation with an error naming the step, the time, the object and
+// the vertex.
 #pragma once
 
 #include "fastcorot/sim/linear_solver.h"
@@ -57,13 +59,27 @@ class Simulation {
   // parallelODESolving), and threads beyond one per object go to each object's kernels (force
   // field, products, solver vectors). Each object's result is bitwise the same whatever the count.
   int threads = 1;
+  // A point has "exploded" when it is farther from its rest position than divergence_factor times
+  // the scene's size (scene_size()), or when its velocity would carry it that far in one step.
+  // Elastic bodies never get there: 1e6 sizes is a kilometre for a millimetre part, and a free
+  // fall takes about sqrt(2e6 L / g) seconds (450 s for L = 1 m) to cover it. Explosions grow
+  // geometrically, so the test catches them a few steps before they overflow, with finite values
+  // to report. 0 (or infinity) turns the test off; non-finite values are always divergence.
+  Real divergence_factor = Real(1e6);
 
-  // Advances every object by dt. Throws fastcorot::Error "diverged at step N ..." when a state
-  // becomes non-finite (the state before the step is lost for that object; others are advanced).
+  // Advances every object by dt. Throws fastcorot::Error "diverged at step N (t = T): OBJECT
+  // vertex V ..." when a state diverges (the state before the step is lost for that object;
+  // others are advanced; steps_done() stays at N - 1).
   StepReport step();
 
   long steps_done() const { return steps_done_; }
   Real time() const { return static_cast<Real>(steps_done_) * dt; }
+  // Sets the step counter (and so the time): for resuming from a checkpoint. Throws for steps < 0.
+  void set_steps_done(long steps);
+
+  // The diagonal of the bounding box of every object's rest positions (1 when that is zero, as for
+  // a single point or an empty scene): the length divergence_factor is measured in.
+  Real scene_size() const;
 
  private:
   long steps_done_ = 0;

@@ -1,0 +1,61 @@
+// Checkpoints: the whole evolving state of a Simulation<double> in one binary file, so that a run
+// can stop and later resume with a trajectory bitwise identical to an uninterrupted one
+// (`fastcorot run --checkpoint-every K`, `--resume FILE`).
+//
+// What a resumed run needs beyond the scene itself: the step counter (time is steps × dt), every
+// object's positions and velocities, and what its solvers carry from one step to the next
+// (carried_state(): the CG's solve count, whose first solve stops differently). Everything else is
+// rebuilt from the scene: rest data, masses, constraints, constant forces; the force field's
+// rotations and edge stiffness are recomputed by add_force at the start of every step, and the
+// direct solver's cached analysis depends only on the matrix pattern.
+//
+// Format, version 1. Integers and IEEE-754 doubles little-endian; a string is a u32 byte count
+// and its bytes.
+//   offset 0   8 bytes  magic "FCOROTCK"
+//          8   u32      format version (1)
+//         12   u32      bytes per real (8)
+//         16   u64      size of the whole file in bytes
+//         24   string   the scene as given on the command line (for messages only)
+//              f64      dt
+//              i64      step (steps done)
+//              u32      object count, then per object, in scene order:
+//                string   node path (root/beam)
+//                u64      vertex count V, u64 tetrahedron count
+//                u64 ×3   fingerprints of the rest positions, of the tetrahedra, and of the rest of
+//                         the model (masses, fixed and velocity-projected points, constant forces,
+//                         gravity, force-field parameters, the kinds of ODE and linear solver)
+//                f64 ×3V  positions, then f64 ×3V velocities
+//                u32 n, i64 ×n  the ODE solver's carried state; u32 n, i64 ×n  the linear solver's
+//   last 8 bytes  u64   FNV-1a 64 of every byte before it
+// Fingerprints are FNV-1a 64 of the little-endian bytes of the values. FNV-1a detects every single
+// changed byte (each step of it is a bijection); solver settings (tolerances, Rayleigh
+// coefficients) are not fingerprinted: changing them on resume is allowed and changes the run.
+#pragma once
+
+#include "fastcorot/sim/simulation.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+namespace fastcorot {
+
+inline constexpr std::uint32_t kCheckpointVersion = 1;
+
+// Writes `simulation`'s state to `path` atomically (atomic_file.h). `scene_name` is recorded so
+// that a refused checkpoint can say which scene it belongs to.
+void write_checkpoint(const std::filesystem::path& path, const Simulation<double>& simulation,
+                      const std::string& scene_name);
+
+// Reads `path` and restores it into `simulation`, freshly built from the same scene: positions,
+// velocities, solver states and the step counter. Refuses, with a fastcorot::Error naming the file
+// and what is wrong, a file that is not a checkpoint, of another format version, truncated or
+// corrupt (checksum), or made for another scene (object paths, vertex or tetrahedron counts, rest
+// positions, elements, model) or another dt. Nothing is changed unless everything checks.
+void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& simulation);
+
+// FNV-1a 64 of `size` bytes, continuing from `hash` (the checksum and fingerprints above).
+std::uint64_t fnv1a64(const void* data, std::size_t size,
+                      std::uint64_t hash = 14695981039346656037ull);
+
+}  // namespace fastcorot
