@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -147,6 +148,31 @@ void CorotationalForceField<Real>::rebuild() {
   edge_schedule_.order.resize(edge_vertices_.size());
   std::iota(edge_schedule_.order.begin(), edge_schedule_.order.end(), Index(0));
 
+  // For the refresh, in the tetrahedra's visiting order: where each of their six edge blocks starts
+  // and which of them are oriented against the local edge (bit e set when local vertex k of edge e
+  // has the higher mesh index).
+  if (9 * edge_vertices_.size() > std::numeric_limits<std::uint32_t>::max()) {
+    throw make_error("FastTetrahedralCorotationalForceField: ", edges.size(),
+                     " edges: more than this force field can index (about 470 million)");
+  }
+  const auto& visiting = tetrahedron_schedule_.order;
+  refresh_offsets_.resize(6 * visiting.size());
+  refresh_swaps_.resize(visiting.size());
+  for (std::size_t position = 0; position < visiting.size(); ++position) {
+    const Index t = visiting[position];
+    const Tetrahedron& tet = mesh_->tetrahedron(t);
+    const auto tet_edges = mesh_->edges_of_tetrahedron(t);
+    std::uint8_t swaps = 0;
+    for (std::size_t e = 0; e < 6; ++e) {
+      const auto slot = static_cast<std::size_t>(edge_slot_[static_cast<std::size_t>(tet_edges[e])]);
+      refresh_offsets_[6 * position + e] = static_cast<std::uint32_t>(kernels::edge_block_offset<Real>(slot, 0));
+      if (tet[static_cast<std::size_t>(kTetrahedronEdges[e][0])] > tet[static_cast<std::size_t>(kTetrahedronEdges[e][1])]) {
+        swaps = static_cast<std::uint8_t>(swaps | (1u << e));
+      }
+    }
+    refresh_swaps_[position] = swaps;
+  }
+
   // The linearisation at rest (rotations equal to the identity up to rounding).
   blocks_.assign(9 * edge_vertices_.size(), Real(0));
   std::vector<Vec3<Real>> scratch(rest_positions_.size(), Vec3<Real>::Zero());
@@ -248,18 +274,15 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
       }
       if constexpr (kRefresh) {
         kernels::rotated_shapes(batch);
+        const std::uint8_t* swaps = refresh_swaps_.data() + first;
+        const std::uint32_t* offsets = refresh_offsets_.data() + 6 * static_cast<std::size_t>(first);
         for (int e = 0; e < 6; ++e) {
           const int k = kTetrahedronEdges[static_cast<std::size_t>(e)][0];
           const int m = kTetrahedronEdges[static_cast<std::size_t>(e)][1];
-          for (int l = 0; l < W; ++l) {
-            const Tetrahedron& tet = tetrahedra[lane_tetrahedron[l]];
-            batch.swap[l] = tet[static_cast<std::size_t>(k)] > tet[static_cast<std::size_t>(m)];
-          }
+          for (int l = 0; l < W; ++l) batch.swap[l] = (swaps[l < count ? l : 0] >> e) & 1u;
           kernels::edge_block(batch, k, m);
           for (int l = 0; l < count; ++l) {
-            const Index edge = mesh_->edges_of_tetrahedron(lane_tetrahedron[l])[static_cast<std::size_t>(e)];
-            const auto slot = static_cast<std::size_t>(edge_slot_[static_cast<std::size_t>(edge)]);
-            Real* entry = blocks + kernels::edge_block_offset<Real>(slot, 0);
+            Real* entry = blocks + offsets[6 * l + e];
             for (int i = 0; i < 9; ++i) entry[i * kernels::kEdgeLanes<Real>] += batch.block[i][l];
           }
         }
@@ -403,7 +426,7 @@ std::size_t CorotationalForceField<Real>::memory_bytes() const {
   const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   const auto schedule_bytes = [&](const ScatterSchedule& s) { return bytes(s.order) + bytes(s.group_begin); };
   return bytes(rest_positions_) + bytes(shape_) + bytes(mu_) + bytes(lambda_) + bytes(blocks_) +
-         bytes(edge_slot_) + bytes(edge_vertices_) +
+         bytes(edge_slot_) + bytes(edge_vertices_) + bytes(refresh_offsets_) + bytes(refresh_swaps_) +
          schedule_bytes(tetrahedron_schedule_) + schedule_bytes(edge_schedule_) + bytes(last_positions_) +
          sizeof(*this);
 }

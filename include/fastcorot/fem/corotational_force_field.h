@@ -23,6 +23,7 @@
 
 #include <Eigen/SparseCore>
 
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -134,6 +135,10 @@ class CorotationalForceField {
   std::vector<Index> edge_slot_;
   std::vector<Edge> edge_vertices_;
   std::vector<Real> blocks_;
+  // Per tetrahedron in visiting order: the offsets in blocks_ of its six edge blocks, and a bit per
+  // edge oriented against its local edge.
+  std::vector<std::uint32_t> refresh_offsets_;
+  std::vector<std::uint8_t> refresh_swaps_;
   Mat3<Real> block(Index slot) const;
   std::vector<Vec3<Real>> last_positions_;  // x of the last add_force (empty before the first)
 };
