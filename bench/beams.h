@@ -6,6 +6,8 @@
 #include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/topology/regular_grid.h"
 
+#include <benchmark/benchmark.h>
+
 #include <cmath>
 #include <memory>
 #include <string>
@@ -21,6 +23,26 @@ struct Beam {
 inline const std::vector<Beam>& beams() {
   static const std::vector<Beam> all = {{"40x10x10", {40, 10, 10}}, {"76x16x16", {76, 16, 16}}};
   return all;
+}
+
+inline constexpr RotationMethod kMethods[] = {RotationMethod::qr, RotationMethod::polar, RotationMethod::polar2,
+                                              RotationMethod::none};
+
+// "what/beam/method/real/threads:N": the names the README's filters select on.
+inline std::string benchmark_name(const std::string& what, const Beam& beam, RotationMethod method,
+                                  const char* real_name, int threads) {
+  return what + "/" + beam.name + "/" + to_string(method) + "/" + real_name + "/threads:" + std::to_string(threads);
+}
+
+// main() of a benchmark program whose register_all<Real>(real_name) registers its benchmarks.
+template <class Registrar>
+int run_benchmarks(int argc, char** argv, Registrar register_all) {
+  register_all(double(), "double");
+  register_all(float(), "float");
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
 }
 
 template <class Real>

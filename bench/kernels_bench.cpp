@@ -33,17 +33,14 @@ void run_kernel(benchmark::State& state, const Beam& beam, RotationMethod method
 
 template <class Real>
 void register_all(const char* real_name) {
-  const RotationMethod methods[] = {RotationMethod::qr, RotationMethod::polar, RotationMethod::polar2,
-                                    RotationMethod::none};
   const std::pair<Kernel, const char*> kernels[] = {
       {Kernel::add_force, "add_force"}, {Kernel::add_force_only, "add_force_only"}, {Kernel::add_dforce, "add_dforce"}};
   for (const Beam& beam : beams()) {
-    for (const RotationMethod method : methods) {
+    for (const RotationMethod method : kMethods) {
       for (const auto& [kernel, kernel_name] : kernels) {
         if (kernel == Kernel::add_dforce && method != RotationMethod::qr) continue;  // independent of the method
         for (const int threads : {1, 2}) {
-          const std::string name = std::string(kernel_name) + "/" + beam.name + "/" + to_string(method) + "/" +
-                                   real_name + "/threads:" + std::to_string(threads);
+          const std::string name = benchmark_name(kernel_name, beam, method, real_name, threads);
           benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
             run_kernel<Real>(state, beam, method, threads, kernel);
           })->Unit(benchmark::kMicrosecond)->UseRealTime();
@@ -57,10 +54,7 @@ void register_all(const char* real_name) {
 }  // namespace fastcorot::bench
 
 int main(int argc, char** argv) {
-  fastcorot::bench::register_all<double>("double");
-  fastcorot::bench::register_all<float>("float");
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return fastcorot::bench::run_benchmarks(argc, argv, [](auto real, const char* name) {
+    fastcorot::bench::register_all<decltype(real)>(name);
+  });
 }

@@ -58,11 +58,9 @@ void run_steps(benchmark::State& state, const Beam& beam, RotationMethod method,
 template <class Real>
 void register_all(const char* real_name) {
   for (const Beam& beam : beams()) {
-    for (const RotationMethod method :
-         {RotationMethod::qr, RotationMethod::polar, RotationMethod::polar2, RotationMethod::none}) {
+    for (const RotationMethod method : kMethods) {
       for (const int threads : {1, 2}) {
-        const std::string name = "step/" + beam.name + "/" + to_string(method) + "/" + real_name +
-                                 "/threads:" + std::to_string(threads);
+        const std::string name = benchmark_name("step", beam, method, real_name, threads);
         benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
           run_steps<Real>(state, beam, method, threads);
         })->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -75,10 +73,7 @@ void register_all(const char* real_name) {
 }  // namespace fastcorot::bench
 
 int main(int argc, char** argv) {
-  fastcorot::bench::register_all<double>("double");
-  fastcorot::bench::register_all<float>("float");
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return fastcorot::bench::run_benchmarks(argc, argv, [](auto real, const char* name) {
+    fastcorot::bench::register_all<decltype(real)>(name);
+  });
 }
