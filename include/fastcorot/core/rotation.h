@@ -28,8 +28,9 @@ constexpr Real polar_tolerance() {
 // determinant of M first. Where SOFA's sequence over- or underflows into NaN (a nearly singular M,
 // smallest singular value below ~1e-200 of the largest, or entries beyond ~1e150; in float far
 // sooner), the iterate is rescaled by a power of two and the iteration goes on, so the result is
-// finite for finite M; ordinary inputs give SOFA's results bit for bit. Non-finite M is returned as
-// is. At most 100 iterations (Newton converges quadratically).
+// finite for finite M (the polar factor down to a ratio of singular values of ~1e-300 in double;
+// beyond, or with subnormal entries, finite but not necessarily a rotation); ordinary inputs give
+// SOFA's results bit for bit. Non-finite M is returned as is. At most 100 iterations (Newton converges quadratically).
 template <class Real>
 Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance = polar_tolerance<Real>());
 
