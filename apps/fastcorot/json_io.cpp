@@ -16,10 +16,15 @@ json read_json_file(const std::filesystem::path& path) {
   if (!in) throw make_error(path.string(), ": cannot open file");
   std::stringstream buffer;
   buffer << in.rdbuf();
+  return parse_json(buffer.str(), path.string());
+}
+
+json parse_json(std::string_view text, const std::string& source) {
   try {
-    return json::parse(buffer.str());
-  } catch (const json::parse_error& error) {
-    throw make_error(path.string(), ": malformed JSON (", error.what(), ")");
+    return json::parse(text);
+  } catch (const json::exception& error) {
+    // Not only parse_error: a number too large for a double is an out_of_range (found by fuzzing).
+    throw make_error(source, ": malformed JSON (", error.what(), ")");
   }
 }
 

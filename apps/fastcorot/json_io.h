@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fastcorot::cli {
@@ -17,6 +18,8 @@ using nlohmann::json;
 
 // Parses a whole file; throws fastcorot::Error naming the file (and the parser's byte position).
 json read_json_file(const std::filesystem::path& path);
+// Parses JSON text; throws fastcorot::Error naming `source` (and the parser's byte position).
+json parse_json(std::string_view text, const std::string& source);
 
 // Each reader throws fastcorot::Error with `where` (e.g. "case.json: \"x\"") in the message.
 std::vector<Vec3<double>> read_points(const json& value, const std::string& where);

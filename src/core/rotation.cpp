@@ -1,6 +1,7 @@
 #include "fastcorot/core/rotation.h"
 
 #include <cmath>
+#include <limits>
 
 namespace fastcorot {
 
@@ -39,6 +40,7 @@ Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
   // row is the determinant. Keeping this exact sequence of operations keeps us within a few ulps
   // of SOFA.
   Mat3<Real> mk = m.transpose();
+  if (!mk.allFinite()) return m;
   Real mk_one = one_norm(mk);
   Real mk_inf = inf_norm(mk);
   constexpr int max_iterations = 100;
@@ -48,7 +50,23 @@ Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
     cofactor.row(1) = mk.row(2).cross(mk.row(0));
     cofactor.row(2) = mk.row(0).cross(mk.row(1));
     const Real det = mk.row(0).dot(cofactor.row(0));
-    if (det == Real(0)) break;
+    // Scales the iterate by a power of two (exact: the polar factor of c M is that of M for any
+    // c > 0) to a largest entry in [0.5, 1); false when it is there already.
+    int exponent = 0;
+    std::frexp(mk.cwiseAbs().maxCoeff(), &exponent);
+    auto rescale = [&] {
+      if (exponent == 0) return false;
+      mk = mk.unaryExpr([exponent](Real v) { return std::ldexp(v, -exponent); });
+      mk_one = one_norm(mk);
+      mk_inf = inf_norm(mk);
+      return true;
+    };
+    if (det == Real(0)) {
+      // A singular iterate stops the iteration as in SOFA, unless the determinant only underflowed
+      // (entries so small that their cube does).
+      if (exponent < std::numeric_limits<Real>::min_exponent / 3 && rescale()) continue;
+      break;
+    }
     const Real cofactor_one = one_norm(cofactor);
     const Real cofactor_inf = inf_norm(cofactor);
     const Real gamma =
@@ -56,6 +74,16 @@ Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
     const Real g1 = gamma * Real(0.5);
     const Real g2 = Real(0.5) / (gamma * det);
     const Mat3<Real> next = g1 * mk + g2 * cofactor;
+    if (!(std::isfinite(g1) && g1 > 0 && std::isfinite(g2) && g2 != Real(0) && next.allFinite())) {
+      // Over- or underflow, where SOFA's code returns NaN: a nearly singular matrix (a collapsed
+      // element) makes the iterate grow like 1/sqrt(smallest singular value) and its determinant
+      // overflow, and huge entries overflow the norms. The polar factor of c M is that of M for
+      // any c > 0, so scale the iterate by a power of two (exact) to a largest entry near 1 and
+      // go on. Never taken while SOFA's update stays finite with both terms non-zero, so such
+      // results are unchanged.
+      if (rescale()) continue;
+      break;  // of order 1 and still not finite: keep the last finite iterate
+    }
     const Real change_one = one_norm<Real>(mk - next);
     mk = next;
     mk_one = one_norm(mk);

@@ -414,4 +414,6 @@ MeshData read_gmsh(const std::filesystem::path& path) {
   return GmshReader(data, path.string()).read();
 }
 
+MeshData read_gmsh_bytes(std::string_view bytes, const std::string& name) { return GmshReader(bytes, name).read(); }
+
 }  // namespace fastcorot

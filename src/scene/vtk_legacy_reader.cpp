@@ -367,4 +367,6 @@ MeshData read_vtk_legacy(const std::filesystem::path& path) {
   return LegacyReader(data, path.string()).read();
 }
 
+MeshData read_vtk_legacy_bytes(std::string_view bytes, const std::string& name) { return LegacyReader(bytes, name).read(); }
+
 }  // namespace fastcorot

@@ -541,4 +541,6 @@ MeshData read_vtu(const std::filesystem::path& path) {
   return VtuReader(data, path.string()).read();
 }
 
+MeshData read_vtu_bytes(std::string_view bytes, const std::string& name) { return VtuReader(bytes, name).read(); }
+
 }  // namespace fastcorot

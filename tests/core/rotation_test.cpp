@@ -94,6 +94,55 @@ TEST(PolarFactor, SingularAndNonFiniteInputReturnWithoutHanging) {
   EXPECT_FALSE(polar_factor(nan).allFinite());
 }
 
+// SOFA's iteration overflows into NaN for these (found while testing collapsed elements): a
+// smallest singular value far below the largest makes the scaled iterate grow like its inverse
+// square root until the determinant overflows; huge entries overflow the norms; tiny ones make
+// the determinant underflow to zero. Each is a rotated diagonal matrix, whose polar factor is the
+// rotation itself (a reflection for a negative entry).
+template <class Real>
+void expect_polar_factor_of_rotated_diagonal(const Vec3<Real>& diagonal, Real tolerance) {
+  const Mat3<Real> q = axis_rotation(0.6, Vec3<double>(1, -1, 2)).cast<Real>();
+  const Mat3<Real> factor = polar_factor<Real>(q * diagonal.asDiagonal());
+  ASSERT_TRUE(factor.allFinite()) << diagonal.transpose();
+  const Vec3<Real> signs = diagonal.unaryExpr([](Real v) { return v < 0 ? Real(-1) : Real(1); });
+  EXPECT_LT((factor - q * signs.asDiagonal()).cwiseAbs().maxCoeff(), tolerance) << diagonal.transpose();
+}
+
+TEST(PolarFactor, NearlySingularHugeAndTinyMatricesGiveTheRotationNotNaN) {
+  for (double small : {1e-250, 1e-300, -1e-300}) {
+    expect_polar_factor_of_rotated_diagonal<double>(Vec3<double>(1, 0.5, small), 1e-12);
+  }
+  expect_polar_factor_of_rotated_diagonal<double>(Vec3<double>(1e160, 3e159, 2e159), 1e-12);
+  expect_polar_factor_of_rotated_diagonal<double>(Vec3<double>(1e-200, 2e-200, 3e-200), 1e-12);
+  for (float small : {1e-25f, 1e-38f}) {
+    expect_polar_factor_of_rotated_diagonal<float>(Vec3<float>(1, 0.5f, small), 1e-5f);
+  }
+  expect_polar_factor_of_rotated_diagonal<float>(Vec3<float>(1e20f, 3e19f, 1), 1e-5f);
+  expect_polar_factor_of_rotated_diagonal<float>(Vec3<float>(1e-20f, 2e-20f, 3e-20f), 1e-5f);
+}
+
+// Beyond that (a subnormal singular value, whose few bits of precision the cofactors lose, or
+// singular values 1e300 apart) the result is finite but need not be the rotation: the contract is
+// no NaN, not accuracy (README, "Inverted and collapsed elements").
+TEST(PolarFactor, ExtremelyIllConditionedMatricesGiveAFiniteResult) {
+  const Mat3<double> q = axis_rotation(0.6, Vec3<double>(1, -1, 2));
+  for (const Vec3<double>& diagonal : {Vec3<double>(1, 0.5, 1e-310), Vec3<double>(1, 0.5, 5e-324),
+                                       Vec3<double>(1e300, 1, 1), Vec3<double>(1e300, 1e-300, 1)}) {
+    EXPECT_TRUE(polar_factor<double>(q * diagonal.asDiagonal()).allFinite()) << diagonal.transpose();
+  }
+  const Mat3<float> qf = q.cast<float>();
+  for (const Vec3<float>& diagonal : {Vec3<float>(1, 0.5f, 1e-44f), Vec3<float>(1e30f, 1, 1e-30f)}) {
+    EXPECT_TRUE(polar_factor<float>(qf * diagonal.asDiagonal()).allFinite()) << diagonal.transpose();
+  }
+}
+
+TEST(PolarFactor, ExactlySingularMatrixIsReturnedAsSofaDoes) {
+  // Rank 2 with a zero determinant computed exactly: the first iterate stops the iteration.
+  Mat3<double> flat;
+  flat << 1, 2, 0, 3, 4, 0, 5, 6, 0;
+  EXPECT_EQ(polar_factor(flat), flat);
+}
+
 TEST(PolarFrame, IsThePolarFactorOfTheRowMatrix) {
   const Vec3<double> a(1, 0.1, 0), b(0.2, 1, 0.1), c(0, -0.1, 1.1);
   Mat3<double> rows;

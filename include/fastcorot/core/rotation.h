@@ -23,9 +23,14 @@ constexpr Real polar_tolerance() {
 // (Vega's PolarDecomposition, which SOFA uses), stopped when the 1-norm of the update is at most
 // `tolerance` times the 1-norm of the new iterate. For det M < 0 the iteration converges to an
 // orthogonal matrix of determinant -1 (a reflection), as in SOFA; we keep that for compatibility.
-// A singular iterate stops the iteration (as in SOFA) and the current iterate is returned; callers
-// that need a rotation should check the determinant of M first. At most 100 iterations (Newton
-// converges quadratically; the cap only guards against non-finite input).
+// A singular iterate stops the iteration (as in SOFA) and the current iterate is returned (M itself
+// when M is singular: finite, not a rotation); callers that need a rotation should check the
+// determinant of M first. Where SOFA's sequence over- or underflows into NaN (a nearly singular M,
+// smallest singular value below ~1e-200 of the largest, or entries beyond ~1e150; in float far
+// sooner), the iterate is rescaled by a power of two and the iteration goes on, so the result is
+// finite for finite M (the polar factor down to a ratio of singular values of ~1e-300 in double;
+// beyond, or with subnormal entries, finite but not necessarily a rotation); ordinary inputs give
+// SOFA's results bit for bit. Non-finite M is returned as is. At most 100 iterations (Newton converges quadratically).
 template <class Real>
 Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance = polar_tolerance<Real>());
 

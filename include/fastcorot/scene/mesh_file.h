@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -40,6 +41,11 @@ MeshData read_vtk_legacy(const std::filesystem::path& path);
 // or not, UInt32 or UInt64 headers, either byte order; all pieces, concatenated. Keeps VTK cell
 // types 10 and 5.
 MeshData read_vtu(const std::filesystem::path& path);
+
+// The same readers on bytes already in memory; `name` stands for the file in messages.
+MeshData read_gmsh_bytes(std::string_view bytes, const std::string& name);
+MeshData read_vtk_legacy_bytes(std::string_view bytes, const std::string& name);
+MeshData read_vtu_bytes(std::string_view bytes, const std::string& name);
 
 // A named per-point (or per-cell) field of 3-vectors or scalars for VTU output.
 struct VtuField {
