@@ -65,11 +65,7 @@ void write_frame(const std::string& dir, const Simulation<double>& simulation) {
   for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
     const auto& object = simulation.objects[o];
     std::vector<VtuCellBlock> cells;
-    if (object.mesh) {
-      VtuCellBlock block;
-      for (const auto& t : object.mesh->tetrahedra()) block.connectivity.insert(block.connectivity.end(), t.begin(), t.end());
-      cells.push_back(std::move(block));
-    }
+    if (object.mesh) cells.push_back(tetrahedron_cells(object.mesh->tetrahedra()));
     const std::string file = "object" + std::to_string(o) + "_" + std::to_string(simulation.steps_done()) + ".vtu";
     write_vtu(std::filesystem::path(dir) / file, object.system.state.position, cells, {});
   }

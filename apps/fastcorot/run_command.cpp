@@ -121,11 +121,7 @@ class VtuSeries {
         force_field.values.insert(force_field.values.end(), {force[i].x(), force[i].y(), force[i].z()});
       }
       std::vector<VtuCellBlock> cells;
-      if (object.mesh) {
-        VtuCellBlock block;
-        for (const auto& t : object.mesh->tetrahedra()) block.connectivity.insert(block.connectivity.end(), t.begin(), t.end());
-        cells.push_back(std::move(block));
-      }
+      if (object.mesh) cells.push_back(tetrahedron_cells(object.mesh->tetrahedra()));
       const std::string file = names_[o] + "_" + std::to_string(simulation.steps_done()) + ".vtu";
       write_vtu(std::filesystem::path(dir_) / file, x, cells, {displacement, velocity, force_field});
       frames_[o].push_back({simulation.time(), file});

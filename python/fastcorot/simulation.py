@@ -91,7 +91,8 @@ class Simulation:
 
     @property
     def threads(self):
-        """Threads across independent objects (one per solver node); results do not depend on it."""
+        """Threads: independent objects (one per solver node) concurrently, the rest to each object's
+        kernels; results are bitwise the same for any count."""
         return self._core.threads
 
     @threads.setter

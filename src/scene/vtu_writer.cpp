@@ -144,6 +144,13 @@ void check_fields(const std::string& file, const std::vector<VtuField>& fields, 
 
 }  // namespace
 
+VtuCellBlock tetrahedron_cells(std::span<const Tetrahedron> tetrahedra) {
+  VtuCellBlock block;
+  block.connectivity.reserve(4 * tetrahedra.size());
+  for (const auto& t : tetrahedra) block.connectivity.insert(block.connectivity.end(), t.begin(), t.end());
+  return block;
+}
+
 void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>>& points,
                const std::vector<VtuCellBlock>& cells, const std::vector<VtuField>& point_fields,
                const std::vector<VtuField>& cell_fields) {

@@ -10,6 +10,7 @@
 #include "fastcorot/core/types.h"
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -59,6 +60,9 @@ struct VtuCellBlock {
   int nodes_per_cell = 4;
   std::vector<Index> connectivity;  // cells × nodes_per_cell
 };
+
+// One block of VTK tetrahedra (type 10) holding these tetrahedra.
+VtuCellBlock tetrahedron_cells(std::span<const Tetrahedron> tetrahedra);
 
 // Writes an unstructured grid (.vtu, base64 binary, uncompressed, UInt32 headers, little-endian)
 // with the given point and cell fields; cell fields cover the cells of all blocks in order. Points
