@@ -99,20 +99,24 @@ TetrahedronRest<Real> CorotationalForceField<Real>::element_rest(Index t) const 
 }
 
 template <class Real>
+void CorotationalForceField<Real>::set_rest_data(Index t) {
+  const TetrahedronRest<Real> rest = element_rest(t);
+  const auto i = static_cast<std::size_t>(t);
+  for (int j = 1; j < 4; ++j) {
+    const Vec3<Real> s = rest.rest_rotation * rest.shape[j];
+    for (int c = 0; c < 3; ++c) shape_[9 * i + 3 * static_cast<std::size_t>(j - 1) + static_cast<std::size_t>(c)] = s[c];
+  }
+  mu_[i] = rest.mu;
+  lambda_[i] = rest.lambda;
+}
+
+template <class Real>
 void CorotationalForceField<Real>::rebuild() {
   const auto n = static_cast<std::size_t>(mesh_->num_tetrahedra());
   shape_.assign(9 * n, Real(0));
   mu_.assign(n, Real(0));
   lambda_.assign(n, Real(0));
-  for (std::size_t t = 0; t < n; ++t) {
-    const TetrahedronRest<Real> rest = element_rest(static_cast<Index>(t));
-    for (int j = 1; j < 4; ++j) {
-      const Vec3<Real> s = rest.rest_rotation * rest.shape[j];
-      for (int c = 0; c < 3; ++c) shape_[9 * t + 3 * (j - 1) + c] = s[c];
-    }
-    mu_[t] = rest.mu;
-    lambda_[t] = rest.lambda;
-  }
+  for (std::size_t t = 0; t < n; ++t) set_rest_data(static_cast<Index>(t));
   tetrahedron_schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra());
 
   // Edges sorted by (lower, higher) vertex, then scheduled (which keeps that order within groups);
@@ -133,6 +137,8 @@ void CorotationalForceField<Real>::rebuild() {
   edge_slot_.assign(edges.size(), 0);
   edge_vertices_.clear();
   edge_vertices_.reserve(edges.size() + lanes * static_cast<std::size_t>(schedule.num_groups()));
+  free_slots_.assign(static_cast<std::size_t>(schedule.num_groups()), {});
+  num_free_slots_ = 0;
   for (Index g = 0; g < schedule.num_groups(); ++g) {
     const auto gi = static_cast<std::size_t>(g);
     edge_schedule_.group_begin[gi] = static_cast<Index>(edge_vertices_.size());
@@ -141,49 +147,67 @@ void CorotationalForceField<Real>::rebuild() {
       edge_slot_[static_cast<std::size_t>(e)] = static_cast<Index>(edge_vertices_.size());
       edge_vertices_.push_back(ordered(e));
     }
-    // Padding slots repeat the group's last edge with a zero block: they add nothing.
-    while (edge_vertices_.size() % lanes != 0) edge_vertices_.push_back(edge_vertices_.back());
+    // Padding slots repeat the group's last edge with a zero block: they add nothing, and edges
+    // added later may take them.
+    while (edge_vertices_.size() % lanes != 0) {
+      free_slots_[gi].push_back(static_cast<Index>(edge_vertices_.size()));
+      edge_vertices_.push_back(edge_vertices_.back());
+      ++num_free_slots_;
+    }
   }
   edge_schedule_.group_begin.back() = static_cast<Index>(edge_vertices_.size());
-  edge_schedule_.order.resize(edge_vertices_.size());
-  std::iota(edge_schedule_.order.begin(), edge_schedule_.order.end(), Index(0));
+  edge_schedule_.group_end.assign(edge_schedule_.group_begin.begin() + 1, edge_schedule_.group_begin.end());
+  edge_schedule_.order.clear();  // positions are slots
 
-  // For the refresh, in the tetrahedra's visiting order: where each of their six edge blocks starts
-  // and which of them are oriented against the local edge (bit e set when local vertex k of edge e
-  // has the higher mesh index).
   if (9 * edge_vertices_.size() > std::numeric_limits<std::uint32_t>::max()) {
     throw make_error("FastTetrahedralCorotationalForceField: ", edges.size(),
                      " edges: more than this force field can index (about 470 million)");
   }
   const auto& visiting = tetrahedron_schedule_.order;
+  position_.resize(visiting.size());
   refresh_offsets_.resize(6 * visiting.size());
   refresh_swaps_.resize(visiting.size());
   for (std::size_t position = 0; position < visiting.size(); ++position) {
-    const Index t = visiting[position];
-    const Tetrahedron& tet = mesh_->tetrahedron(t);
-    const auto tet_edges = mesh_->edges_of_tetrahedron(t);
-    std::uint8_t swaps = 0;
-    for (std::size_t e = 0; e < 6; ++e) {
-      const auto slot = static_cast<std::size_t>(edge_slot_[static_cast<std::size_t>(tet_edges[e])]);
-      refresh_offsets_[6 * position + e] = static_cast<std::uint32_t>(kernels::edge_block_offset<Real>(slot, 0));
-      if (tet[static_cast<std::size_t>(kTetrahedronEdges[e][0])] > tet[static_cast<std::size_t>(kTetrahedronEdges[e][1])]) {
-        swaps = static_cast<std::uint8_t>(swaps | (1u << e));
-      }
-    }
-    refresh_swaps_[position] = swaps;
+    position_[static_cast<std::size_t>(visiting[position])] = static_cast<Index>(position);
+    set_refresh_data(position);
   }
-
-  // The linearisation at rest (rotations equal to the identity up to rounding).
   blocks_.assign(9 * edge_vertices_.size(), Real(0));
-  std::vector<Vec3<Real>> scratch(rest_positions_.size(), Vec3<Real>::Zero());
-  accumulate_force<true>(rest_positions_, scratch);
-  last_positions_.clear();
+  stale_ = true;
+}
+
+// For the refresh, at a position of the tetrahedra's visiting order: where each of the six edge
+// blocks of its tetrahedron starts and which of them are oriented against the local edge (bit e
+// set when local vertex k of edge e has the higher mesh index).
+template <class Real>
+void CorotationalForceField<Real>::set_refresh_data(std::size_t position) {
+  const Index t = tetrahedron_schedule_.order[position];
+  const Tetrahedron& tet = mesh_->tetrahedron(t);
+  const auto tet_edges = mesh_->edges_of_tetrahedron(t);
+  std::uint8_t swaps = 0;
+  for (std::size_t e = 0; e < 6; ++e) {
+    const auto slot = static_cast<std::size_t>(edge_slot_[static_cast<std::size_t>(tet_edges[e])]);
+    refresh_offsets_[6 * position + e] = static_cast<std::uint32_t>(kernels::edge_block_offset<Real>(slot, 0));
+    if (tet[static_cast<std::size_t>(kTetrahedronEdges[e][0])] > tet[static_cast<std::size_t>(kTetrahedronEdges[e][1])]) {
+      swaps = static_cast<std::uint8_t>(swaps | (1u << e));
+    }
+  }
+  refresh_swaps_[position] = swaps;
+}
+
+template <class Real>
+void CorotationalForceField<Real>::ensure_linearisation() const {
+  if (!stale_) return;
+  const std::vector<Vec3<Real>>& x = last_positions_.empty() ? rest_positions_ : last_positions_;
+  std::vector<Vec3<Real>> scratch(x.size(), Vec3<Real>::Zero());
+  accumulate_force<true>(x, scratch);
+  stale_ = false;
 }
 
 template <class Real>
 void CorotationalForceField<Real>::set_method(RotationMethod method) {
   parameters_.method = method;
   rebuild();
+  last_positions_.clear();
 }
 
 template <class Real>
@@ -201,6 +225,7 @@ void CorotationalForceField<Real>::add_force(std::span<const Vec3<Real>> x, std:
   const PhaseTimer timer(times_ ? &times_->add_force : nullptr);
   accumulate_force<true>(x, f);
   last_positions_.assign(x.begin(), x.end());
+  stale_ = false;
 }
 
 template <class Real>
@@ -212,7 +237,7 @@ void CorotationalForceField<Real>::add_force_only(std::span<const Vec3<Real>> x,
 
 template <class Real>
 template <bool kRefresh>
-void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
+void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) const {
   if constexpr (kRefresh) {
     parallel_ranges(threads_, blocks_.size(), [&](std::size_t begin, std::size_t end) {
       std::fill(blocks_.begin() + static_cast<std::ptrdiff_t>(begin), blocks_.begin() + static_cast<std::ptrdiff_t>(end), Real(0));
@@ -296,6 +321,7 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
                                               Real k_factor, Real b_factor) const {
   check_size(dx, "dx");
   check_size(df, "df");
+  ensure_linearisation();
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
   const Real* in = dx.data()->data();
   Real* out = df.data()->data();
@@ -350,6 +376,7 @@ void CorotationalForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_
   // Row sums of each element's stiffness vanish, so a vertex's diagonal block is minus the sum of
   // its off-diagonal blocks: with block(lo, hi) = -k K^T and block(hi, lo) = -k K for the edge
   // block K oriented from lo to hi, diagonal(lo) += k K^T and diagonal(hi) += k K.
+  ensure_linearisation();
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
   std::vector<Mat3<Real>> diagonal(static_cast<std::size_t>(mesh_->num_points()), Mat3<Real>::Zero());
   std::vector<bool> used(diagonal.size(), false);
@@ -412,6 +439,7 @@ std::vector<Real> CorotationalForceField<Real>::rest_volumes() const {
 
 template <class Real>
 std::vector<Mat3<Real>> CorotationalForceField<Real>::edge_stiffness() const {
+  ensure_linearisation();
   const auto edges = mesh_->edges();
   std::vector<Mat3<Real>> result(edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e) {
@@ -424,45 +452,16 @@ std::vector<Mat3<Real>> CorotationalForceField<Real>::edge_stiffness() const {
 template <class Real>
 std::size_t CorotationalForceField<Real>::memory_bytes() const {
   const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
-  const auto schedule_bytes = [&](const ScatterSchedule& s) { return bytes(s.order) + bytes(s.group_begin); };
+  const auto schedule_bytes = [&](const ScatterSchedule& s) {
+    return bytes(s.order) + bytes(s.group_begin) + bytes(s.group_end);
+  };
+  std::size_t free_bytes = bytes(free_slots_);
+  for (const auto& slots : free_slots_) free_bytes += bytes(slots);
   return bytes(rest_positions_) + bytes(shape_) + bytes(mu_) + bytes(lambda_) + bytes(blocks_) +
          bytes(edge_slot_) + bytes(edge_vertices_) + bytes(refresh_offsets_) + bytes(refresh_swaps_) +
+         bytes(position_) + free_bytes +
          schedule_bytes(tetrahedron_schedule_) + schedule_bytes(edge_schedule_) + bytes(last_positions_) +
          sizeof(*this);
-}
-
-template <class Real>
-void CorotationalForceField<Real>::add_tetrahedra(std::span<const Tetrahedron> tetrahedra) {
-  TetMesh grown = *mesh_;
-  grown.add_tetrahedra(tetrahedra);
-  // Validate the grown mesh before touching any state, so a failure leaves the field as it was.
-  check_rest_volumes<Real>(grown, rest_positions_);
-  *mesh_ = std::move(grown);
-  // New tetrahedra take entry 0 of per-tetrahedron parameter lists.
-  for (std::size_t i = 0; i < tetrahedra.size(); ++i) {
-    if (parameters_.young_modulus.size() > 1) parameters_.young_modulus.push_back(parameters_.young_modulus.front());
-    if (parameters_.poisson_ratio.size() > 1) parameters_.poisson_ratio.push_back(parameters_.poisson_ratio.front());
-  }
-  rebuild();
-}
-
-template <class Real>
-void CorotationalForceField<Real>::remove_tetrahedra(std::span<const Index> indices) {
-  const std::size_t before = static_cast<std::size_t>(mesh_->num_tetrahedra());
-  mesh_->remove_tetrahedra(indices);  // validates the indices
-  std::vector<bool> removed(before, false);
-  for (Index t : indices) removed[static_cast<std::size_t>(t)] = true;
-  auto keep = [&](std::vector<Real>& values) {
-    std::size_t out = 0;
-    for (std::size_t t = 0; t < removed.size(); ++t) {
-      if (!removed[t]) values[out++] = values[t];
-    }
-    values.resize(out);
-  };
-  // A single value applies to every tetrahedron and stays; per-tetrahedron lists follow.
-  if (parameters_.young_modulus.size() > 1) keep(parameters_.young_modulus);
-  if (parameters_.poisson_ratio.size() > 1) keep(parameters_.poisson_ratio);
-  rebuild();
 }
 
 template <class Real>

@@ -308,13 +308,17 @@ class Builder {
         const double factor = from_total ? data_.real(c, "totalMass", 1.0) / sum : density;
         if (from_total && !(data_.real(c, "totalMass", 1.0) > 0)) throw make_error("totalMass must be > 0");
         for (double& m : masses) m *= factor;
-        return Mass<double>::lumped(std::move(masses));
+        Mass<double> mass = Mass<double>::lumped(std::move(masses));
+        mass.follow_tetrahedra(mesh, factor);
+        return mass;
       }
       Eigen::SparseMatrix<double> matrix = tetrahedral_mass_matrix<double>(*mesh, rest, 1.0);
       const double total = matrix.sum();
       const double factor = from_total ? data_.real(c, "totalMass", 1.0) / total : density;
       if (from_total && !(data_.real(c, "totalMass", 1.0) > 0)) throw make_error("totalMass must be > 0");
-      return Mass<double>::consistent(matrix * factor);
+      Mass<double> mass = Mass<double>::consistent(matrix * factor);
+      mass.follow_tetrahedra(mesh, factor);
+      return mass;
     } catch (const Error& error) {
       throw make_error(c.where(), ": ", error.what());
     }

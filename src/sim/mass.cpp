@@ -89,6 +89,48 @@ Real Mass<Real>::kinetic_energy(std::span<const Vec3<Real>> v) const {
 }
 
 template <class Real>
+void Mass<Real>::follow_tetrahedra(std::shared_ptr<const TetMesh> mesh, Real density) {
+  topology_ = std::move(mesh);
+  density_ = density;
+}
+
+template <class Real>
+void Mass<Real>::add_tetrahedron(const Tetrahedron& tet, std::span<const Vec3<Real>> rest, Real sign) {
+  const Real mass = sign * density_ * std::abs(signed_volume(tetrahedron_points(tet, rest)));
+  if (is_lumped()) {
+    for (Index v : tet) vertex_masses_[static_cast<std::size_t>(v)] += mass / 4;
+    return;
+  }
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      const Real entry = mass / (i == j ? 10 : 20);
+      matrix_.coeffRef(tet[i], tet[j]) += entry;
+      vertex_masses_[static_cast<std::size_t>(tet[i])] += entry;
+    }
+  }
+}
+
+template <class Real>
+void Mass<Real>::apply(const TopologyChange& change, std::span<const Vec3<Real>> rest) {
+  if (!topology_) return;
+  for (const Tetrahedron& tet : change.removed_tetrahedron_vertices) add_tetrahedron(tet, rest, Real(-1));
+  const Index first = change.first_added_tetrahedron;
+  for (Index t = first; t < first + change.num_added_tetrahedra; ++t) {
+    add_tetrahedron(topology_->tetrahedron(t), rest, Real(1));
+  }
+  // Round-off must not leave a point without tetrahedra with a trace of mass.
+  for (Index v : change.isolated_points) {
+    vertex_masses_[static_cast<std::size_t>(v)] = 0;
+    if (is_lumped()) continue;
+    for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(matrix_, v); it; ++it) {
+      matrix_.coeffRef(it.col(), v) = 0;
+      it.valueRef() = 0;
+    }
+  }
+  if (!is_lumped()) matrix_.makeCompressed();
+}
+
+template <class Real>
 std::vector<Real> tetrahedral_lumped_masses(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
                                             Real density) {
   std::vector<Real> masses(static_cast<std::size_t>(mesh.num_points()), Real(0));

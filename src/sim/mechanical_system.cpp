@@ -83,7 +83,9 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
   if (mass.size() != 0) mass.add_to_matrix(sink, factors.m);
   for (const auto& field : force_fields) field->add_stiffness(sink, factors.k, 0, factors.b);
   std::vector<bool> is_fixed(static_cast<std::size_t>(size()), false);
-  for (Index i : fixed) is_fixed[static_cast<std::size_t>(i)] = true;
+  std::vector<Index> held = fixed;
+  held.insert(held.end(), isolated.begin(), isolated.end());
+  for (Index i : held) is_fixed[static_cast<std::size_t>(i)] = true;
   auto& triplets = sink.triplets;
   triplets.erase(std::remove_if(triplets.begin(), triplets.end(),
                                 [&](const Eigen::Triplet<Real>& t) {
@@ -91,7 +93,7 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
                                          is_fixed[static_cast<std::size_t>(t.col() / 3)];
                                 }),
                  triplets.end());
-  for (Index i : fixed) {
+  for (Index i : held) {
     for (Index c = 0; c < 3; ++c) triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
   }
   return sink.to_sparse(3 * size());
@@ -100,6 +102,52 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
 template <class Real>
 void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
   for (Index i : fixed) v[static_cast<std::size_t>(i)].setZero();
+  for (Index i : isolated) v[static_cast<std::size_t>(i)].setZero();
+}
+
+template <class Real>
+TopologyChange MechanicalSystem<Real>::remove_tetrahedra(TetMesh& mesh, std::span<const Index> indices) {
+  const TopologyChange change = mesh.remove_tetrahedra(indices);
+  follow(mesh, change);
+  return change;
+}
+
+template <class Real>
+TopologyChange MechanicalSystem<Real>::add_tetrahedra(TetMesh& mesh, std::span<const Tetrahedron> tetrahedra) {
+  for (const auto& field : force_fields) {
+    if (&field->mesh() == &mesh) field->check_new_tetrahedra(tetrahedra);
+  }
+  check_rest_volumes<Real>(tetrahedra, state.rest_position, mesh.num_tetrahedra());
+  const TopologyChange change = mesh.add_tetrahedra(tetrahedra);
+  follow(mesh, change);
+  return change;
+}
+
+template <class Real>
+void MechanicalSystem<Real>::follow(const TetMesh& mesh, const TopologyChange& change) {
+  for (auto& field : force_fields) {
+    if (&field->mesh() == &mesh) field->apply(change);
+  }
+  if (mass.follows(mesh)) mass.apply(change, state.rest_position);
+  // A point without tetrahedra in any force field and without mass is held still; one that gets a
+  // tetrahedron back moves again.
+  const auto connected = [&](Index v) {
+    for (const auto& field : force_fields) {
+      if (!field->mesh().tetrahedra_around_vertex(v).empty()) return true;
+    }
+    return false;
+  };
+  for (Index v : change.isolated_points) {
+    const bool massless = mass.size() == 0 || mass.vertex_masses()[static_cast<std::size_t>(v)] == 0;
+    if (!massless || connected(v)) continue;
+    const auto at = std::lower_bound(isolated.begin(), isolated.end(), v);
+    if (at == isolated.end() || *at != v) isolated.insert(at, v);
+    state.velocity[static_cast<std::size_t>(v)].setZero();
+  }
+  for (Index v : change.reconnected_points) {
+    const auto at = std::lower_bound(isolated.begin(), isolated.end(), v);
+    if (at != isolated.end() && *at == v) isolated.erase(at);
+  }
 }
 
 template <class Real>

@@ -20,6 +20,7 @@
 #include "fastcorot/fem/tetrahedron_element.h"
 #include "fastcorot/topology/scatter_schedule.h"
 #include "fastcorot/topology/tet_mesh.h"
+#include "fastcorot/topology/topology_change.h"
 
 #include <Eigen/SparseCore>
 
@@ -80,11 +81,19 @@ class CorotationalForceField {
   // the rest state.
   void set_method(RotationMethod method);
 
-  // Adds tetrahedra over existing points (their rest data computed from the rest positions; their
-  // E and nu are entry 0 of the parameter lists) and removes tetrahedra by index (per-tetrahedron
-  // data follows). The shared mesh is modified; edge blocks are rebuilt.
-  void add_tetrahedra(std::span<const Tetrahedron> tetrahedra);
-  void remove_tetrahedra(std::span<const Index> indices);
+  // Topological changes (cutting), at a cost proportional to the change (docs/cutting.md): new
+  // tetrahedra get their rest data from the rest positions and entry 0 of per-tetrahedron E and nu
+  // lists, removed ones take their data with them (swap-with-last, as the mesh), and the edge
+  // blocks are rebuilt at the last linearisation positions when next needed.
+  //
+  // Throws fastcorot::Error (nothing changed) when a tetrahedron to add has a vertex out of range or
+  // a (near) zero rest volume.
+  void check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const;
+  // Follows a change just made to the shared mesh (every change, in order, before any other call).
+  void apply(const TopologyChange& change);
+  // Changes the shared mesh and follows (for a mesh no one else holds data on).
+  TopologyChange add_tetrahedra(std::span<const Tetrahedron> tetrahedra);
+  TopologyChange remove_tetrahedra(std::span<const Index> indices);
 
   // Recomputes the edges of each tetrahedron and their orientations from the mesh, then the edge
   // blocks (SOFA's updateTopologyInformation).
@@ -111,7 +120,15 @@ class CorotationalForceField {
  private:
   void rebuild();
   template <bool kRefresh>
-  void accumulate_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+  void accumulate_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) const;
+  // Recomputes the edge blocks at the last add_force's positions (rest before any) after a
+  // topological change or a rebuild; called by everything that reads them.
+  void ensure_linearisation() const;
+  void set_rest_data(Index t);
+  void place_tetrahedron(Index t);
+  Index place_edge(const Edge& edge);
+  void set_refresh_data(std::size_t position);
+  bool schedules_degraded() const;
   void check_size(std::span<const Vec3<Real>> v, const char* what) const;
   TetrahedronRest<Real> element_rest(Index t) const;
 
@@ -126,15 +143,21 @@ class CorotationalForceField {
   std::vector<Real> shape_;
   std::vector<Real> mu_, lambda_;
   ScatterSchedule tetrahedron_schedule_;
+  std::vector<Index> position_;  // position of each tetrahedron in tetrahedron_schedule_.order
   // Edges are stored in the order of their schedule (grouped like the tetrahedra, sorted by lower
   // then higher vertex within a group, each group padded with empty slots to whole SIMD groups), so
   // add_dforce streams through memory: edge_slot_ gives the slot of each mesh edge,
   // edge_vertices_ the (lower, higher) vertices of each slot, and blocks_ the K_E of each slot
   // oriented from the lower to the higher vertex (column-major 3×3, grouped as force_kernels.h says).
+  // Slots of removed edges stay where they are (zero blocks) and go to their group's free list
+  // with the padding slots, for edges added later.
   ScatterSchedule edge_schedule_;  // in slots
   std::vector<Index> edge_slot_;
   std::vector<Edge> edge_vertices_;
-  std::vector<Real> blocks_;
+  std::vector<std::vector<Index>> free_slots_;  // per edge group
+  Index num_free_slots_ = 0;
+  mutable std::vector<Real> blocks_;
+  mutable bool stale_ = true;  // blocks_ do not hold the linearisation yet
   // Per tetrahedron in visiting order: the offsets in blocks_ of its six edge blocks, and a bit per
   // edge oriented against its local edge.
   std::vector<std::uint32_t> refresh_offsets_;

@@ -6,9 +6,11 @@
 #include "fastcorot/core/types.h"
 #include "fastcorot/fem/matrix_sink.h"
 #include "fastcorot/topology/tet_mesh.h"
+#include "fastcorot/topology/topology_change.h"
 
 #include <Eigen/SparseCore>
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -40,7 +42,20 @@ class Mass {
   // 1/2 v^T M v
   Real kinetic_energy(std::span<const Vec3<Real>> v) const;
 
+  // Masses computed from the tetrahedra of `mesh` (DiagonalMass, MeshMatrixMass) follow its
+  // topological changes as SOFA's do: each removed tetrahedron takes back density |V| / 4 from each
+  // vertex (lumped) or its element matrix (consistent), each added one gives them, at the rest
+  // positions. A point left without tetrahedra gets exactly zero mass.
+  void follow_tetrahedra(std::shared_ptr<const TetMesh> mesh, Real density);
+  bool follows(const TetMesh& mesh) const { return topology_.get() == &mesh; }
+  // Follows a change just made to the followed mesh (does nothing for masses that do not follow).
+  void apply(const TopologyChange& change, std::span<const Vec3<Real>> rest);
+
  private:
+  void add_tetrahedron(const Tetrahedron& tet, std::span<const Vec3<Real>> rest, Real sign);
+
+  std::shared_ptr<const TetMesh> topology_;
+  Real density_ = 0;
   std::vector<Real> vertex_masses_;
   Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix_;  // empty when lumped
 };

@@ -11,6 +11,8 @@
 #include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/mass.h"
 #include "fastcorot/sim/mechanical_state.h"
+#include "fastcorot/topology/tet_mesh.h"
+#include "fastcorot/topology/topology_change.h"
 
 #include <Eigen/SparseCore>
 
@@ -47,6 +49,10 @@ class MechanicalSystem {
   std::vector<Index> zero_velocity;
   std::vector<ConstantForce<Real>> constant_forces;
   Vec3<Real> gravity = Vec3<Real>::Zero();
+  // Points that lost their last tetrahedron and have no mass (cutting): nothing determines their
+  // motion, so they are held where they are, like fixed points (sorted). SOFA deletes them; here
+  // points stay so that indices into the state never change.
+  std::vector<Index> isolated;
 
   Index size() const { return state.size(); }
 
@@ -68,8 +74,15 @@ class MechanicalSystem {
   // diagonal set to 1, as SOFA's projective constraints do to an assembled matrix.
   Eigen::SparseMatrix<Real> assemble(const MatrixFactors<Real>& factors) const;
 
-  // Zeroes the entries of fixed points.
+  // Zeroes the entries of fixed and isolated points.
   void project(std::span<Vec3<Real>> v) const;
+
+  // Topological changes of `mesh` (the mesh of one or more of the force fields, or of the mass):
+  // the mesh changes, and the force fields and the mass on it follow, at a cost proportional to
+  // the change. Throws fastcorot::Error (nothing changed) for a bad index or, when adding, a
+  // (near) zero rest volume.
+  TopologyChange remove_tetrahedra(TetMesh& mesh, std::span<const Index> indices);
+  TopologyChange add_tetrahedra(TetMesh& mesh, std::span<const Tetrahedron> tetrahedra);
 
   // Elastic energy of the force fields plus the potential of gravity and constant forces, at x.
   Real potential_energy(std::span<const Vec3<Real>> x) const;
@@ -86,6 +99,8 @@ class MechanicalSystem {
   double* timer_slot(double PhaseTimes::*phase) const { return times_ ? &(times_->*phase) : nullptr; }
 
  private:
+  void follow(const TetMesh& mesh, const TopologyChange& change);
+
   int threads_ = 1;
   PhaseTimes* times_ = nullptr;
 };

@@ -10,11 +10,18 @@
 // Two items in different groups of one phase never share a point, so the groups of a phase may run
 // concurrently; phases run one after the other, and each group runs its items in the given order.
 // Every array entry therefore receives its contributions in one fixed order.
+//
+// Groups may keep room for more items (topological changes): group g owns the positions
+// [group_begin[g], group_begin[g + 1]) and visits [group_begin[g], group_end[g]). An item added
+// later goes to the group its points say (group_for) when that group has room, else to the single
+// group of phase 3, which is the last one and so can always grow at the end.
 #pragma once
 
 #include "fastcorot/core/types.h"
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -24,11 +31,18 @@ struct ScatterSchedule {
   static constexpr int kPhases = 4;
 
   Index parts = 1;
+  Index num_points = 0;
   std::vector<Index> order;        // item indices in visiting order
-  std::vector<Index> group_begin;  // group g visits order[group_begin[g], group_begin[g + 1])
+  std::vector<Index> group_begin;  // group g owns order[group_begin[g], group_begin[g + 1])
+  std::vector<Index> group_end;    // and visits order[group_begin[g], group_end[g])
   std::array<Index, kPhases + 1> phase_begin{};  // phase p runs groups [phase_begin[p], phase_begin[p + 1])
 
   Index num_groups() const { return static_cast<Index>(group_begin.size()) - 1; }
+  // The group that owns position `position` of `order`.
+  Index group_at(Index position) const;
+  // The group an item over these points belongs to.
+  template <std::size_t K>
+  Index group_for(const std::array<Index, K>& item) const;
 };
 
 // Schedules `items` (point indices in [0, num_points)) keeping their relative order within each
@@ -48,6 +62,20 @@ void run_schedule(const ScatterSchedule& schedule, int threads, const Body& body
 
 namespace fastcorot {
 
+template <std::size_t K>
+Index ScatterSchedule::group_for(const std::array<Index, K>& item) const {
+  const auto [low, high] = std::minmax_element(item.begin(), item.end());
+  const auto part_of = [&](Index v) {
+    return static_cast<Index>(static_cast<std::int64_t>(v) * parts / std::max<Index>(num_points, 1));
+  };
+  const Index p = part_of(*low), q = part_of(*high);
+  // Groups are numbered phase-major: parts groups in phase 0, then the even and odd pairs of
+  // adjacent parts, then phase 3's single group.
+  if (p == q) return p;
+  if (q == p + 1) return (p % 2 == 0) ? parts + p / 2 : parts + parts / 2 + p / 2;
+  return num_groups() - 1;
+}
+
 template <class Body>
 void run_schedule(const ScatterSchedule& schedule, int threads, const Body& body) {
   for (int phase = 0; phase < ScatterSchedule::kPhases; ++phase) {
@@ -55,7 +83,7 @@ void run_schedule(const ScatterSchedule& schedule, int threads, const Body& body
     const Index last = schedule.phase_begin[static_cast<std::size_t>(phase) + 1];
     run_tasks(threads, static_cast<int>(last - first), [&](int task) {
       const auto g = static_cast<std::size_t>(first + task);
-      body(schedule.group_begin[g], schedule.group_begin[g + 1]);
+      body(schedule.group_begin[g], schedule.group_end[g]);
     });
   }
 }

@@ -9,9 +9,15 @@
 // any order and orientation (as a scene file may give it); everything computed on a TetMesh must
 // give the same results either way, which is why each tetrahedron records how its local edges run
 // relative to the mesh edges.
+//
+// Topological changes (cutting) are incremental: removal follows SOFA's swap-with-last scheme and
+// addition appends (topology_change.h); each costs time proportional to the elements changed and
+// their neighbourhoods, never to the mesh, and returns a TopologyChange for whoever holds data per
+// tetrahedron or per edge.
 #pragma once
 
 #include "fastcorot/core/types.h"
+#include "fastcorot/topology/topology_change.h"
 
 #include <array>
 #include <cstdint>
@@ -71,6 +77,12 @@ class TetMesh {
 
   // Tetrahedra that contain vertex v, in increasing order.
   std::span<const Index> tetrahedra_around_vertex(Index v) const;
+  // Edges that end at vertex v, in increasing order.
+  std::span<const Index> edges_around_vertex(Index v) const;
+  // Number of tetrahedra that have edge e.
+  Index tetrahedra_around_edge_count(Index e) const { return edge_use_[static_cast<std::size_t>(e)]; }
+  // Index of the edge joining a and b (either orientation), or -1.
+  Index edge_between(Index a, Index b) const;
 
   // Faces that belong to exactly one tetrahedron, in order of (tetrahedron, local face).
   std::vector<BoundaryTriangle> boundary_triangles() const;
@@ -78,29 +90,32 @@ class TetMesh {
   // Appends points (they start unused) and returns the index of the first new one.
   Index add_points(Index count);
 
-  // Appends tetrahedra; edges they introduce are appended in SOFA's creation order.
-  void add_tetrahedra(std::span<const Tetrahedron> tetrahedra);
+  // Appends tetrahedra over existing points; edges they introduce are appended in SOFA's creation
+  // order. Throws fastcorot::Error naming the tetrahedron for a bad vertex index (mesh unchanged).
+  TopologyChange add_tetrahedra(std::span<const Tetrahedron> tetrahedra);
 
-  // Removes the listed tetrahedra (any order, no repeats); the others keep their relative order.
-  // Edges no longer used by any tetrahedron are removed and the remaining ones keep their order.
-  // Points are kept (they belong to the state). Recomputes the derived data.
-  void remove_tetrahedra(std::span<const Index> indices);
+  // Removes the listed tetrahedra (any order; an index out of range or listed twice is an error and
+  // nothing changes) by swap-with-last, then the edges no tetrahedron uses any more (edges that no
+  // tetrahedron used before stay, as SOFA keeps them). Points stay: they belong to the state.
+  TopologyChange remove_tetrahedra(std::span<const Index> indices);
 
   // Recomputes the edges of each tetrahedron, their orientations and the adjacency from the
   // tetrahedra and the current edge list (SOFA's updateTopologyInformation).
   void update_topology_information();
 
  private:
-  void check_tetrahedra(std::size_t first) const;
-  void append_missing_edges(std::size_t first_tetrahedron);
+  void check_tetrahedra(std::span<const Tetrahedron> tetrahedra, std::size_t first_index) const;
+  Index append_edge(Index a, Index b);
+  void link_tetrahedron(Index t);
 
   Index num_points_ = 0;
   std::vector<Tetrahedron> tetrahedra_;
   std::vector<Edge> edges_;
   std::vector<std::array<Index, 6>> edges_of_tetrahedron_;
   std::vector<std::uint8_t> edge_orientation_;  // bit e set: local edge e follows its mesh edge
-  std::vector<Index> vertex_tetrahedra_offsets_;  // CSR: num_points + 1 offsets
-  std::vector<Index> vertex_tetrahedra_;
+  std::vector<Index> edge_use_;                    // tetrahedra per edge
+  std::vector<std::vector<Index>> vertex_tetrahedra_;  // sorted, per point
+  std::vector<std::vector<Index>> vertex_edges_;       // sorted, per point
 };
 
 // Signed volume as SOFA defines it: -dot(p1 - p0, (p2 - p0) × (p3 - p0)) / 6 (note the sign).
@@ -119,5 +134,10 @@ std::array<Vec3<Real>, 4> tetrahedron_points(const Tetrahedron& t, std::span<con
 // The message names the tetrahedron, its vertices and its volume.
 template <class Real>
 void check_rest_volumes(const TetMesh& mesh, std::span<const Vec3<Real>> points);
+// The same for some tetrahedra (numbered from first_index in messages), also checking that their
+// vertices index `points`.
+template <class Real>
+void check_rest_volumes(std::span<const Tetrahedron> tetrahedra, std::span<const Vec3<Real>> points,
+                        Index first_index);
 
 }  // namespace fastcorot

@@ -1,0 +1,174 @@
+// CorotationalForceField: following topological changes (the rest of the class is in
+// corotational_force_field.cpp). Each change costs time proportional to the tetrahedra and edges
+// it touches: removed tetrahedra leave their schedule group (its last member takes the place),
+// removed edges leave a free slot in theirs, and new items go to the group their points select
+// when it has room, else to the serial group of phase 3. When too much has gone to phase 3 or too
+// many slots are free, everything is rebuilt once (amortised over the changes that led there).
+#include "fastcorot/fem/corotational_force_field.h"
+
+#include "fastcorot/core/error.h"
+#include "force_kernels.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace fastcorot {
+
+template <class Real>
+void CorotationalForceField<Real>::check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const {
+  check_rest_volumes<Real>(tetrahedra, rest_positions_, mesh_->num_tetrahedra());
+}
+
+template <class Real>
+TopologyChange CorotationalForceField<Real>::add_tetrahedra(std::span<const Tetrahedron> tetrahedra) {
+  check_new_tetrahedra(tetrahedra);
+  TopologyChange change = mesh_->add_tetrahedra(tetrahedra);
+  apply(change);
+  return change;
+}
+
+template <class Real>
+TopologyChange CorotationalForceField<Real>::remove_tetrahedra(std::span<const Index> indices) {
+  TopologyChange change = mesh_->remove_tetrahedra(indices);
+  apply(change);
+  return change;
+}
+
+template <class Real>
+void CorotationalForceField<Real>::apply(const TopologyChange& change) {
+  ScatterSchedule& tets = tetrahedron_schedule_;
+  // Removed tetrahedra: each leaves its group (the group's last member moves into its position),
+  // then the mesh's last tetrahedron takes its index.
+  for (std::size_t k = 0; k < change.tetrahedron_moves.size(); ++k) {
+    const Index hole = change.removed_tetrahedra[k];
+    const IndexMove move = change.tetrahedron_moves[k];
+    const auto p = static_cast<std::size_t>(position_[static_cast<std::size_t>(hole)]);
+    const auto g = static_cast<std::size_t>(tets.group_at(static_cast<Index>(p)));
+    const auto last = static_cast<std::size_t>(--tets.group_end[g]);
+    if (p != last) {
+      tets.order[p] = tets.order[last];
+      position_[static_cast<std::size_t>(tets.order[p])] = static_cast<Index>(p);
+      std::copy_n(refresh_offsets_.begin() + static_cast<std::ptrdiff_t>(6 * last), 6,
+                  refresh_offsets_.begin() + static_cast<std::ptrdiff_t>(6 * p));
+      refresh_swaps_[p] = refresh_swaps_[last];
+    }
+    const auto from = static_cast<std::size_t>(move.from), to = static_cast<std::size_t>(move.to);
+    if (from != to) {
+      position_[to] = position_[from];
+      tets.order[static_cast<std::size_t>(position_[to])] = move.to;
+      std::copy_n(shape_.begin() + static_cast<std::ptrdiff_t>(9 * from), 9, shape_.begin() + static_cast<std::ptrdiff_t>(9 * to));
+      mu_[to] = mu_[from];
+      lambda_[to] = lambda_[from];
+    }
+    position_.pop_back();
+    mu_.pop_back();
+    lambda_.pop_back();
+    shape_.resize(shape_.size() - 9);
+  }
+  // Per-tetrahedron parameter lists follow; a single value applies to every tetrahedron.
+  for (auto* values : {&parameters_.young_modulus, &parameters_.poisson_ratio}) {
+    if (values->size() > 1) apply_moves(*values, std::span<const IndexMove>(change.tetrahedron_moves));
+  }
+
+  // Removed edges free their slots (no tetrahedron adds to them any more: zero blocks).
+  for (std::size_t k = 0; k < change.edge_moves.size(); ++k) {
+    const Index slot = edge_slot_[static_cast<std::size_t>(change.removed_edges[k])];
+    free_slots_[static_cast<std::size_t>(edge_schedule_.group_at(slot))].push_back(slot);
+    ++num_free_slots_;
+    const IndexMove move = change.edge_moves[k];
+    edge_slot_[static_cast<std::size_t>(move.to)] = edge_slot_[static_cast<std::size_t>(move.from)];
+    edge_slot_.pop_back();
+  }
+
+  // Added edges, then added tetrahedra (new tetrahedra take entry 0 of per-tetrahedron lists).
+  for (Index e = change.first_added_edge; e < change.first_added_edge + change.num_added_edges; ++e) {
+    const Edge& edge = mesh_->edges()[static_cast<std::size_t>(e)];
+    edge_slot_.push_back(place_edge({std::min(edge[0], edge[1]), std::max(edge[0], edge[1])}));
+  }
+  const Index first = change.first_added_tetrahedron;
+  for (Index t = first; t < first + change.num_added_tetrahedra; ++t) {
+    for (auto* values : {&parameters_.young_modulus, &parameters_.poisson_ratio}) {
+      if (values->size() > 1) values->push_back(values->front());
+    }
+    shape_.resize(shape_.size() + 9);
+    mu_.push_back(0);
+    lambda_.push_back(0);
+    set_rest_data(t);
+    place_tetrahedron(t);
+  }
+
+  if (schedules_degraded()) {
+    rebuild();
+  } else {
+    stale_ = true;
+  }
+}
+
+template <class Real>
+Index CorotationalForceField<Real>::place_edge(const Edge& edge) {
+  constexpr std::size_t lanes = kernels::kEdgeLanes<Real>;
+  auto& own = free_slots_[static_cast<std::size_t>(edge_schedule_.group_for(edge))];
+  auto& serial = free_slots_.back();
+  if (own.empty() && serial.empty()) {
+    // A new SIMD group of slots at the end, owned by the last (serial) group.
+    const auto begin = edge_vertices_.size();
+    edge_vertices_.resize(begin + lanes, edge);
+    blocks_.resize(9 * edge_vertices_.size(), Real(0));
+    for (std::size_t i = lanes; i-- > 0;) serial.push_back(static_cast<Index>(begin + i));
+    num_free_slots_ += static_cast<Index>(lanes);
+    edge_schedule_.group_begin.back() = static_cast<Index>(edge_vertices_.size());
+    edge_schedule_.group_end.back() = static_cast<Index>(edge_vertices_.size());
+    if (9 * edge_vertices_.size() > std::numeric_limits<std::uint32_t>::max()) {
+      throw make_error("FastTetrahedralCorotationalForceField: more edges than this force field can index");
+    }
+  }
+  auto& from = own.empty() ? serial : own;
+  const Index slot = from.back();
+  from.pop_back();
+  --num_free_slots_;
+  edge_vertices_[static_cast<std::size_t>(slot)] = edge;
+  return slot;
+}
+
+template <class Real>
+void CorotationalForceField<Real>::place_tetrahedron(Index t) {
+  ScatterSchedule& tets = tetrahedron_schedule_;
+  auto g = static_cast<std::size_t>(tets.group_for(mesh_->tetrahedron(t)));
+  if (tets.group_end[g] == tets.group_begin[g + 1]) g = static_cast<std::size_t>(tets.num_groups() - 1);
+  if (tets.group_end[g] == tets.group_begin[g + 1]) {
+    // The serial group is the last one: it grows at the end.
+    tets.order.push_back(-1);
+    refresh_offsets_.resize(refresh_offsets_.size() + 6);
+    refresh_swaps_.push_back(0);
+    ++tets.group_begin[g + 1];
+  }
+  const auto position = static_cast<std::size_t>(tets.group_end[g]++);
+  tets.order[position] = t;
+  position_.push_back(static_cast<Index>(position));
+  set_refresh_data(position);
+}
+
+// True when the serial phase or the free slots have grown enough to cost more than a rebuild.
+template <class Real>
+bool CorotationalForceField<Real>::schedules_degraded() const {
+  const ScatterSchedule& tets = tetrahedron_schedule_;
+  const std::size_t serial = static_cast<std::size_t>(tets.group_end.back() - tets.group_begin[tets.group_begin.size() - 2]);
+  const std::size_t n = position_.size();
+  return serial > std::max<std::size_t>(1024, n / 8) ||
+         static_cast<std::size_t>(num_free_slots_) > std::max<std::size_t>(1024, edge_slot_.size() / 4);
+}
+
+// The members defined here, for both scalars (the class itself is instantiated with the others).
+#define FASTCOROT_TOPOLOGY_MEMBERS(Real)                                                                  \
+  template void CorotationalForceField<Real>::check_new_tetrahedra(std::span<const Tetrahedron>) const; \
+  template TopologyChange CorotationalForceField<Real>::add_tetrahedra(std::span<const Tetrahedron>);   \
+  template TopologyChange CorotationalForceField<Real>::remove_tetrahedra(std::span<const Index>);      \
+  template void CorotationalForceField<Real>::apply(const TopologyChange&);                            \
+  template Index CorotationalForceField<Real>::place_edge(const Edge&);                                \
+  template void CorotationalForceField<Real>::place_tetrahedron(Index);                                \
+  template bool CorotationalForceField<Real>::schedules_degraded() const;
+FASTCOROT_TOPOLOGY_MEMBERS(float)
+FASTCOROT_TOPOLOGY_MEMBERS(double)
+#undef FASTCOROT_TOPOLOGY_MEMBERS
+
+}  // namespace fastcorot
