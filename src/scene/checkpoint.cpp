@@ -311,6 +311,14 @@ void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& s
   if (!in.at_end())
     throw make_error(file, ": malformed checkpoint: extra bytes after the last object");
 
+  if (std::bit_cast<std::uint64_t>(dt) != std::bit_cast<std::uint64_t>(simulation.dt)) {
+    throw make_error(file, ": ", made_for, " with dt = ", dt, "; this run has dt = ", simulation.dt,
+                     " (a resumed run must keep the time step)");
+  }
+  // Scripted cuts of the steps before the checkpoint, so that the meshes, masses and force fields
+  // are those the checkpoint's state belongs to.
+  simulation.replay_topology_changes(static_cast<long>(step));
+
   // The scene must be the one the checkpoint was made for.
   for (std::size_t o = 0; o < count; ++o) {
     const SavedObject& s = saved[o];
@@ -343,10 +351,6 @@ void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& s
                        s.linear_state.size(), " values; this scene's solvers carry ", ode_size,
                        " + ", linear_size);
     }
-  }
-  if (std::bit_cast<std::uint64_t>(dt) != std::bit_cast<std::uint64_t>(simulation.dt)) {
-    throw make_error(file, ": ", made_for, " with dt = ", dt, "; this run has dt = ", simulation.dt,
-                     " (a resumed run must keep the time step)");
   }
 
   for (std::size_t o = 0; o < count; ++o) {

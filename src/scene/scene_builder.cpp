@@ -4,6 +4,7 @@
 #include "fastcorot/sim/conjugate_gradient.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
 #include "scene_data.h"
+#include "topology_change_processor.h"
 
 #include <cmath>
 #include <map>
@@ -200,6 +201,9 @@ class Builder {
         if (type == "ConstantForceField") add_constant_force(*c, system);
         if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
         if (type == "BoxROI") add_boxes(*c, object);
+        if (type == "TopologicalChangeProcessor") {
+          object.topology_scripts.push_back(build_topology_script(data_, *c, mesh_of(*c, system.size())));
+        }
         if (c->spec->category == "mass") {
           if (system.mass.size() != 0) throw make_error(c->where(), ": a second mass for ", object.path);
           system.mass = build_mass(*c, system.state.rest_position);

@@ -113,8 +113,28 @@ Real Simulation<Real>::scene_size() const {
 }
 
 template <class Real>
+void Simulation<Real>::apply_topology_changes(long step_number) {
+  const double time = static_cast<double>(step_number - 1) * static_cast<double>(dt);
+  for (auto& object : objects) {
+    for (auto& script : object.topology_scripts) {
+      try {
+        script.apply_due(time, static_cast<double>(dt), object.system);
+      } catch (const Error& error) {
+        throw Error(brief("at step ", step_number, " (t = ", time, "): ") + error.what());
+      }
+    }
+  }
+}
+
+template <class Real>
+void Simulation<Real>::replay_topology_changes(long steps) {
+  for (long s = steps_done_ + 1; s <= steps; ++s) apply_topology_changes(s);
+}
+
+template <class Real>
 StepReport Simulation<Real>::step() {
   const long step_number = steps_done_ + 1;
+  apply_topology_changes(step_number);
   const Real size =
       divergence_factor > 0 && std::isfinite(divergence_factor) ? scene_size() : Real(0);
   const Real bound = divergence_factor * size;

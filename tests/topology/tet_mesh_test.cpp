@@ -498,66 +498,115 @@ TEST(TetMeshTest, AddPoints) {
   EXPECT_EQ(mesh.num_points(), 8);
 }
 
-TEST(TetMeshTest, RemoveOneTetrahedron) {
-  // Removing C (index 2) from four_tet_mesh(): edges used only by C are 11 [4,5] and 12 [0,4]
-  // (9, 2, 8, 10 are shared with A, B or D). Remaining order: old 0..10, 13, 14, 15, so old
-  // 13 → 11, 14 → 12, 15 → 13 and D (now index 2) has edges (11 10 9 12 13 2).
+std::vector<std::pair<Index, Index>> moves(const std::vector<IndexMove>& list) {
+  std::vector<std::pair<Index, Index>> pairs;
+  for (const IndexMove& m : list) pairs.emplace_back(m.from, m.to);
+  return pairs;
+}
+
+TEST(TetMeshTest, RemoveOneTetrahedronBySwapWithLast) {
+  // four_tet_mesh(): A (0 1 2 3), B (4 2 1 3), C (3 5 0 4), D (5 6 0 3); edges 0 [0,1] 1 [0,2]
+  // 2 [0,3] 3 [1,2] 4 [1,3] 5 [2,3] 6 [2,4] 7 [1,4] 8 [3,4] 9 [3,5] 10 [0,5] 11 [4,5] 12 [0,4]
+  // 13 [5,6] 14 [0,6] 15 [3,6]; C has (9 2 8 10 11 12), D (13 10 9 14 15 2).
+  // Removing C (2): D, the last, takes index 2. Edges only C used: 11 and 12, taken in decreasing
+  // order: 15 [3,6] moves to 12, then 14 [0,6] to 11. D's edges become (13 10 9 11 12 2).
   TetMesh mesh = four_tet_mesh();
   const std::vector<Index> remove = {2};
-  mesh.remove_tetrahedra(remove);
+  const TopologyChange change = mesh.remove_tetrahedra(remove);
   EXPECT_EQ(mesh.num_points(), 7);
   EXPECT_EQ(to_vector(mesh.tetrahedra()),
             (std::vector<Tetrahedron>{{0, 1, 2, 3}, {4, 2, 1, 3}, {5, 6, 0, 3}}));
   std::vector<Edge> expected = kTwoTetsDerivedEdges;
-  for (Edge e : std::vector<Edge>{{3, 5}, {0, 5}, {5, 6}, {0, 6}, {3, 6}}) expected.push_back(e);
+  for (Edge e : std::vector<Edge>{{3, 5}, {0, 5}, {0, 6}, {3, 6}, {5, 6}}) expected.push_back(e);
   EXPECT_EQ(to_vector(mesh.edges()), expected);
   EXPECT_EQ(mesh.edges_of_tetrahedron(0), (std::array<Index, 6>{0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(mesh.edges_of_tetrahedron(1), (std::array<Index, 6>{6, 7, 8, 3, 5, 4}));
-  EXPECT_EQ(mesh.edges_of_tetrahedron(2), (std::array<Index, 6>{11, 10, 9, 12, 13, 2}));
+  EXPECT_EQ(mesh.edges_of_tetrahedron(2), (std::array<Index, 6>{13, 10, 9, 11, 12, 2}));
+  // D = (5 6 0 3): (5,6) [5,6] yes, (5,0) [0,5] no, (5,3) [3,5] no, (6,0) [0,6] no, (6,3) [3,6] no,
+  // (0,3) [0,3] yes.
   EXPECT_EQ(orientations(mesh, 2), (std::array<bool, 6>{true, false, false, false, false, true}));
   EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(0)), (std::vector<Index>{0, 2}));
   EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(3)), (std::vector<Index>{0, 1, 2}));
   EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(4)), (std::vector<Index>{1}));
   EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(5)), (std::vector<Index>{2}));
   EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(6)), (std::vector<Index>{2}));
+  // Edges around 6: 11 [0,6], 12 [3,6], 13 [5,6]; around 4: 6 [2,4], 7 [1,4], 8 [3,4].
+  EXPECT_EQ(to_vector(mesh.edges_around_vertex(6)), (std::vector<Index>{11, 12, 13}));
+  EXPECT_EQ(to_vector(mesh.edges_around_vertex(4)), (std::vector<Index>{6, 7, 8}));
+  EXPECT_EQ(mesh.edge_between(6, 3), 12);
+  EXPECT_EQ(mesh.edge_between(0, 4), -1);
+  EXPECT_EQ(mesh.tetrahedra_around_edge_count(2), 2);  // [0,3]: A and D
+  EXPECT_EQ(mesh.tetrahedra_around_edge_count(3), 2);  // [1,2]: A and B
+
+  EXPECT_EQ(change.removed_tetrahedra, (std::vector<Index>{2}));
+  EXPECT_EQ(change.removed_tetrahedron_vertices, (std::vector<Tetrahedron>{{3, 5, 0, 4}}));
+  EXPECT_EQ(moves(change.tetrahedron_moves), (std::vector<std::pair<Index, Index>>{{3, 2}}));
+  EXPECT_EQ(change.removed_edges, (std::vector<Index>{12, 11}));
+  EXPECT_EQ(change.removed_edge_vertices, (std::vector<Edge>{{0, 4}, {4, 5}}));
+  EXPECT_EQ(moves(change.edge_moves), (std::vector<std::pair<Index, Index>>{{15, 12}, {14, 11}}));
+  EXPECT_TRUE(change.isolated_points.empty());  // 4 keeps B, 5 keeps D
+  EXPECT_EQ(change.num_added_tetrahedra, 0);
   expect_consistent(mesh);
 }
 
 TEST(TetMeshTest, RemoveTetrahedraListedInAnyOrder) {
-  // Remove D (3) and A (0), listed out of order; B, C stay in that order. Edges used by B
-  // (6 7 8 3 5 4) or C (9 2 8 10 11 12) stay; 0 [0,1], 1 [0,2], 13, 14, 15 go. Renumbering:
-  // 2→0 3→1 4→2 5→3 6→4 7→5 8→6 9→7 10→8 11→9 12→10.
+  // Remove D (3) and A (0), listed out of order, taken as 3 then 0: D is last and goes; then C,
+  // now last, takes A's index 0. Edges left unused: D's 13, 14, 15 and A's 0, 1; in decreasing
+  // order 15, 14, 13 are last and go, then 12 [0,4] moves to 1 and 11 [4,5] to 0.
   TetMesh mesh = four_tet_mesh();
-  const std::vector<Index> remove = {3, 0};
-  mesh.remove_tetrahedra(remove);
-  EXPECT_EQ(to_vector(mesh.tetrahedra()),
-            (std::vector<Tetrahedron>{{4, 2, 1, 3}, {3, 5, 0, 4}}));
-  EXPECT_EQ(to_vector(mesh.edges()), (std::vector<Edge>{{0, 3}, {1, 2}, {1, 3}, {2, 3}, {2, 4},
-                                                         {1, 4}, {3, 4}, {3, 5}, {0, 5}, {4, 5},
-                                                         {0, 4}}));
-  EXPECT_EQ(mesh.edges_of_tetrahedron(0), (std::array<Index, 6>{4, 5, 6, 1, 3, 2}));
-  EXPECT_EQ(mesh.edges_of_tetrahedron(1), (std::array<Index, 6>{7, 0, 6, 8, 9, 10}));
-  // Orientations do not change with renumbering.
-  EXPECT_EQ(orientations(mesh, 0), (std::array<bool, 6>{false, false, false, false, true, true}));
-  EXPECT_EQ(orientations(mesh, 1), (std::array<bool, 6>{true, false, true, false, false, true}));
-  EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(0)), (std::vector<Index>{1}));
+  const std::vector<Index> remove = {0, 3};
+  const TopologyChange change = mesh.remove_tetrahedra(remove);
+  EXPECT_EQ(to_vector(mesh.tetrahedra()), (std::vector<Tetrahedron>{{3, 5, 0, 4}, {4, 2, 1, 3}}));
+  EXPECT_EQ(to_vector(mesh.edges()), (std::vector<Edge>{{4, 5}, {0, 4}, {0, 3}, {1, 2}, {1, 3},
+                                                         {2, 3}, {2, 4}, {1, 4}, {3, 4}, {3, 5},
+                                                         {0, 5}}));
+  // C (9 2 8 10 11 12) → (9 2 8 10 0 1); B unchanged.
+  EXPECT_EQ(mesh.edges_of_tetrahedron(0), (std::array<Index, 6>{9, 2, 8, 10, 0, 1}));
+  EXPECT_EQ(mesh.edges_of_tetrahedron(1), (std::array<Index, 6>{6, 7, 8, 3, 5, 4}));
+  // Orientations do not change with renumbering: C (3 5 0 4) against [3,5] [0,3] [3,4] [0,5]
+  // [4,5] [0,4]: yes no yes no no yes.
+  EXPECT_EQ(orientations(mesh, 0), (std::array<bool, 6>{true, false, true, false, false, true}));
+  EXPECT_EQ(orientations(mesh, 1), (std::array<bool, 6>{false, false, false, false, true, true}));
+  EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(0)), (std::vector<Index>{0}));
+  EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(3)), (std::vector<Index>{0, 1}));
   EXPECT_EQ(to_vector(mesh.tetrahedra_around_vertex(6)), (std::vector<Index>{}));
+  EXPECT_EQ(moves(change.tetrahedron_moves), (std::vector<std::pair<Index, Index>>{{3, 3}, {2, 0}}));
+  EXPECT_EQ(change.removed_edges, (std::vector<Index>{15, 14, 13, 1, 0}));
+  EXPECT_EQ(moves(change.edge_moves),
+            (std::vector<std::pair<Index, Index>>{{15, 15}, {14, 14}, {13, 13}, {12, 1}, {11, 0}}));
+  EXPECT_EQ(change.isolated_points, (std::vector<Index>{6}));  // only D held 6
+  // Old → new: A, D removed; B stays at 1; C 2 → 0.
+  EXPECT_EQ(old_to_new(4, change.tetrahedron_moves), (std::vector<Index>{-1, 1, 0, -1}));
+  const IndexRenumbering renumber(change.removed_tetrahedra, change.tetrahedron_moves);
+  EXPECT_EQ(renumber(0), -1);
+  EXPECT_EQ(renumber(1), 1);
+  EXPECT_EQ(renumber(2), 0);
+  EXPECT_EQ(renumber(3), -1);
+  // Edges: 11 → 0, 12 → 1, 0, 1, 13, 14, 15 removed, the rest unchanged.
+  const std::vector<Index> edge_map = old_to_new(16, change.edge_moves);
+  EXPECT_EQ(edge_map, (std::vector<Index>{-1, -1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 0, 1, -1, -1, -1}));
+  const IndexRenumbering renumber_edges(change.removed_edges, change.edge_moves);
+  for (Index e = 0; e < 16; ++e) EXPECT_EQ(renumber_edges(e), edge_map[static_cast<std::size_t>(e)]) << e;
   expect_consistent(mesh);
 }
 
-TEST(TetMeshTest, RemoveFromExplicitEdgesKeepsOrderOrientationAndUnusedEdges) {
-  // Shuffled list plus 9 [0,4] that no tetrahedron uses. Removing B drops the edges only B used:
-  // 8 [2,4], 3 [4,1], 0 [3,4]. Remaining: 1 [2,1] 2 [0,3] 4 [1,3] 5 [2,0] 6 [3,2] 7 [0,1]
-  // 9 [0,4], renumbered 0..6; A's edges (7 5 2 1 4 6) become (5 3 1 0 2 4), orientations as before.
+TEST(TetMeshTest, RemoveFromExplicitEdgesKeepsOrientationAndUnusedEdges) {
+  // Shuffled list plus 9 [0,4] that no tetrahedron uses: 0 [3,4] 1 [2,1] 2 [0,3] 3 [4,1] 4 [1,3]
+  // 5 [2,0] 6 [3,2] 7 [0,1] 8 [2,4] 9 [0,4]. Removing B (the last) frees 8, 3, 0 (used by B only);
+  // 9 was never used and stays. Decreasing: 9 [0,4] moves to 8, then (the new) 8 [0,4] to 3, then
+  // 7 [0,1] to 0. A's edges (7 5 2 1 4 6) become (0 5 2 1 4 6), orientations as before.
   std::vector<Edge> edges = kTwoTetsShuffledEdges;
   edges.push_back({0, 4});
   TetMesh mesh(5, kTwoTets, edges);
   const std::vector<Index> remove = {1};
-  mesh.remove_tetrahedra(remove);
+  const TopologyChange change = mesh.remove_tetrahedra(remove);
   EXPECT_EQ(to_vector(mesh.edges()),
-            (std::vector<Edge>{{2, 1}, {0, 3}, {1, 3}, {2, 0}, {3, 2}, {0, 1}, {0, 4}}));
-  EXPECT_EQ(mesh.edges_of_tetrahedron(0), (std::array<Index, 6>{5, 3, 1, 0, 2, 4}));
+            (std::vector<Edge>{{0, 1}, {2, 1}, {0, 3}, {0, 4}, {1, 3}, {2, 0}, {3, 2}}));
+  EXPECT_EQ(mesh.edges_of_tetrahedron(0), (std::array<Index, 6>{0, 5, 2, 1, 4, 6}));
   EXPECT_EQ(orientations(mesh, 0), (std::array<bool, 6>{true, false, true, false, true, false}));
+  EXPECT_EQ(moves(change.edge_moves), (std::vector<std::pair<Index, Index>>{{9, 8}, {8, 3}, {7, 0}}));
+  EXPECT_EQ(mesh.tetrahedra_around_edge_count(3), 0);  // [0,4], still unused
+  EXPECT_EQ(change.isolated_points, (std::vector<Index>{4}));
   expect_consistent(mesh);
 }
 
@@ -607,21 +656,26 @@ TEST(TetMeshTest, UpdateTopologyInformationIsIdempotent) {
 }
 
 TEST(TetMeshTest, UpdateTopologyInformationAfterTheMeshIsRebuilt) {
-  // Remove A from kTwoTets, then add it back: B's edges 3..8 become 0..5 ([1,2] [1,3] [2,3]
-  // [2,4] [1,4] [3,4]); A = (0 1 2 3) appends (0,1)→6 [0,1], (0,2)→7 [0,2], (0,3)→8 [0,3] and
-  // reuses (1,2)→0, (1,3)→1, (2,3)→2. A is now tetrahedron 1; B (old edges 6 7 8 3 5 4) has
-  // (3 4 5 0 2 1), orientation unchanged.
+  // Remove A from kTwoTets: B takes index 0; A's edges 0 [0,1] 1 [0,2] 2 [0,3] go in decreasing
+  // order, the last ones moving in: 8 [3,4] → 2, 7 [1,4] → 1, 6 [2,4] → 0, so B's edges
+  // (6 7 8 3 5 4) become (0 1 2 3 5 4). Adding A = (0 1 2 3) back appends (0,1) → 6, (0,2) → 7,
+  // (0,3) → 8 and reuses (1,2) → 3, (1,3) → 4, (2,3) → 5; A is tetrahedron 1.
   TetMesh mesh(5, kTwoTets);
   const std::vector<Index> remove = {0};
   mesh.remove_tetrahedra(remove);
   const std::vector<Tetrahedron> a = {{0, 1, 2, 3}};
-  mesh.add_tetrahedra(a);
+  const TopologyChange change = mesh.add_tetrahedra(a);
+  EXPECT_EQ(change.first_added_tetrahedron, 1);
+  EXPECT_EQ(change.num_added_tetrahedra, 1);
+  EXPECT_EQ(change.first_added_edge, 6);
+  EXPECT_EQ(change.num_added_edges, 3);
+  EXPECT_EQ(change.reconnected_points, (std::vector<Index>{0}));  // 0 had no tetrahedron left
   const auto check = [](const TetMesh& m) {
     EXPECT_EQ(to_vector(m.tetrahedra()), (std::vector<Tetrahedron>{{4, 2, 1, 3}, {0, 1, 2, 3}}));
-    EXPECT_EQ(to_vector(m.edges()), (std::vector<Edge>{{1, 2}, {1, 3}, {2, 3}, {2, 4}, {1, 4},
-                                                       {3, 4}, {0, 1}, {0, 2}, {0, 3}}));
-    EXPECT_EQ(m.edges_of_tetrahedron(0), (std::array<Index, 6>{3, 4, 5, 0, 2, 1}));
-    EXPECT_EQ(m.edges_of_tetrahedron(1), (std::array<Index, 6>{6, 7, 8, 0, 1, 2}));
+    EXPECT_EQ(to_vector(m.edges()), (std::vector<Edge>{{2, 4}, {1, 4}, {3, 4}, {1, 2}, {1, 3},
+                                                       {2, 3}, {0, 1}, {0, 2}, {0, 3}}));
+    EXPECT_EQ(m.edges_of_tetrahedron(0), (std::array<Index, 6>{0, 1, 2, 3, 5, 4}));
+    EXPECT_EQ(m.edges_of_tetrahedron(1), (std::array<Index, 6>{6, 7, 8, 3, 4, 5}));
     EXPECT_EQ(orientations(m, 0), (std::array<bool, 6>{false, false, false, false, true, true}));
     EXPECT_EQ(orientations(m, 1), (std::array<bool, 6>{true, true, true, true, true, true}));
     EXPECT_EQ(to_vector(m.tetrahedra_around_vertex(0)), (std::vector<Index>{1}));

@@ -51,7 +51,9 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
 // velocities, solver states and the step counter. Refuses, with a fastcorot::Error naming the file
 // and what is wrong, a file that is not a checkpoint, of another format version, truncated or
 // corrupt (checksum), or made for another scene (object paths, vertex or tetrahedron counts, rest
-// positions, elements, model) or another dt. Nothing is changed unless everything checks.
+// positions, elements, model) or another dt. The scene's scripted topological changes up to the
+// checkpoint's step are replayed first (the meshes and masses they leave are part of what is
+// checked); nothing else is changed unless everything checks.
 void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& simulation);
 
 // FNV-1a 64 of `size` bytes, continuing from `hash` (the checksum and fingerprints above).

@@ -9,6 +9,7 @@
 #include "fastcorot/sim/linear_solver.h"
 #include "fastcorot/sim/mechanical_system.h"
 #include "fastcorot/sim/ode_solver.h"
+#include "fastcorot/sim/topology_script.h"
 #include "fastcorot/topology/tet_mesh.h"
 
 #include <array>
@@ -47,6 +48,8 @@ struct SimulatedObject {
   // order), and the BoxROI boxes of the object's nodes (fixed points are system.fixed).
   std::vector<ForceFieldDrawing> force_field_drawing;
   std::vector<DrawnBox> boxes;
+  // Scripted topological changes (TopologicalChangeProcessor), applied at the start of each step.
+  std::vector<TopologyScript> topology_scripts;
 };
 
 template <class Real>
@@ -67,10 +70,16 @@ class Simulation {
   // to report. 0 (or infinity) turns the test off; non-finite values are always divergence.
   Real divergence_factor = Real(1e6);
 
-  // Advances every object by dt. Throws fastcorot::Error "diverged at step N (t = T): OBJECT
-  // vertex V ..." when a state diverges (the state before the step is lost for that object;
-  // others are advanced; steps_done() stays at N - 1).
+  // Advances every object by dt: first the scripted topological changes due at the current time,
+  // then the integration. Throws fastcorot::Error "diverged at step N (t = T): OBJECT vertex V
+  // ..." when a state diverges (the state before the step is lost for that object; others are
+  // advanced; steps_done() stays at N - 1), or "at step N (t = T): ..." for a failed change.
   StepReport step();
+
+  // Applies the scripted topological changes of steps_done() + 1 .. `steps` without integrating:
+  // what a run resumed at step `steps` must do to its freshly built scene before taking the
+  // checkpoint's state. Does not change steps_done().
+  void replay_topology_changes(long steps);
 
   long steps_done() const { return steps_done_; }
   Real time() const { return static_cast<Real>(steps_done_) * dt; }
@@ -82,6 +91,8 @@ class Simulation {
   Real scene_size() const;
 
  private:
+  void apply_topology_changes(long step_number);
+
   long steps_done_ = 0;
 };
 
