@@ -160,6 +160,30 @@ class Object:
         _core.check_object(self._type, [name], *self._location)
         self._data[name] = self._canonical(name, value)
 
+    # --- cutting (force fields of a built Simulation) ------------------------------------------
+    def _simulated_topology(self, what):
+        if self._type != "FastTetrahedralCorotationalForceField":
+            raise TypeError(f"{self.location}: {self._label()}: {what} is for a "
+                            "FastTetrahedralCorotationalForceField")
+        if self._binding is None:
+            raise RuntimeError(f"{self.location}: {self._label()}: {what} needs a built "
+                               "fastcorot.Simulation of its scene")
+        return self._binding
+
+    def remove_tetrahedra(self, indices):
+        """Cuts: removes tetrahedra (indices as currently numbered) from this force field's
+        topology in the running Simulation; the force fields and the mass on it follow. SOFA's
+        swap-with-last renumbering: returns the new index of every old tetrahedron (-1 when
+        removed). Points stay (those left without tetrahedra and mass are held still)."""
+        core, k = self._simulated_topology("remove_tetrahedra")
+        return core.remove_tetrahedra(k, indices)
+
+    def add_tetrahedra(self, tetrahedra):
+        """Appends (m, 4) tetrahedra over existing points to this force field's topology in the
+        running Simulation (rest data from the rest positions)."""
+        core, k = self._simulated_topology("add_tetrahedra")
+        core.add_tetrahedra(k, tetrahedra)
+
     def __getattr__(self, name):
         if name.startswith("_"):
             raise AttributeError(name)

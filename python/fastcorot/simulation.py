@@ -34,6 +34,20 @@ class Simulation:
                 object.__setattr__(obj, "_binding", None)
         for k, rank in enumerate(core.state_objects):
             object.__setattr__(objects[rank], "_binding", (core, k))
+        # Force fields cut the object whose state is in their node or the nearest node above.
+        bound = {id(objects[rank]): k for k, rank in enumerate(core.state_objects)}
+
+        def bind_force_fields(node, k):
+            for obj in node._objects:
+                if id(obj) in bound:
+                    k = bound[id(obj)]
+            for obj in node._objects:
+                if obj.type == "FastTetrahedralCorotationalForceField" and k is not None:
+                    object.__setattr__(obj, "_binding", (core, k))
+            for child in node._children:
+                bind_force_fields(child, k)
+
+        bind_force_fields(root, None)
         object.__setattr__(root, "_core", core)
         self._core = core
         self._root = root

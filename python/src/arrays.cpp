@@ -108,6 +108,22 @@ std::vector<double> number_list(py::handle value, const std::string& what) {
 
 template PointArray<float> point_array<float>(py::handle, const std::string&, py::ssize_t, const std::string&);
 template PointArray<double> point_array<double>(py::handle, const std::string&, py::ssize_t, const std::string&);
+std::vector<Index> index_list(py::handle value, const std::string& what) {
+  py::array array = py::module_::import("numpy").attr("asarray")(value);
+  if (array.ndim() != 1) throw py::value_error(what + ": expected a list of indices, got shape " + shape_text(array));
+  if (array.size() == 0) return {};
+  std::vector<Index> indices;
+  for (const auto& one : index_tuples<1>(array.attr("reshape")(-1, 1), what)) indices.push_back(one[0]);
+  return indices;
+}
+
+py::array index_array(const std::vector<Index>& values) {
+  py::array_t<Index> out(static_cast<py::ssize_t>(values.size()));
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+template std::vector<std::array<Index, 1>> index_tuples<1>(py::handle, const std::string&);
 template std::vector<std::array<Index, 2>> index_tuples<2>(py::handle, const std::string&);
 template std::vector<std::array<Index, 4>> index_tuples<4>(py::handle, const std::string&);
 

@@ -43,6 +43,11 @@ std::vector<std::array<Index, N>> index_tuples(py::handle value, const std::stri
 // A number, or a one-dimensional sequence of numbers.
 std::vector<double> number_list(py::handle value, const std::string& what);
 
+// A 1-D list or array of non-negative integer indices (TypeError / ValueError naming `what`).
+std::vector<Index> index_list(py::handle value, const std::string& what);
+// A numpy int array holding `values`.
+py::array index_array(const std::vector<Index>& values);
+
 // Python's repr of the shape of an array ("(4, 2)").
 std::string shape_text(const py::array& array);
 

@@ -184,6 +184,31 @@ class ForceField {
     });
   }
 
+  // Cutting: the field's own mesh changes and the field follows (docs/cutting.md).
+  py::array remove_tetrahedra(py::handle indices) {
+    const std::vector<Index> list = index_list(indices, "indices");
+    return visit([&](auto& f) -> py::array {
+      const Index before = f.mesh().num_tetrahedra();
+      const TopologyChange change = f.remove_tetrahedra(list);
+      return index_array(old_to_new(before, change.tetrahedron_moves));
+    });
+  }
+
+  void add_tetrahedra(py::handle tetrahedra) {
+    const auto tets = index_tuples<4>(tetrahedra, "tetrahedra");
+    visit([&](auto& f) { f.add_tetrahedra(tets); });
+  }
+
+  py::array tetrahedra() const {
+    return visit([&](const auto& f) -> py::array {
+      const auto tets = f.mesh().tetrahedra();
+      py::array_t<Index> out({static_cast<py::ssize_t>(tets.size()), py::ssize_t(4)});
+      Index* o = out.mutable_data();
+      for (const Tetrahedron& t : tets) o = std::copy(t.begin(), t.end(), o);
+      return out;
+    });
+  }
+
   py::array rotations() const {
     return visit([&](const auto& f) -> py::array {
       using Real = real_of<decltype(f)>;
@@ -257,6 +282,14 @@ void bind_force_field(py::module_& m) {
       .def_property_readonly("num_points", &ForceField::num_points)
       .def_property_readonly("num_tetrahedra", &ForceField::num_tetrahedra)
       .def_property_readonly("method", &ForceField::method, "The rotation method's canonical name.")
+      .def_property_readonly("tetrahedra", &ForceField::tetrahedra, "(m, 4) the current tetrahedra.")
+      .def("remove_tetrahedra", &ForceField::remove_tetrahedra, py::arg("indices"),
+           "Removes tetrahedra (cutting) as SOFA does: in decreasing index order, each replaced by the last one.\n"
+           "Returns the new index of every old tetrahedron (-1 for removed ones). Edges no tetrahedron uses any\n"
+           "more go; points stay. Raises ValueError for an index out of range or listed twice (nothing changes).")
+      .def("add_tetrahedra", &ForceField::add_tetrahedra, py::arg("tetrahedra"),
+           "Appends (m, 4) tetrahedra over existing points (rest data from the rest positions; E and nu of\n"
+           "per-tetrahedron lists from entry 0). Raises ValueError for a bad index or a degenerate tetrahedron.")
       .def_property("threads", &ForceField::threads, &ForceField::set_threads,
                     "Threads for the computations; results do not depend on it.")
       .def("__repr__", &ForceField::repr);

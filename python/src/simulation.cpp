@@ -153,6 +153,31 @@ void bind_simulation(py::module_& m) {
           },
           py::arg("k"), "(m, 4) tetrahedra of object k's force field (empty without one).")
       .def(
+          "remove_tetrahedra",
+          [](SimulationCore& c, std::size_t k, py::handle indices) {
+            c.state(k);  // checks k
+            const std::vector<Index> list = index_list(indices, "indices");
+            auto& object = c.simulation().objects[k];
+            if (!object.mesh) throw py::value_error(object.path + " has no tetrahedral topology to cut");
+            std::lock_guard lock(c.stepping);
+            const Index before = object.mesh->num_tetrahedra();
+            const TopologyChange change = object.system.remove_tetrahedra(*object.mesh, list);
+            return index_array(old_to_new(before, change.tetrahedron_moves));
+          },
+          py::arg("k"), py::arg("indices"),
+          "Removes tetrahedra from object k's mesh (its force fields and mass follow); returns old -> new indices.")
+      .def(
+          "add_tetrahedra",
+          [](SimulationCore& c, std::size_t k, py::handle tetrahedra) {
+            c.state(k);
+            const auto tets = index_tuples<4>(tetrahedra, "tetrahedra");
+            auto& object = c.simulation().objects[k];
+            if (!object.mesh) throw py::value_error(object.path + " has no tetrahedral topology");
+            std::lock_guard lock(c.stepping);
+            object.system.add_tetrahedra(*object.mesh, tets);
+          },
+          py::arg("k"), py::arg("tetrahedra"), "Appends tetrahedra to object k's mesh (its force fields and mass follow).")
+      .def(
           "set_position",
           [](SimulationCore& c, std::size_t k, py::handle value) {
             assign(c, k, &MechanicalState<double>::position, value, "position");
