@@ -87,6 +87,10 @@ CorotationalForceField<Real>::CorotationalForceField(std::shared_ptr<TetMesh> me
                      ": must be a finite value >= 0");
   }
   check_rest_volumes<Real>(*mesh_, rest_positions_);
+  young_per_tetrahedron_ = n > 1 && parameters_.young_modulus.size() > 1;
+  poisson_per_tetrahedron_ = n > 1 && parameters_.poisson_ratio.size() > 1;
+  added_young_ = parameters_.young_modulus.front();
+  added_poisson_ = parameters_.poisson_ratio.front();
   rebuild();
 }
 

@@ -66,9 +66,8 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
     shape_.resize(shape_.size() - 9);
   }
   // Per-tetrahedron parameter lists follow; a single value applies to every tetrahedron.
-  for (auto* values : {&parameters_.young_modulus, &parameters_.poisson_ratio}) {
-    if (values->size() > 1) apply_moves(*values, std::span<const IndexMove>(change.tetrahedron_moves));
-  }
+  if (young_per_tetrahedron_) apply_moves(parameters_.young_modulus, std::span<const IndexMove>(change.tetrahedron_moves));
+  if (poisson_per_tetrahedron_) apply_moves(parameters_.poisson_ratio, std::span<const IndexMove>(change.tetrahedron_moves));
 
   // Removed edges free their slots (no tetrahedron adds to them any more: zero blocks).
   for (std::size_t k = 0; k < change.edge_moves.size(); ++k) {
@@ -87,9 +86,8 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
   }
   const Index first = change.first_added_tetrahedron;
   for (Index t = first; t < first + change.num_added_tetrahedra; ++t) {
-    for (auto* values : {&parameters_.young_modulus, &parameters_.poisson_ratio}) {
-      if (values->size() > 1) values->push_back(values->front());
-    }
+    if (young_per_tetrahedron_) parameters_.young_modulus.push_back(added_young_);
+    if (poisson_per_tetrahedron_) parameters_.poisson_ratio.push_back(added_poisson_);
     shape_.resize(shape_.size() + 9);
     mu_.push_back(0);
     lambda_.push_back(0);

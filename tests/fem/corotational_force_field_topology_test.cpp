@@ -111,6 +111,33 @@ void expect_close(const Outputs<Real>& a, const Outputs<Real>& b, double toleran
   EXPECT_LT(sparse_relative_error(a.stiffness, b.stiffness), tolerance) << what << ": stiffness";
 }
 
+// A field built from scratch on `mesh`'s current tetrahedra (and, with `same_edges`, its edge list,
+// so that edge indices match).
+template <class Real>
+CorotationalForceField<Real> fresh_on(const TetMesh& mesh, const Points<Real>& rest,
+                                      const typename CorotationalForceField<Real>::Parameters& p, bool same_edges = false) {
+  std::vector<Tetrahedron> tets(mesh.tetrahedra().begin(), mesh.tetrahedra().end());
+  auto copy = same_edges ? std::make_shared<TetMesh>(mesh.num_points(), tets, std::vector<Edge>(mesh.edges().begin(), mesh.edges().end()))
+                         : std::make_shared<TetMesh>(mesh.num_points(), tets);
+  return CorotationalForceField<Real>(copy, rest, p);
+}
+
+// The beam in double with a deformed state x and a direction dx, and a qr field on it.
+struct Setup {
+  Grid grid = beam();
+  Points<double> x, dx;
+  std::shared_ptr<TetMesh> mesh;
+  std::unique_ptr<CorotationalForceField<double>> field;
+
+  explicit Setup(unsigned seed, typename CorotationalForceField<double>::Parameters p = parameters<double>(RotationMethod::qr)) {
+    std::mt19937 rng(seed);
+    x = testing::perturbed(grid.rest, 0.05, rng);
+    dx = testing::perturbed(Points<double>(grid.rest.size(), Vec3<double>::Zero()), 0.01, rng);
+    mesh = std::make_shared<TetMesh>(grid.num_points, grid.tetrahedra);
+    field = std::make_unique<CorotationalForceField<double>>(mesh, grid.rest, p);
+  }
+};
+
 template <class Real>
 void random_changes_equal_a_fresh_field(RotationMethod method, double tolerance) {
   const Grid grid = beam();
@@ -160,11 +187,7 @@ void random_changes_equal_a_fresh_field(RotationMethod method, double tolerance)
     }
     ASSERT_EQ(mesh_one->num_tetrahedra(), mesh_two->num_tetrahedra());
     // Blocks read before the next add_force: the linearisation at x2 of the new mesh.
-    // From scratch on the same tetrahedra and edge list (so edge indices match).
-    CorotationalForceField<Real> fresh(
-        std::make_shared<TetMesh>(grid.num_points, std::vector<Tetrahedron>(mesh_one->tetrahedra().begin(), mesh_one->tetrahedra().end()),
-                                  std::vector<Edge>(mesh_one->edges().begin(), mesh_one->edges().end())),
-        rest, parameters<Real>(method));
+    CorotationalForceField<Real> fresh = fresh_on(*mesh_one, rest, parameters<Real>(method), true);
     Points<Real> fresh_scratch(rest.size(), Vec3<Real>::Zero());
     fresh.add_force(x2, fresh_scratch);
     const Outputs<Real> stale_check = outputs(one, x, dx, false);
@@ -205,12 +228,9 @@ TEST(ForceFieldTopology, RandomChangesEqualAFreshFieldFloat) {
 }
 
 TEST(ForceFieldTopology, RemovingThenReaddingRestoresForcesAndStiffness) {
-  const Grid grid = beam();
-  std::mt19937 rng(5);
-  const Points<double> x = testing::perturbed(grid.rest, 0.05, rng);
-  const Points<double> dx = testing::perturbed(Points<double>(grid.rest.size(), Vec3<double>::Zero()), 0.01, rng);
-  auto mesh = std::make_shared<TetMesh>(grid.num_points, grid.tetrahedra);
-  CorotationalForceField<double> field(mesh, grid.rest, parameters<double>(RotationMethod::qr));
+  Setup s(5);
+  const auto& [grid, x, dx, mesh, owned] = s;
+  CorotationalForceField<double>& field = *owned;
   const Outputs<double> before = outputs(field, x, dx);
   // A slab through the middle of the beam (a cut), then all of it back.
   std::vector<Index> slab;
@@ -237,42 +257,61 @@ TEST(ForceFieldTopology, RemovingThenReaddingRestoresForcesAndStiffness) {
 TEST(ForceFieldTopology, ManyAdditionsRebuildTheSchedules) {
   // Tetrahedra added on top of a full mesh find no room in their groups and go to the serial group;
   // past a threshold everything is rebuilt. Both must give what a fresh field gives.
-  const Grid grid = beam();
-  std::mt19937 rng(9);
-  const Points<double> x = testing::perturbed(grid.rest, 0.05, rng);
-  const Points<double> dx = testing::perturbed(Points<double>(grid.rest.size(), Vec3<double>::Zero()), 0.01, rng);
-  auto mesh = std::make_shared<TetMesh>(grid.num_points, grid.tetrahedra);
-  CorotationalForceField<double> field(mesh, grid.rest, parameters<double>(RotationMethod::qr));
+  Setup s(9);
+  const auto& [grid, x, dx, mesh, owned] = s;
+  CorotationalForceField<double>& field = *owned;
   for (std::size_t count : {10u, 1500u}) {
     const std::vector<Tetrahedron> extra(grid.tetrahedra.begin(), grid.tetrahedra.begin() + static_cast<std::ptrdiff_t>(count));
     field.add_tetrahedra(extra);
-    CorotationalForceField<double> fresh(std::make_shared<TetMesh>(grid.num_points, std::vector<Tetrahedron>(mesh->tetrahedra().begin(), mesh->tetrahedra().end())),
-                                         grid.rest, parameters<double>(RotationMethod::qr));
+    CorotationalForceField<double> fresh = fresh_on(*mesh, grid.rest, parameters<double>(RotationMethod::qr));
     expect_close(outputs(field, x, dx), outputs(fresh, x, dx), 1e-12, "after additions");
   }
 }
 
 TEST(ForceFieldTopology, PerTetrahedronMaterialsFollowTheirTetrahedra) {
-  const Grid grid = beam();
-  auto mesh = std::make_shared<TetMesh>(grid.num_points, grid.tetrahedra);
   auto p = parameters<double>(RotationMethod::qr);
   p.young_modulus.clear();
-  for (std::size_t t = 0; t < grid.tetrahedra.size(); ++t) p.young_modulus.push_back(1000.0 + static_cast<double>(t));
-  CorotationalForceField<double> field(mesh, grid.rest, p);
+  const std::size_t n = beam().tetrahedra.size();
+  for (std::size_t t = 0; t < n; ++t) p.young_modulus.push_back(1000.0 + static_cast<double>(t));
+  Setup s(3, p);
+  const auto& [grid, x, dx, mesh, owned] = s;
+  CorotationalForceField<double>& field = *owned;
   const std::vector<Index> removed = {5, 700, 2849, 17};
   const TopologyChange change = field.remove_tetrahedra(removed);
-  const std::vector<Index> map = old_to_new(static_cast<Index>(grid.tetrahedra.size()), change.tetrahedron_moves);
-  for (std::size_t t = 0; t < grid.tetrahedra.size(); ++t) {
+  const std::vector<Index> map = old_to_new(static_cast<Index>(n), change.tetrahedron_moves);
+  for (std::size_t t = 0; t < n; ++t) {
     if (map[t] >= 0) {
       ASSERT_EQ(field.parameters().young_modulus[static_cast<std::size_t>(map[t])], 1000.0 + static_cast<double>(t));
     }
   }
-  std::mt19937 rng(3);
-  const Points<double> x = testing::perturbed(grid.rest, 0.05, rng);
-  const Points<double> dx = testing::perturbed(Points<double>(grid.rest.size(), Vec3<double>::Zero()), 0.01, rng);
-  CorotationalForceField<double> fresh(std::make_shared<TetMesh>(grid.num_points, std::vector<Tetrahedron>(mesh->tetrahedra().begin(), mesh->tetrahedra().end())),
-                                       grid.rest, field.parameters());
+  CorotationalForceField<double> fresh = fresh_on(*mesh, grid.rest, field.parameters());
   expect_close(outputs(field, x, dx), outputs(fresh, x, dx), 1e-12, "per-tetrahedron E");
+}
+
+TEST(ForceFieldTopology, PerTetrahedronListsSurviveRemovingEverythingAndAddingBack) {
+  // Removing every tetrahedron empties a per-tetrahedron list; tetrahedra added afterwards take
+  // entry 0 of the list given at construction (not a value of an empty list), and a list shrunk to
+  // one entry still follows its tetrahedron rather than becoming a value for all.
+  auto p = parameters<double>(RotationMethod::qr);
+  const std::size_t n = beam().tetrahedra.size();
+  p.young_modulus.clear();
+  for (std::size_t t = 0; t < n; ++t) p.young_modulus.push_back(1000.0 + static_cast<double>(t));
+  Setup s(4, p);
+  const auto& [grid, x, dx, mesh, owned] = s;
+  CorotationalForceField<double>& field = *owned;
+  std::vector<Index> all_but_7(n);
+  std::iota(all_but_7.begin(), all_but_7.end(), Index(0));
+  all_but_7.erase(all_but_7.begin() + 7);
+  field.remove_tetrahedra(all_but_7);
+  EXPECT_EQ(field.parameters().young_modulus, std::vector<double>{1007.0});
+  field.remove_tetrahedra(std::vector<Index>{0});
+  EXPECT_TRUE(field.parameters().young_modulus.empty());
+  field.add_tetrahedra(std::vector<Tetrahedron>(grid.tetrahedra.begin(), grid.tetrahedra.begin() + 3));
+  EXPECT_EQ(field.parameters().young_modulus, (std::vector<double>{1000.0, 1000.0, 1000.0}));
+  auto uniform = parameters<double>(RotationMethod::qr);
+  uniform.young_modulus = {1000.0};
+  CorotationalForceField<double> fresh = fresh_on(*mesh, grid.rest, uniform);
+  expect_close(outputs(field, x, dx), outputs(fresh, x, dx), 1e-12, "after emptying");
 }
 
 TEST(ForceFieldTopology, BadChangesAreErrorsAndChangeNothing) {

@@ -135,6 +135,11 @@ class CorotationalForceField {
   std::shared_ptr<TetMesh> mesh_;
   std::vector<Vec3<Real>> rest_positions_;
   Parameters parameters_;
+  // Whether youngModulus / poissonRatio hold one value per tetrahedron (they then follow the
+  // tetrahedra, down to no value at all), and the values tetrahedra added later take (entry 0 at
+  // construction).
+  bool young_per_tetrahedron_ = false, poisson_per_tetrahedron_ = false;
+  Real added_young_ = 0, added_poisson_ = 0;
   int threads_ = 1;
   PhaseTimes* times_ = nullptr;
 
