@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -76,8 +77,24 @@ template <class Real>
 std::optional<TetrahedronHit> pick_tetrahedron(const TetMesh& mesh,
                                                std::span<const Vec3<Real>> positions,
                                                const Ray& ray) {
-  const std::vector<BoundaryTriangle> boundary = mesh.boundary_triangles();
-  return pick_tetrahedron<Real>(std::span<const BoundaryTriangle>(boundary), positions, ray);
+  // Every face of every tetrahedron rather than the boundary: the nearest face the ray meets is
+  // where it first enters the mesh, which is on the boundary anyway, and finding the boundary
+  // costs far more: 17 ms for the 18,954 tetrahedra of the built-in beam, where a whole cut through
+  // this function takes 2 ms (2-core machine, -O2), and a drag cuts at every cursor move.
+  std::optional<TetrahedronHit> nearest;
+  for (Index t = 0; t < mesh.num_tetrahedra(); ++t) {
+    const std::array<Vec3<Real>, 4> p = tetrahedron_points<Real>(mesh.tetrahedron(t), positions);
+    for (const auto& face : kTetrahedronFaces) {
+      const auto distance =
+          intersect_ray_triangle(ray, to_double(p[static_cast<std::size_t>(face[0])]),
+                                 to_double(p[static_cast<std::size_t>(face[1])]),
+                                 to_double(p[static_cast<std::size_t>(face[2])]));
+      if (distance && (!nearest || *distance < nearest->distance)) {
+        nearest = TetrahedronHit{t, *distance, ray.origin + *distance * ray.direction};
+      }
+    }
+  }
+  return nearest;
 }
 
 template <class Real>

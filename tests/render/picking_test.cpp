@@ -115,6 +115,13 @@ TEST(Picking, TheNearestTetrahedronIsPickedAndTheOneBehindAfterItsRemoval) {
   EXPECT_EQ(hit->tetrahedron, 1);
   EXPECT_NEAR(hit->distance, 10 - 2.5, 1e-12);
   EXPECT_TRUE(hit->point.isApprox(Eigen::Vector3d(0.2, 0.3, 2.5), 1e-12));
+  // Through the boundary triangles the answer is the same.
+  const std::vector<BoundaryTriangle> boundary = mesh.boundary_triangles();
+  const auto boundary_hit =
+      pick_tetrahedron<double>(std::span<const BoundaryTriangle>(boundary), points, ray);
+  ASSERT_TRUE(boundary_hit);
+  EXPECT_EQ(boundary_hit->tetrahedron, 1);
+  EXPECT_EQ(boundary_hit->distance, hit->distance);
 
   const Index nearest[] = {1};
   mesh.remove_tetrahedra(nearest);
@@ -170,6 +177,13 @@ TEST(Picking, GridColumnIsEnteredThroughItsTopAndCutDownwards) {
   double highest_vertex_of_last = 0;
   int removed = 0;
   while (const auto next = pick_tetrahedron<double>(mesh, points, ray)) {
+    // The faces inside the column never come first: the boundary alone gives the same answer.
+    const std::vector<BoundaryTriangle> boundary = mesh.boundary_triangles();
+    const auto on_boundary =
+        pick_tetrahedron<double>(std::span<const BoundaryTriangle>(boundary), points, ray);
+    ASSERT_TRUE(on_boundary);
+    EXPECT_EQ(on_boundary->tetrahedron, next->tetrahedron);
+    EXPECT_EQ(on_boundary->distance, next->distance);
     EXPECT_GE(next->distance, depth - 1e-12);
     depth = next->distance;
     highest_vertex_of_last = 0;

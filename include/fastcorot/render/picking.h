@@ -1,9 +1,10 @@
 // Picking: which tetrahedron lies under a pixel of a picture, for cutting with the mouse. The ray
 // leaves the camera's eye through the pixel (the inverse of Camera::project) and meets the mesh's
-// boundary triangles at their current positions (Möller–Trumbore ray/triangle test, both sides, so
-// that a cut's freshly exposed faces count whatever their winding); the nearest triangle hit names
-// its tetrahedron. Only the boundary is tested because that is what the viewer shows: a ray that
-// enters an object crosses its boundary first. A cutting "brush" then takes every tetrahedron whose
+// boundary triangles, what the viewer shows, at their current positions (Möller–Trumbore
+// ray/triangle test, both sides, so that a cut's freshly exposed faces count whatever their
+// winding); the nearest triangle hit names its tetrahedron. A ray enters an object through its
+// boundary, so the nearest of all tetrahedra's faces is a boundary triangle too: that is how a mesh
+// is picked without finding its boundary first. A cutting "brush" then takes every tetrahedron whose
 // centroid lies within a radius of the point hit. Nothing here touches OpenGL.
 #pragma once
 
@@ -48,7 +49,9 @@ std::optional<TetrahedronHit> pick_tetrahedron(std::span<const BoundaryTriangle>
                                                std::span<const Vec3<Real>> positions,
                                                const Ray& ray);
 
-// The same, computing the boundary of `mesh` (time linear in the mesh).
+// The same for every tetrahedron of `mesh`: the nearest face hit among all their faces is where the
+// ray first enters the mesh, so the answer is that of its boundary (a tie on a shared edge may name
+// either neighbour) without computing the boundary. Time linear in the mesh, no allocation.
 template <class Real>
 std::optional<TetrahedronHit> pick_tetrahedron(const TetMesh& mesh,
                                                std::span<const Vec3<Real>> positions,
