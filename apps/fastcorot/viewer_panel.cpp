@@ -98,7 +98,7 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
   ImGui::TextDisabled(
       "drag: orbit  right drag: pan  wheel: zoom\n"
       "ctrl drag (or drag in cut mode): cut\nspace: play/pause  N: step  D: drawing\n"
-      "E: edges  C: cut mode  F: reframe  R: reload  Q: quit");
+      "E: edges  C: cut mode  F: reframe\nR: reload  Q: quit");
   ImGui::End();
   return requests;
 }
