@@ -122,8 +122,8 @@ void on_mouse_button(GLFWwindow* window, int button, int action, int mods) {
   glfwGetCursorPos(window, &c.x, &c.y);
   // Left drag cuts in cut mode or with Ctrl held; shift + left still pans in either.
   const bool left = button == GLFW_MOUSE_BUTTON_LEFT;
-  const bool cut = left && !(mods & GLFW_MOD_SHIFT) &&
-                   (c.session->cut_mode || (mods & GLFW_MOD_CONTROL));
+  const bool cut =
+      left && !(mods & GLFW_MOD_SHIFT) && (c.session->cut_mode || (mods & GLFW_MOD_CONTROL));
   if (cut) {
     c.cutting = pressed;
     if (pressed) cut_under(window, c, c.x, c.y);

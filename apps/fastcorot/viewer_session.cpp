@@ -154,7 +154,8 @@ std::size_t ViewerSession::cut_at(const Camera& camera, int width, int height,
   std::size_t hit_object = 0;
   for (std::size_t o = 0; o < objects.size(); ++o) {
     if (!objects[o].mesh) continue;
-    const auto hit = pick_tetrahedron<double>(*objects[o].mesh, objects[o].system.state.position, ray);
+    const auto hit =
+        pick_tetrahedron<double>(*objects[o].mesh, objects[o].system.state.position, ray);
     if (hit && (!nearest || hit->distance < nearest->distance)) {
       nearest = hit;
       hit_object = o;
@@ -162,8 +163,8 @@ std::size_t ViewerSession::cut_at(const Camera& camera, int width, int height,
   }
   if (!nearest) return 0;
   const auto& object = objects[hit_object];
-  std::vector<Index> brush = tetrahedra_within<double>(
-      *object.mesh, object.system.state.position, nearest->point, cut_radius);
+  std::vector<Index> brush = tetrahedra_within<double>(*object.mesh, object.system.state.position,
+                                                       nearest->point, cut_radius);
   // The tetrahedron hit goes even when its centroid is outside the brush (a small radius, a long
   // thin element), so every cut under the mouse removes something.
   if (!std::binary_search(brush.begin(), brush.end(), nearest->tetrahedron)) {

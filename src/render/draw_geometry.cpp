@@ -45,8 +45,8 @@ void add_box(LineList& list, const DrawnBox& box, const Rgba& color) {
   }
 }
 
-// FNV-1a, one 32-bit vertex index at a time, in order: position-dependent, so a swap-with-last renumbering or
-// a tetrahedron replaced by another changes it (up to the rare 64-bit collision).
+// FNV-1a, one 32-bit vertex index at a time, in order: position-dependent, so a swap-with-last
+// renumbering or a tetrahedron replaced by another changes it (up to the rare 64-bit collision).
 std::uint64_t fingerprint_of(const TetMesh& mesh) {
   std::uint64_t hash = 14695981039346656037ull;
   for (const Tetrahedron& t : mesh.tetrahedra()) {

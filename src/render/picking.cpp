@@ -61,7 +61,8 @@ std::optional<TetrahedronHit> pick_tetrahedron(std::span<const BoundaryTriangle>
   std::optional<TetrahedronHit> nearest;
   for (const BoundaryTriangle& triangle : boundary) {
     const auto corner = [&](int k) {
-      return to_double(positions[static_cast<std::size_t>(triangle.vertices[static_cast<std::size_t>(k)])]);
+      return to_double(
+          positions[static_cast<std::size_t>(triangle.vertices[static_cast<std::size_t>(k)])]);
     };
     const auto t = intersect_ray_triangle(ray, corner(0), corner(1), corner(2));
     // Strictly nearer: of two faces at the same distance (the ray through a shared edge) the first
@@ -105,7 +106,8 @@ std::vector<Index> tetrahedra_within(const TetMesh& mesh, std::span<const Vec3<R
   const double radius_squared = radius * radius;
   for (Index t = 0; t < mesh.num_tetrahedra(); ++t) {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    for (Index v : mesh.tetrahedron(t)) centroid += to_double(positions[static_cast<std::size_t>(v)]);
+    for (Index v : mesh.tetrahedron(t))
+      centroid += to_double(positions[static_cast<std::size_t>(v)]);
     centroid /= 4;
     if ((centroid - centre).squaredNorm() <= radius_squared) inside.push_back(t);
   }
@@ -116,8 +118,8 @@ template std::optional<TetrahedronHit> pick_tetrahedron(std::span<const Boundary
                                                         std::span<const Vec3<float>>, const Ray&);
 template std::optional<TetrahedronHit> pick_tetrahedron(std::span<const BoundaryTriangle>,
                                                         std::span<const Vec3<double>>, const Ray&);
-template std::optional<TetrahedronHit> pick_tetrahedron(const TetMesh&, std::span<const Vec3<float>>,
-                                                        const Ray&);
+template std::optional<TetrahedronHit> pick_tetrahedron(const TetMesh&,
+                                                        std::span<const Vec3<float>>, const Ray&);
 template std::optional<TetrahedronHit> pick_tetrahedron(const TetMesh&,
                                                         std::span<const Vec3<double>>, const Ray&);
 template std::vector<Index> tetrahedra_within(const TetMesh&, std::span<const Vec3<float>>,

@@ -1,6 +1,6 @@
 // What SceneDrawer draws for scenes built through the real parser: the drawn tetrahedra with the
-// scene's colours, otherwise the boundary surface (which follows cuts), fixed points and BoxROI boxes;
-// and the switches.
+// scene's colours, otherwise the boundary surface (which follows cuts), fixed points and BoxROI
+// boxes; and the switches.
 #include "fastcorot/render/draw_geometry.h"
 
 #include "fastcorot/core/error.h"

@@ -1,8 +1,8 @@
 // Picking for cutting: the ray through a pixel undoes Camera::project; Möller–Trumbore hits both
 // sides of a triangle and nothing behind the origin; the nearest boundary triangle names the
-// tetrahedron (not the first in order), and after its removal the one behind is hit; the brush takes
-// the tetrahedra whose centroid is within the radius. Expected values are derived by hand in the
-// comments.
+// tetrahedron (not the first in order), and after its removal the one behind is hit; the brush
+// takes the tetrahedra whose centroid is within the radius. Expected values are derived by hand in
+// the comments.
 #include "fastcorot/render/picking.h"
 
 #include "fastcorot/core/error.h"
@@ -21,8 +21,8 @@ namespace {
 void add_corner_tetrahedron(std::vector<Vec3<double>>& points, std::vector<Tetrahedron>& tets,
                             double z) {
   const Index first = static_cast<Index>(points.size());
-  points.insert(points.end(), {Vec3<double>(0, 0, z), Vec3<double>(1, 0, z),
-                               Vec3<double>(0, 1, z), Vec3<double>(0, 0, z + 1)});
+  points.insert(points.end(), {Vec3<double>(0, 0, z), Vec3<double>(1, 0, z), Vec3<double>(0, 1, z),
+                               Vec3<double>(0, 0, z + 1)});
   tets.push_back({first, first + 1, first + 2, first + 3});
 }
 
@@ -58,8 +58,8 @@ TEST(Picking, PixelRayGoesThroughThePixel) {
   oblique.target = {0.5, 0.2, -0.3};
   oblique.up = {0, 0, 1};
   oblique.fov_y_degrees = 40;
-  for (const Eigen::Vector2d& pixel : {Eigen::Vector2d(10.5, 20.25), Eigen::Vector2d(600, 1),
-                                      Eigen::Vector2d(320, 240)}) {
+  for (const Eigen::Vector2d& pixel :
+       {Eigen::Vector2d(10.5, 20.25), Eigen::Vector2d(600, 1), Eigen::Vector2d(320, 240)}) {
     const Ray r = pixel_ray(oblique, 640, 480, pixel);
     EXPECT_NEAR(r.direction.norm(), 1, 1e-12);
     const auto back = oblique.project(r.origin + 7 * r.direction, 640, 480);
@@ -90,10 +90,10 @@ TEST(Picking, RayMeetsTriangleFromEitherSideAndOnlyAhead) {
   EXPECT_FALSE(intersect_ray_triangle({{0.25, 0, 2}, down}, a, b, Eigen::Vector3d(2, 0, 0)));
   // Oblique: from (0.25, 0.25, 1) along (1, 0, -1)/√2 the plane is reached at (1.25, 0.25, 0),
   // outside; along (-0.1, 0, -1) at (0.15, 0.25, 0), inside, after √(0.01 + 1).
-  EXPECT_FALSE(intersect_ray_triangle({{0.25, 0.25, 1}, Eigen::Vector3d(1, 0, -1).normalized()},
-                                      a, b, c));
-  const auto oblique = intersect_ray_triangle(
-      {{0.25, 0.25, 1}, Eigen::Vector3d(-0.1, 0, -1).normalized()}, a, b, c);
+  EXPECT_FALSE(
+      intersect_ray_triangle({{0.25, 0.25, 1}, Eigen::Vector3d(1, 0, -1).normalized()}, a, b, c));
+  const auto oblique =
+      intersect_ray_triangle({{0.25, 0.25, 1}, Eigen::Vector3d(-0.1, 0, -1).normalized()}, a, b, c);
   ASSERT_TRUE(oblique);
   EXPECT_NEAR(*oblique, std::sqrt(1.01), 1e-12);
 }
@@ -188,7 +188,8 @@ TEST(Picking, GridColumnIsEnteredThroughItsTopAndCutDownwards) {
     depth = next->distance;
     highest_vertex_of_last = 0;
     for (Index v : mesh.tetrahedron(next->tetrahedron))
-      highest_vertex_of_last = std::max(highest_vertex_of_last, points[static_cast<std::size_t>(v)].z());
+      highest_vertex_of_last =
+          std::max(highest_vertex_of_last, points[static_cast<std::size_t>(v)].z());
     const Index picked[] = {next->tetrahedron};
     mesh.remove_tetrahedra(picked);
     ASSERT_LT(++removed, 18) << "more picks than tetrahedra";

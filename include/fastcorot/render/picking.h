@@ -4,8 +4,8 @@
 // ray/triangle test, both sides, so that a cut's freshly exposed faces count whatever their
 // winding); the nearest triangle hit names its tetrahedron. A ray enters an object through its
 // boundary, so the nearest of all tetrahedra's faces is a boundary triangle too: that is how a mesh
-// is picked without finding its boundary first. A cutting "brush" then takes every tetrahedron whose
-// centroid lies within a radius of the point hit. Nothing here touches OpenGL.
+// is picked without finding its boundary first. A cutting "brush" then takes every tetrahedron
+// whose centroid lies within a radius of the point hit. Nothing here touches OpenGL.
 #pragma once
 
 #include "fastcorot/core/types.h"
@@ -36,8 +36,8 @@ std::optional<double> intersect_ray_triangle(const Ray& ray, const Eigen::Vector
                                              const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
 struct TetrahedronHit {
-  Index tetrahedron = -1;  // in the mesh's current numbering
-  double distance = 0;     // along the ray, world units
+  Index tetrahedron = -1;                           // in the mesh's current numbering
+  double distance = 0;                              // along the ray, world units
   Eigen::Vector3d point = Eigen::Vector3d::Zero();  // where the ray meets the boundary
 };
 
