@@ -11,6 +11,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -85,9 +86,30 @@ struct Controls {
   ViewerSession* session = nullptr;
   Camera* camera = nullptr;
   bool reframe = false;
-  bool orbiting = false, panning = false;
+  bool orbiting = false, panning = false, cutting = false;
   double x = 0, y = 0;
 };
+
+// Cuts under the cursor at window position (x, y). Cursor positions are in window coordinates,
+// which on high-density displays differ from framebuffer pixels; the camera only needs the aspect
+// ratio, so the window's size is the picture the pixel belongs to.
+void cut_under(GLFWwindow* window, Controls& c, double x, double y) {
+  int width = 0, height = 0;
+  glfwGetWindowSize(window, &width, &height);
+  c.session->cut_at(*c.camera, width, height, {x, y});
+}
+
+// A drag reports the cursor every few pixels or farther apart when fast: cut along the segment
+// from the last position so that the cut has no gaps, every 3 pixels, at most 16 cuts per event
+// since each one looks at every tetrahedron (2 ms for the built-in beam).
+void cut_along(GLFWwindow* window, Controls& c, double x0, double y0, double x1, double y1) {
+  const double length = std::hypot(x1 - x0, y1 - y0);
+  const int samples = std::clamp(static_cast<int>(std::ceil(length / 3)), 1, 16);
+  for (int k = 1; k <= samples; ++k) {
+    const double s = static_cast<double>(k) / samples;
+    cut_under(window, c, x0 + s * (x1 - x0), y0 + s * (y1 - y0));
+  }
+}
 
 Controls& controls_of(GLFWwindow* window) {
   return *static_cast<Controls*>(glfwGetWindowUserPointer(window));
@@ -97,13 +119,22 @@ void on_mouse_button(GLFWwindow* window, int button, int action, int mods) {
   Controls& c = controls_of(window);
   if (action == GLFW_PRESS && ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureMouse) return;
   const bool pressed = action == GLFW_PRESS;
-  if (button == GLFW_MOUSE_BUTTON_LEFT && !(mods & GLFW_MOD_SHIFT)) c.orbiting = pressed;
+  glfwGetCursorPos(window, &c.x, &c.y);
+  // Left drag cuts in cut mode or with Ctrl held; shift + left still pans in either.
+  const bool left = button == GLFW_MOUSE_BUTTON_LEFT;
+  const bool cut =
+      left && !(mods & GLFW_MOD_SHIFT) && (c.session->cut_mode || (mods & GLFW_MOD_CONTROL));
+  if (cut) {
+    c.cutting = pressed;
+    if (pressed) cut_under(window, c, c.x, c.y);
+  } else if (left && !(mods & GLFW_MOD_SHIFT)) {
+    c.orbiting = pressed;
+  }
   if (button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE ||
-      (button == GLFW_MOUSE_BUTTON_LEFT && (mods & GLFW_MOD_SHIFT))) {
+      (left && (mods & GLFW_MOD_SHIFT))) {
     c.panning = pressed;
   }
-  if (!pressed) c.orbiting = c.panning = false;
-  glfwGetCursorPos(window, &c.x, &c.y);
+  if (!pressed) c.orbiting = c.panning = c.cutting = false;
 }
 
 void on_cursor(GLFWwindow* window, double x, double y) {
@@ -111,9 +142,11 @@ void on_cursor(GLFWwindow* window, double x, double y) {
   int width = 0, height = 0;
   glfwGetWindowSize(window, &width, &height);
   const double dx = x - c.x, dy = y - c.y;
+  const double from_x = c.x, from_y = c.y;
   c.x = x;
   c.y = y;
   if (height <= 0) return;
+  if (c.cutting) cut_along(window, c, from_x, from_y, x, y);
   if (c.orbiting) c.camera->orbit(-dx * 0.008, dy * 0.008);
   if (c.panning) c.camera->pan(-dx / height, dy / height);
 }
@@ -145,6 +178,9 @@ void on_key(GLFWwindow* window, int key, int, int action, int) {
       break;
     case GLFW_KEY_F:
       c.reframe = true;
+      break;
+    case GLFW_KEY_C:
+      s.cut_mode = !s.cut_mode;
       break;
     case GLFW_KEY_R:
       s.reload();
@@ -198,7 +234,12 @@ void view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
     ImGui::NewFrame();
     if (draw_viewer_panel(session, panel, fps).reframe) controls.reframe = true;
     if (controls.reframe) {
-      camera = frame();
+      // Cutting or a scene of fixed points only can leave nothing to frame: keep the camera.
+      try {
+        camera = frame();
+      } catch (const Error& error) {
+        session.message = std::string("reframe: ") + error.what();
+      }
       controls.reframe = false;
     }
     ImGui::Render();

@@ -2,11 +2,13 @@
 //                 [--frames N] [--screenshot FILE] [--dt DT] [--threads N]`:
 // an interactive window (GLFW, OpenGL, a Dear ImGui panel) that simulates the scene and shows it as
 // `run --png` draws it. Mouse: left drag orbits, right (or shift + left) drag pans, the wheel
-// zooms. Keys: space play/pause, N or → one step, D cycles the tetrahedra drawing, E mesh edges,
-// F reframes, R reloads the scene, Q or Esc quits. The panel shows time, steps and steps/s and
-// changes each object's method, Young's modulus and Poisson's ratio live. `--frames N` closes
-// after N frames and `--screenshot FILE` saves the last frame as PNG (tests run it in Xvfb). In a
-// build without the viewer (FASTCOROT_BUILD_VIEWER=OFF) it is an error.
+// zooms, ctrl + left drag (or left drag in cut mode) cuts: the tetrahedra under the cursor, within
+// the brush radius, are removed as it moves. Keys: space play/pause, N or → one step, D cycles the
+// tetrahedra drawing, E mesh edges, C cut mode, F reframes, R reloads the scene, Q or Esc quits.
+// The panel shows time, steps and steps/s, switches cut mode, sets the brush radius, counts the
+// tetrahedra removed, and changes each object's method, Young's modulus and Poisson's ratio live.
+// `--frames N` closes after N frames and `--screenshot FILE` saves the last frame as PNG (tests run
+// it in Xvfb). In a build without the viewer (FASTCOROT_BUILD_VIEWER=OFF) it is an error.
 #pragma once
 
 #include "picture_options.h"

@@ -61,6 +61,14 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
   ImGui::SameLine();
   ImGui::Checkbox("boxes", &session.draw.boxes);
 
+  ImGui::Checkbox("cut mode (C)", &session.cut_mode);
+  ImGui::SameLine();
+  ImGui::Text("removed %zu tetrahedra", session.removed_tetrahedra());
+  // Up to a tenth of the scene's diagonal: beyond that one click takes most of an object.
+  const double no_radius = 0, widest = 0.1 * simulation.scene_size();
+  ImGui::SliderScalar("brush radius", ImGuiDataType_Double, &session.cut_radius, &no_radius,
+                      &widest, "%.3g");
+
   for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
     if (simulation.objects[o].system.force_fields.empty()) continue;
     ImGui::PushID(static_cast<int>(o));
@@ -88,8 +96,9 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
     ImGui::PopStyleColor();
   }
   ImGui::TextDisabled(
-      "drag: orbit  right drag: pan  wheel: zoom\nspace: play/pause  N: step  D: drawing\n"
-      "E: edges  F: reframe  R: reload  Q: quit");
+      "drag: orbit  right drag: pan  wheel: zoom\n"
+      "ctrl drag (or drag in cut mode): cut\nspace: play/pause  N: step  D: drawing\n"
+      "E: edges  C: cut mode  F: reframe\nR: reload  Q: quit");
   ImGui::End();
   return requests;
 }

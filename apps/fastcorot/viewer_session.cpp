@@ -3,8 +3,11 @@
 #include "run_command.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/render/picking.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <optional>
 
 namespace fastcorot::cli {
 
@@ -14,6 +17,9 @@ ViewerSession::ViewerSession(const ViewOptions& options) : options_(options) {
   if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
   if (options.dt && !(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
   load();
+  // A brush of 1.5 % of the scene's diagonal takes a few tetrahedra of a typical mesh per cut, so
+  // that one drag leaves a visible cut; the panel changes it.
+  cut_radius = 0.015 * scene_.simulation.scene_size();
   title_ = options.scene.empty() ? "built-in cantilever beam"
                                  : std::filesystem::path(options.scene).filename().string();
 }
@@ -34,6 +40,7 @@ void ViewerSession::load() {
     materials.push_back(material);
   }
   scene_ = std::move(scene);
+  removed_ = 0;
 }
 
 void ViewerSession::step() {
@@ -99,6 +106,72 @@ void ViewerSession::set_material(std::size_t o, double young_modulus, double poi
   } catch (const Error& error) {
     message = object.path + ": " + error.what();
   }
+}
+
+std::size_t ViewerSession::cut(std::size_t o, std::span<const Index> tetrahedra) {
+  if (o >= scene_.simulation.objects.size()) {
+    message = "cut: there is no object " + std::to_string(o);
+    return 0;
+  }
+  auto& object = scene_.simulation.objects[o];
+  if (!object.mesh) {
+    message = "cut: " + object.path + " has no tetrahedra to cut";
+    return 0;
+  }
+  if (tetrahedra.empty()) return 0;
+  std::span<const Index> removing = tetrahedra;
+  std::vector<Index> kept_back;
+  if (tetrahedra.size() >= static_cast<std::size_t>(object.mesh->num_tetrahedra())) {
+    // A force field and a mass are only ever built on a mesh with tetrahedra, so the last one
+    // stays: an object cut away entirely would leave a force field in a state nothing else makes.
+    // Which one stays does not matter to the user; the smallest index is as good as any.
+    kept_back.assign(tetrahedra.begin(), tetrahedra.end());
+    std::sort(kept_back.begin(), kept_back.end());
+    kept_back.erase(kept_back.begin());
+    removing = kept_back;
+  }
+  try {
+    if (!removing.empty()) object.system.remove_tetrahedra(*object.mesh, removing);
+  } catch (const Error& error) {
+    message = "cut: " + object.path + ": " + error.what();
+    return 0;
+  }
+  removed_ += removing.size();
+  if (removing.size() < tetrahedra.size()) {
+    message = "cut: " + object.path + " keeps its last tetrahedron";
+  } else {
+    message.clear();
+  }
+  return removing.size();
+}
+
+std::size_t ViewerSession::cut_at(const Camera& camera, int width, int height,
+                                  const Eigen::Vector2d& pixel) {
+  if (width < 1 || height < 1) return 0;  // a minimised window shows nothing to cut
+  const Ray ray = pixel_ray(camera, width, height, pixel);
+  auto& objects = scene_.simulation.objects;
+  std::optional<TetrahedronHit> nearest;
+  std::size_t hit_object = 0;
+  for (std::size_t o = 0; o < objects.size(); ++o) {
+    if (!objects[o].mesh) continue;
+    const auto hit =
+        pick_tetrahedron<double>(*objects[o].mesh, objects[o].system.state.position, ray);
+    if (hit && (!nearest || hit->distance < nearest->distance)) {
+      nearest = hit;
+      hit_object = o;
+    }
+  }
+  if (!nearest) return 0;
+  const auto& object = objects[hit_object];
+  std::vector<Index> brush = tetrahedra_within<double>(*object.mesh, object.system.state.position,
+                                                       nearest->point, cut_radius);
+  // The tetrahedron hit goes even when its centroid is outside the brush (a small radius, a long
+  // thin element), so every cut under the mouse removes something.
+  if (!std::binary_search(brush.begin(), brush.end(), nearest->tetrahedron)) {
+    brush.insert(std::lower_bound(brush.begin(), brush.end(), nearest->tetrahedron),
+                 nearest->tetrahedron);
+  }
+  return cut(hit_object, brush);
 }
 
 }  // namespace fastcorot::cli

@@ -1,16 +1,21 @@
 // The state behind `fastcorot view`, apart from any window so that it can be tested headless: the
 // simulation and where it came from, play/pause and single steps, the measured steps per second,
-// the drawing switches, and live changes of each object's rotation method and material. A failure
-// (a diverging step, a bad modulus) never ends the session: it pauses and leaves a message.
+// the drawing switches, live changes of each object's rotation method and material, and cutting:
+// tetrahedra picked under the mouse are removed from the mesh, and the force fields and mass follow
+// (MechanicalSystem::remove_tetrahedra). A failure (a diverging step, a bad modulus, a refused cut)
+// never ends the session: it pauses or changes nothing, and leaves a message.
 #pragma once
 
 #include "view_command.h"
 
 #include "fastcorot/fem/rotation_method.h"
+#include "fastcorot/render/camera.h"
 #include "fastcorot/render/draw_geometry.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include <chrono>
+#include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -37,6 +42,11 @@ class ViewerSession {
   DrawOptions draw;
   std::string message;                    // the last failure, shown until the next success
   std::vector<ObjectMaterial> materials;  // one per object, as last applied
+  // Cutting: in cut mode the view's left drag cuts instead of orbiting. The brush removes, besides
+  // the tetrahedron hit, those of the same object whose centroid lies within cut_radius (world
+  // units) of the point hit; 0 cuts one tetrahedron at a time.
+  bool cut_mode = false;
+  double cut_radius = 0;
 
   // Called once per frame: steps_per_frame steps while playing.
   void advance();
@@ -51,6 +61,19 @@ class ViewerSession {
   // and sets `message`.
   void set_material(std::size_t o, double young_modulus, double poisson_ratio);
 
+  // Removes tetrahedra `tetrahedra` (current numbering, any order) of object `o`; the others are
+  // renumbered by swap-with-last. An object keeps at least one tetrahedron, since its force field
+  // and mass are built on a non-empty mesh: a cut that would take the last ones leaves one of them
+  // and says so in `message`. On failure (a bad index, an object without a mesh) nothing changes
+  // and `message` says why. Returns how many were removed.
+  std::size_t cut(std::size_t o, std::span<const Index> tetrahedra);
+  // Cuts where `pixel` of a width × height view through `camera` shows an object: the nearest
+  // boundary triangle under it over every object names the tetrahedron, and the brush adds its
+  // neighbours. Returns how many were removed (0 where the pixel shows no object).
+  std::size_t cut_at(const Camera& camera, int width, int height, const Eigen::Vector2d& pixel);
+  // Tetrahedra removed by cuts since the scene was (re)loaded, over every object.
+  std::size_t removed_tetrahedra() const { return removed_; }
+
   // Steps per second over the last half second or so of stepping (0 before any).
   double steps_per_second() const { return rate_; }
 
@@ -61,6 +84,7 @@ class ViewerSession {
   LoadedScene scene_;
   std::string title_;
   double rate_ = 0;
+  std::size_t removed_ = 0;
   long window_steps_ = 0;
   double window_seconds_ = 0;
 };

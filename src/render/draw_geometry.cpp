@@ -45,6 +45,19 @@ void add_box(LineList& list, const DrawnBox& box, const Rgba& color) {
   }
 }
 
+// FNV-1a, one 32-bit vertex index at a time, in order: position-dependent, so a swap-with-last
+// renumbering or a tetrahedron replaced by another changes it (up to the rare 64-bit collision).
+std::uint64_t fingerprint_of(const TetMesh& mesh) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const Tetrahedron& t : mesh.tetrahedra()) {
+    for (Index v : t) {
+      hash ^= static_cast<std::uint32_t>(v);
+      hash *= 1099511628211ull;
+    }
+  }
+  return hash;
+}
+
 }  // namespace
 
 TetrahedronDrawing parse_tetrahedron_drawing(const std::string& text) {
@@ -79,9 +92,13 @@ bool draws_tetrahedra(const SimulatedObject<Real>& object, std::size_t field,
 
 const std::vector<BoundaryTriangle>& SceneDrawer::boundary_of(const TetMesh& mesh) {
   CachedBoundary& cached = boundaries_[&mesh];
-  if (cached.tetrahedra != mesh.num_tetrahedra()) {
+  // The count alone misses a removal followed by as many additions, or a new mesh at a freed
+  // address with the old count; the fingerprint follows every vertex of every tetrahedron.
+  const std::uint64_t fingerprint = fingerprint_of(mesh);
+  if (cached.tetrahedra != mesh.num_tetrahedra() || cached.fingerprint != fingerprint) {
     cached.triangles = mesh.boundary_triangles();
     cached.tetrahedra = mesh.num_tetrahedra();
+    cached.fingerprint = fingerprint;
   }
   return cached.triangles;
 }

@@ -1,5 +1,7 @@
 // The viewer's state without a window: play/pause and steps, live method and material changes
-// (refused values change nothing and leave a message), divergence pauses, reload starts over.
+// (refused values change nothing and leave a message), divergence pauses, reload starts over, and
+// cutting under a pixel (what the picked ray hits goes, an empty pixel changes nothing, a cut
+// across a beam separates it and the simulation goes on).
 #include "viewer_session.h"
 
 #include "fastcorot/core/error.h"
@@ -10,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numeric>
 
 namespace fastcorot::cli {
 namespace {
@@ -92,6 +95,158 @@ TEST(ViewerSession, BadOptionsAreErrors) {
   options.picture.drawing = "scene";
   options.scene = "/nonexistent.scn";
   EXPECT_THROW(ViewerSession{options}, Error);
+}
+
+// Looks straight down −y at (x, z) from y = 20 (right is +x), in a 201 × 201 picture.
+Camera camera_above(double x, double z) {
+  Camera camera;
+  camera.eye = {x, 20, z};
+  camera.target = {x, 0, z};
+  camera.up = {0, 0, -1};
+  return camera;
+}
+constexpr int kSize = 201;
+
+// Tetrahedra of `mesh` connected (through shared vertices) to tetrahedra holding point `from`,
+// reaching point `to`: whether the two points are still in one piece.
+bool connected(const TetMesh& mesh, Index from, Index to) {
+  std::vector<Index> parent(static_cast<std::size_t>(mesh.num_points()));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](Index v) {
+    while (parent[static_cast<std::size_t>(v)] != v) v = parent[static_cast<std::size_t>(v)];
+    return v;
+  };
+  for (const Tetrahedron& t : mesh.tetrahedra()) {
+    for (std::size_t k = 1; k < 4; ++k) parent[static_cast<std::size_t>(root(t[k]))] = root(t[0]);
+  }
+  return root(from) == root(to);
+}
+
+TEST(ViewerSession, CutAtAPixelRemovesTheTetrahedronUnderIt) {
+  // Small beam: cells x in [0, 1] (tetrahedra 0..5, fixed end) and [1, 2] (6..11), y, z in [0, 1].
+  // The centre pixel looks down at (1.3, 0.6), off the diagonals of the top face of cell 1: the
+  // ray meets y = 1 in a tetrahedron of cell 1, whose vertices all have x >= 1.
+  ViewOptions options = options_for("session_cut", testing::small_beam());
+  options.paused = true;
+  ViewerSession session(options);
+  const TetMesh& mesh = *session.simulation().objects[0].mesh;
+  const auto& rest = session.simulation().objects[0].system.state.rest_position;
+  auto in_cell_1 = [&] {
+    int count = 0;
+    for (const Tetrahedron& t : mesh.tetrahedra()) {
+      bool inside = true;
+      for (Index v : t) inside = inside && rest[static_cast<std::size_t>(v)].x() >= 1;
+      count += inside;
+    }
+    return count;
+  };
+  ASSERT_EQ(in_cell_1(), 6);
+  EXPECT_GT(session.cut_radius, 0);  // a small brush by default
+  session.cut_radius = 0;            // one tetrahedron per cut
+  const Camera camera = camera_above(1.3, 0.6);
+  EXPECT_EQ(session.cut_at(camera, kSize, kSize, {100.5, 100.5}), 1u);
+  EXPECT_TRUE(session.message.empty()) << session.message;
+  EXPECT_EQ(mesh.num_tetrahedra(), 11);
+  EXPECT_EQ(in_cell_1(), 5);
+  EXPECT_EQ(session.removed_tetrahedra(), 1u);
+  // The force field and the mass followed: the cut beam steps.
+  session.step();
+  session.step();
+  EXPECT_EQ(session.simulation().steps_done(), 2);
+  EXPECT_TRUE(session.message.empty()) << session.message;
+  EXPECT_EQ(session.simulation().objects[0].system.force_fields[0]->mesh().num_tetrahedra(), 11);
+
+  // The corner pixel looks at about (1.3 - 5.4, 0, 0.6 - 5.4) (30 degrees of view from 20 above):
+  // no object, no change.
+  EXPECT_EQ(session.cut_at(camera, kSize, kSize, {0.5, 0.5}), 0u);
+  EXPECT_EQ(mesh.num_tetrahedra(), 11);
+  EXPECT_EQ(session.removed_tetrahedra(), 1u);
+  EXPECT_TRUE(session.message.empty());
+  // A window minimised to nothing cuts nothing either.
+  EXPECT_EQ(session.cut_at(camera, 0, 0, {0, 0}), 0u);
+
+  // A brush wide enough for the beam takes every tetrahedron but the last one, which stays.
+  session.cut_radius = 10;
+  EXPECT_EQ(session.cut_at(camera, kSize, kSize, {100.5, 100.5}), 10u);
+  EXPECT_EQ(session.simulation().objects[0].mesh->num_tetrahedra(), 1);
+  EXPECT_NE(session.message.find("last tetrahedron"), std::string::npos) << session.message;
+  session.step();
+  EXPECT_EQ(session.simulation().steps_done(), 3);
+
+  session.reload();  // a fresh beam, nothing removed yet
+  EXPECT_EQ(session.simulation().objects[0].mesh->num_tetrahedra(), 12);
+  EXPECT_EQ(session.removed_tetrahedra(), 0u);
+}
+
+TEST(ViewerSession, BadCutsChangeNothingAndSayWhy) {
+  ViewerSession session(options_for("session_bad_cut", testing::small_beam()));
+  const std::vector<Index> out_of_range = {3, 12};
+  EXPECT_EQ(session.cut(0, out_of_range), 0u);
+  EXPECT_NE(session.message.find("root/beam"), std::string::npos) << session.message;
+  EXPECT_EQ(session.simulation().objects[0].mesh->num_tetrahedra(), 12);
+  const std::vector<Index> twice = {4, 4};
+  EXPECT_EQ(session.cut(0, twice), 0u);
+  EXPECT_EQ(session.simulation().objects[0].mesh->num_tetrahedra(), 12);
+  EXPECT_EQ(session.cut(7, out_of_range), 0u);
+  EXPECT_NE(session.message.find("no object 7"), std::string::npos) << session.message;
+  EXPECT_EQ(session.removed_tetrahedra(), 0u);
+  const std::vector<Index> two = {11, 0};
+  EXPECT_EQ(session.cut(0, two), 2u);
+  EXPECT_TRUE(session.message.empty()) << session.message;
+  EXPECT_EQ(session.removed_tetrahedra(), 2u);
+}
+
+TEST(ViewerSession, ACutAcrossABeamSeparatesItsFreeEnd) {
+  // A 4 × 1 × 1 beam of unit cells (points 5 × 2 × 2), stiff enough to barely sag, fixed at x = 0.
+  // Drilling down through cell [2, 3] on a 10 × 10 grid of pixels takes all six of its tetrahedra:
+  // each projects to a triangle of area >= 1/2 of the cell's top, which the grid cannot miss. The
+  // rays spread out from the eye 20 above: one through (x, 1, z) on the top meets the bottom at
+  // 2 + (x - 2) 20 / 19 (likewise z), so x in [2.07, 2.88] stays inside (2, 3) all the way down.
+  // Other cells' centroids are at x <= 1.75 or >= 3.25, over 0.3 from every hit, so a brush of
+  // 0.2 takes none of them: exactly 6 go, and the end
+  // x in [3, 4] is a free body that falls: about g t² / 2 = 1.2 in 0.5 s (less a little damping).
+  ViewOptions options = options_for("session_separate", R"(
+  <Node name="beam">
+    <EulerImplicitSolver rayleighStiffness="0.1" rayleighMass="0.1"/>
+    <EigenSimplicialLDLT/>
+    <RegularGridTopology name="grid" n="5 2 2" min="0 0 0" max="4 1 1"/>
+    <MechanicalObject name="state"/>
+    <TetrahedronSetTopologyContainer name="tets"/>
+    <Hexa2TetraTopologicalMapping input="@grid" output="@tets" swapping="true"/>
+    <DiagonalMass massDensity="2"/>
+    <FastTetrahedralCorotationalForceField youngModulus="1e6" poissonRatio="0.3"/>
+    <BoxROI name="roi" box="-0.1 -0.1 -0.1 0.1 1.1 1.1"/>
+    <FixedProjectiveConstraint indices="@roi.indices"/>
+  </Node>)");
+  options.paused = true;
+  ViewerSession session(options);
+  const auto& object = session.simulation().objects[0];
+  // Point (i, j, k) is i + 5 (j + 2 k): the top far corner of the free end and of the fixed part.
+  const Index tip = 4 + 5 * (1 + 2 * 1), inner = 2 + 5 * (1 + 2 * 1);
+  ASSERT_TRUE(connected(*object.mesh, 0, tip));
+  session.cut_radius = 0.2;
+  const Camera camera = camera_above(2, 0.5);
+  for (int i = 0; i < 10; ++i) {
+    for (int k = 0; k < 10; ++k) {
+      const auto pixel = camera.project({2.07 + 0.09 * i, 1, 0.07 + 0.1 * k}, kSize, kSize);
+      ASSERT_TRUE(pixel);
+      for (int drill = 0; drill < 7 && session.cut_at(camera, kSize, kSize, *pixel) > 0; ++drill) {
+      }
+    }
+  }
+  EXPECT_EQ(session.removed_tetrahedra(), 6u);
+  EXPECT_EQ(object.mesh->num_tetrahedra(), 18);
+  EXPECT_FALSE(connected(*object.mesh, 0, tip));
+  EXPECT_TRUE(connected(*object.mesh, 0, inner));
+
+  session.playing = true;
+  session.steps_per_frame = 50;  // 0.5 s
+  session.advance();
+  EXPECT_EQ(session.simulation().steps_done(), 50);
+  EXPECT_TRUE(session.message.empty()) << session.message;
+  const auto& x = object.system.state.position;
+  EXPECT_LT(x[static_cast<std::size_t>(tip)].y(), 1 - 0.9);
+  EXPECT_GT(x[static_cast<std::size_t>(inner)].y(), 1 - 0.05);
 }
 
 }  // namespace

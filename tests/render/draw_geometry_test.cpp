@@ -1,5 +1,6 @@
 // What SceneDrawer draws for scenes built through the real parser: the drawn tetrahedra with the
-// scene's colours, otherwise the boundary surface, fixed points and BoxROI boxes; and the switches.
+// scene's colours, otherwise the boundary surface (which follows cuts), fixed points and BoxROI
+// boxes; and the switches.
 #include "fastcorot/render/draw_geometry.h"
 
 #include "fastcorot/core/error.h"
@@ -7,6 +8,9 @@
 #include "render/render_scenes.h"
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
 
 namespace fastcorot {
 namespace {
@@ -91,6 +95,35 @@ TEST(DrawGeometry, FollowsThePositions) {
   const DrawGeometry geometry = drawer.draw(scene.simulation, DrawOptions{});
   EXPECT_EQ(geometry.points.positions[0], Eigen::Vector3f(5, 0, 0));
   EXPECT_GT(geometry.triangles.positions[0].x(), 5.0f);
+}
+
+TEST(DrawGeometry, TheSurfaceFollowsCutsEvenWhenTheCountComesBack) {
+  // Small beam: cell 0 (x in [0, 1]) is tetrahedra 0..5, cell 1 (x in [1, 2]) is 6..11.
+  LoadedScene scene = build_test_scene(testing::small_beam("false"));
+  auto& object = scene.simulation.objects[0];
+  SceneDrawer drawer;
+  EXPECT_EQ(drawer.draw(scene.simulation, DrawOptions{}).triangles.size(), 20u);
+  auto x_range = [](const DrawGeometry& geometry) {
+    float low = 1e9f, high = -1e9f;
+    for (const auto& p : geometry.triangles.positions) {
+      low = std::min(low, p.x());
+      high = std::max(high, p.x());
+    }
+    return std::array<float, 2>{low, high};
+  };
+  const std::vector<Index> cell_1 = {6, 7, 8, 9, 10, 11};
+  const TopologyChange cut = object.system.remove_tetrahedra(*object.mesh, cell_1);
+  const DrawGeometry left = drawer.draw(scene.simulation, DrawOptions{});
+  EXPECT_EQ(left.triangles.size(), 12u);  // one cube: 6 faces of 2 triangles
+  EXPECT_EQ(x_range(left), (std::array<float, 2>{0, 1}));
+  // Cell 1 back, cell 0 away: six tetrahedra again, as before, but the other cube.
+  object.system.add_tetrahedra(*object.mesh, cut.removed_tetrahedron_vertices);
+  const std::vector<Index> cell_0 = {0, 1, 2, 3, 4, 5};
+  object.system.remove_tetrahedra(*object.mesh, cell_0);
+  ASSERT_EQ(object.mesh->num_tetrahedra(), 6);
+  const DrawGeometry right = drawer.draw(scene.simulation, DrawOptions{});
+  EXPECT_EQ(right.triangles.size(), 12u);
+  EXPECT_EQ(x_range(right), (std::array<float, 2>{1, 2}));
 }
 
 TEST(DrawGeometry, ObjectsWithoutDrawingInformationShowTheirSurface) {

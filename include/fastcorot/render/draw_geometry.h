@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cstdint>
 #include <map>
 #include <vector>
 
@@ -73,8 +74,10 @@ template <class Real>
 bool draws_tetrahedra(const SimulatedObject<Real>& object, std::size_t field,
                       TetrahedronDrawing mode);
 
-// Turns simulations into DrawGeometry. It keeps each mesh's boundary triangles between frames (they
-// are recomputed when the mesh's tetrahedron count changes), so reuse one drawer across frames.
+// Turns simulations into DrawGeometry. It keeps each mesh's boundary triangles between frames, so
+// reuse one drawer across frames. They are recomputed whenever the tetrahedra change (a cut, a
+// reload whose new mesh happens to reuse the old one's address): a fingerprint of the tetrahedron
+// list is checked each frame, which costs far less than finding the boundary again.
 class SceneDrawer {
  public:
   template <class Real>
@@ -90,6 +93,7 @@ class SceneDrawer {
 
   struct CachedBoundary {
     Index tetrahedra = -1;
+    std::uint64_t fingerprint = 0;
     std::vector<BoundaryTriangle> triangles;
   };
   std::map<const TetMesh*, CachedBoundary> boundaries_;
