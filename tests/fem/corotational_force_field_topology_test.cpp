@@ -123,13 +123,13 @@ CorotationalForceField<Real> fresh_on(const TetMesh& mesh, const Points<Real>& r
 }
 
 // The beam in double with a deformed state x and a direction dx, and a qr field on it.
-struct Setup {
+struct BeamCase {
   Grid grid = beam();
   Points<double> x, dx;
   std::shared_ptr<TetMesh> mesh;
   std::unique_ptr<CorotationalForceField<double>> field;
 
-  explicit Setup(unsigned seed, typename CorotationalForceField<double>::Parameters p = parameters<double>(RotationMethod::qr)) {
+  explicit BeamCase(unsigned seed, typename CorotationalForceField<double>::Parameters p = parameters<double>(RotationMethod::qr)) {
     std::mt19937 rng(seed);
     x = testing::perturbed(grid.rest, 0.05, rng);
     dx = testing::perturbed(Points<double>(grid.rest.size(), Vec3<double>::Zero()), 0.01, rng);
@@ -228,7 +228,7 @@ TEST(ForceFieldTopology, RandomChangesEqualAFreshFieldFloat) {
 }
 
 TEST(ForceFieldTopology, RemovingThenReaddingRestoresForcesAndStiffness) {
-  Setup s(5);
+  BeamCase s(5);
   const auto& [grid, x, dx, mesh, owned] = s;
   CorotationalForceField<double>& field = *owned;
   const Outputs<double> before = outputs(field, x, dx);
@@ -257,7 +257,7 @@ TEST(ForceFieldTopology, RemovingThenReaddingRestoresForcesAndStiffness) {
 TEST(ForceFieldTopology, ManyAdditionsRebuildTheSchedules) {
   // Tetrahedra added on top of a full mesh find no room in their groups and go to the serial group;
   // past a threshold everything is rebuilt. Both must give what a fresh field gives.
-  Setup s(9);
+  BeamCase s(9);
   const auto& [grid, x, dx, mesh, owned] = s;
   CorotationalForceField<double>& field = *owned;
   for (std::size_t count : {10u, 1500u}) {
@@ -273,7 +273,7 @@ TEST(ForceFieldTopology, PerTetrahedronMaterialsFollowTheirTetrahedra) {
   p.young_modulus.clear();
   const std::size_t n = beam().tetrahedra.size();
   for (std::size_t t = 0; t < n; ++t) p.young_modulus.push_back(1000.0 + static_cast<double>(t));
-  Setup s(3, p);
+  BeamCase s(3, p);
   const auto& [grid, x, dx, mesh, owned] = s;
   CorotationalForceField<double>& field = *owned;
   const std::vector<Index> removed = {5, 700, 2849, 17};
@@ -296,7 +296,7 @@ TEST(ForceFieldTopology, PerTetrahedronListsSurviveRemovingEverythingAndAddingBa
   const std::size_t n = beam().tetrahedra.size();
   p.young_modulus.clear();
   for (std::size_t t = 0; t < n; ++t) p.young_modulus.push_back(1000.0 + static_cast<double>(t));
-  Setup s(4, p);
+  BeamCase s(4, p);
   const auto& [grid, x, dx, mesh, owned] = s;
   CorotationalForceField<double>& field = *owned;
   std::vector<Index> all_but_7(n);
