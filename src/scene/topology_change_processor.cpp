@@ -148,8 +148,7 @@ TopologyScript build_topology_script(SceneData& data, Component& c, std::shared_
   } catch (const Error& error) {
     throw make_error(c.where(), ": ", error.what());
   }
-  // SOFA compares T with the time plus shift.
-  for (TopologyEvent& event : script.events) event.time -= shift;
+  script.shift = shift;  // SOFA compares T with the time plus shift
   return script;
 }
 

@@ -95,6 +95,8 @@ template <class Real>
 void Simulation<Real>::set_steps_done(long steps) {
   if (steps < 0) throw make_error("step count ", steps, ": must be >= 0");
   steps_done_ = steps;
+  clock_ = 0;
+  for (long s = 0; s < steps; ++s) clock_ += static_cast<double>(dt);
 }
 
 template <class Real>
@@ -113,14 +115,13 @@ Real Simulation<Real>::scene_size() const {
 }
 
 template <class Real>
-void Simulation<Real>::apply_topology_changes(long step_number) {
-  const double time = static_cast<double>(step_number - 1) * static_cast<double>(dt);
+void Simulation<Real>::apply_topology_changes(long step_number, double clock) {
   for (auto& object : objects) {
     for (auto& script : object.topology_scripts) {
       try {
-        script.apply_due(time, static_cast<double>(dt), object.system);
+        script.apply_due(clock, object.system);
       } catch (const Error& error) {
-        throw Error(brief("at step ", step_number, " (t = ", time, "): ") + error.what());
+        throw Error(brief("at step ", step_number, " (t = ", clock, "): ") + error.what());
       }
     }
   }
@@ -128,13 +129,17 @@ void Simulation<Real>::apply_topology_changes(long step_number) {
 
 template <class Real>
 void Simulation<Real>::replay_topology_changes(long steps) {
-  for (long s = steps_done_ + 1; s <= steps; ++s) apply_topology_changes(s);
+  double clock = clock_;
+  for (long s = steps_done_ + 1; s <= steps; ++s) {
+    apply_topology_changes(s, clock);
+    clock += static_cast<double>(dt);
+  }
 }
 
 template <class Real>
 StepReport Simulation<Real>::step() {
   const long step_number = steps_done_ + 1;
-  apply_topology_changes(step_number);
+  apply_topology_changes(step_number, clock_);
   const Real size =
       divergence_factor > 0 && std::isfinite(divergence_factor) ? scene_size() : Real(0);
   const Real bound = divergence_factor * size;
@@ -172,6 +177,7 @@ StepReport Simulation<Real>::step() {
     total.linear_iterations += report.linear_iterations;
   }
   steps_done_ = step_number;
+  clock_ += static_cast<double>(dt);
   return total;
 }
 

@@ -2,15 +2,18 @@
 
 #include "fastcorot/core/error.h"
 
+#include <cmath>
+#include <limits>
+
 namespace fastcorot {
 
 template <class Real>
-void TopologyScript::apply_due(double time, double dt, MechanicalSystem<Real>& system) {
-  // Times are step counts times dt: a millionth of a step absorbs their rounding.
-  const double slack = 1e-6 * dt;
+void TopologyScript::apply_due(double time, MechanicalSystem<Real>& system) {
+  const double reading = time + shift;
   while (next < events.size()) {
     TopologyEvent& event = events[next];
-    const bool due = strictly_after ? time > event.time + slack : time >= event.time - slack;
+    const bool due = strictly_after ? !(event.time >= time)
+                                    : event.time < reading || std::abs(event.time - reading) < std::numeric_limits<double>::epsilon();
     if (!due) return;
     try {
       if (!event.remove.empty()) system.remove_tetrahedra(*mesh, event.remove);
@@ -27,7 +30,7 @@ void TopologyScript::apply_due(double time, double dt, MechanicalSystem<Real>& s
   }
 }
 
-template void TopologyScript::apply_due(double, double, MechanicalSystem<float>&);
-template void TopologyScript::apply_due(double, double, MechanicalSystem<double>&);
+template void TopologyScript::apply_due(double, MechanicalSystem<float>&);
+template void TopologyScript::apply_due(double, MechanicalSystem<double>&);
 
 }  // namespace fastcorot

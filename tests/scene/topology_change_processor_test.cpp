@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 namespace fastcorot {
 namespace {
@@ -153,6 +154,25 @@ TEST(TopologicalChangeProcessor, IntervalRepeatsTheRemoval) {
   EXPECT_EQ(mesh.num_tetrahedra(), all - 2);
   sim.step();  // t = 0.04
   EXPECT_EQ(mesh.num_tetrahedra(), all - 4);
+}
+
+TEST(TopologicalChangeProcessor, TimesAreComparedWithSofasAccumulatedClock) {
+  // SOFA's time is dt added once per step: after 30 steps of 0.01 it is 0.3000000000000001 (after
+  // 10, 0.09999999999999999). So timeToRemove = 0.3 fires with step 31, which starts at that
+  // time, while timeToRemove = 0.1 waits for step 12 (step 11 starts just below 0.1).
+  double clock = 0;
+  for (int s = 0; s < 30; ++s) clock += 0.01;
+  ASSERT_GT(clock, 0.3);
+  for (const auto& [time, step] : {std::pair{"0.3", 31}, std::pair{"0.1", 12}}) {
+    LoadedScene scene = build(beam(std::string("<TopologicalChangeProcessor useDataInputs=\"true\" timeToRemove=\"") + time +
+                                   "\" tetrahedraToRemove=\"0\"/>"));
+    const TetMesh& mesh = *scene.simulation.objects.at(0).mesh;
+    const Index all = mesh.num_tetrahedra();
+    for (int s = 1; s < step; ++s) scene.simulation.step();
+    EXPECT_EQ(mesh.num_tetrahedra(), all) << "timeToRemove " << time;
+    scene.simulation.step();
+    EXPECT_EQ(mesh.num_tetrahedra(), all - 1) << "timeToRemove " << time;
+  }
 }
 
 TEST(TopologicalChangeProcessor, ResumingAfterACutEqualsTheUninterruptedRun) {

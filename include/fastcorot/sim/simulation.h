@@ -91,9 +91,13 @@ class Simulation {
   Real scene_size() const;
 
  private:
-  void apply_topology_changes(long step_number);
+  void apply_topology_changes(long step_number, double clock);
 
   long steps_done_ = 0;
+  // SOFA's context time: dt added once per step, rounding included (0.01 ten times is
+  // 0.09999999999999999). Scripted topological changes compare their times with it, as SOFA's
+  // TopologicalChangeProcessor does, so that they fire at the very step they fire in SOFA.
+  double clock_ = 0;
 };
 
 }  // namespace fastcorot
