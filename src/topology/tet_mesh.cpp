@@ -52,17 +52,13 @@ TetMesh::TetMesh(Index num_points, std::vector<Tetrahedron> tetrahedra) : num_po
   if (num_points_ < 0) throw make_error("TetMesh: negative point count ", num_points_);
   check_tetrahedra(tetrahedra, 0);
   tetrahedra_ = std::move(tetrahedra);
-  // Edges in SOFA's creation order: tetrahedra in order, local edges in order.
-  auto lookup = edge_lookup(edges_);
-  for (const Tetrahedron& tet : tetrahedra_) {
-    for (const auto& [k, l] : kTetrahedronEdges) {
-      const Index a = tet[k], b = tet[l];
-      if (lookup.emplace(edge_key(a, b), static_cast<Index>(edges_.size())).second) {
-        edges_.push_back({std::min(a, b), std::max(a, b)});
-      }
-    }
-  }
-  update_topology_information();
+  // Edges in SOFA's creation order, as add_tetrahedra creates them: each tetrahedron in turn finds
+  // or appends its six edges, local edges in order.
+  edges_of_tetrahedron_.resize(tetrahedra_.size());
+  edge_orientation_.assign(tetrahedra_.size(), 0);
+  vertex_tetrahedra_.assign(static_cast<std::size_t>(num_points_), {});
+  vertex_edges_.assign(static_cast<std::size_t>(num_points_), {});
+  for (Index t = 0; t < num_tetrahedra(); ++t) link_tetrahedron(t);
 }
 
 TetMesh::TetMesh(Index num_points, std::vector<Tetrahedron> tetrahedra, std::vector<Edge> edges)
@@ -221,7 +217,7 @@ TopologyChange TetMesh::add_tetrahedra(std::span<const Tetrahedron> tetrahedra) 
   change.first_added_edge = num_edges();
   for (const Tetrahedron& tet : tetrahedra) {
     for (Index v : tet) {
-      if (vertex_tetrahedra_[static_cast<std::size_t>(v)].empty()) insert_sorted(change.reconnected_points, v);
+      if (vertex_tetrahedra_[static_cast<std::size_t>(v)].empty()) change.reconnected_points.push_back(v);
     }
     tetrahedra_.push_back(tet);
     edges_of_tetrahedron_.emplace_back();
@@ -229,6 +225,7 @@ TopologyChange TetMesh::add_tetrahedra(std::span<const Tetrahedron> tetrahedra) 
     link_tetrahedron(num_tetrahedra() - 1);
   }
   change.num_added_edges = num_edges() - change.first_added_edge;
+  std::sort(change.reconnected_points.begin(), change.reconnected_points.end());  // each once: linked after
   return change;
 }
 
