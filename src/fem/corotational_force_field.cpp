@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -136,11 +137,10 @@ void CorotationalForceField<Real>::rebuild() {
   std::vector<Edge> sorted(edges.size());
   for (std::size_t i = 0; i < sorted.size(); ++i) sorted[i] = ordered(by_vertex[i]);
   const ScatterSchedule schedule = make_scatter_schedule<2>(mesh_->num_points(), std::span<const Edge>(sorted));
-  constexpr std::size_t lanes = kernels::kEdgeLanes<Real>;
   edge_schedule_ = schedule;
   edge_slot_.assign(edges.size(), 0);
   edge_vertices_.clear();
-  edge_vertices_.reserve(edges.size() + lanes * static_cast<std::size_t>(schedule.num_groups()));
+  edge_vertices_.reserve(edges.size());
   free_slots_.assign(static_cast<std::size_t>(schedule.num_groups()), {});
   num_free_slots_ = 0;
   for (Index g = 0; g < schedule.num_groups(); ++g) {
@@ -151,51 +151,18 @@ void CorotationalForceField<Real>::rebuild() {
       edge_slot_[static_cast<std::size_t>(e)] = static_cast<Index>(edge_vertices_.size());
       edge_vertices_.push_back(ordered(e));
     }
-    // Padding slots repeat the group's last edge with a zero block: they add nothing, and edges
-    // added later may take them.
-    while (edge_vertices_.size() % lanes != 0) {
-      free_slots_[gi].push_back(static_cast<Index>(edge_vertices_.size()));
-      edge_vertices_.push_back(edge_vertices_.back());
-      ++num_free_slots_;
-    }
   }
   edge_schedule_.group_begin.back() = static_cast<Index>(edge_vertices_.size());
   edge_schedule_.group_end.assign(edge_schedule_.group_begin.begin() + 1, edge_schedule_.group_begin.end());
   edge_schedule_.order.clear();  // positions are slots
 
-  if (9 * edge_vertices_.size() > std::numeric_limits<std::uint32_t>::max()) {
-    throw make_error("FastTetrahedralCorotationalForceField: ", edges.size(),
-                     " edges: more than this force field can index (about 470 million)");
-  }
   const auto& visiting = tetrahedron_schedule_.order;
   position_.resize(visiting.size());
-  refresh_offsets_.resize(6 * visiting.size());
-  refresh_swaps_.resize(visiting.size());
   for (std::size_t position = 0; position < visiting.size(); ++position) {
     position_[static_cast<std::size_t>(visiting[position])] = static_cast<Index>(position);
-    set_refresh_data(position);
   }
-  blocks_.assign(9 * edge_vertices_.size(), Real(0));
+  blocks_.assign(9 * edge_vertices_.size() + kernels::kBlockTail, Real(0));
   stale_ = true;
-}
-
-// For the refresh, at a position of the tetrahedra's visiting order: where each of the six edge
-// blocks of its tetrahedron starts and which of them are oriented against the local edge (bit e
-// set when local vertex k of edge e has the higher mesh index).
-template <class Real>
-void CorotationalForceField<Real>::set_refresh_data(std::size_t position) {
-  const Index t = tetrahedron_schedule_.order[position];
-  const Tetrahedron& tet = mesh_->tetrahedron(t);
-  const auto tet_edges = mesh_->edges_of_tetrahedron(t);
-  std::uint8_t swaps = 0;
-  for (std::size_t e = 0; e < 6; ++e) {
-    const auto slot = static_cast<std::size_t>(edge_slot_[static_cast<std::size_t>(tet_edges[e])]);
-    refresh_offsets_[6 * position + e] = static_cast<std::uint32_t>(kernels::edge_block_offset<Real>(slot, 0));
-    if (tet[static_cast<std::size_t>(kTetrahedronEdges[e][0])] > tet[static_cast<std::size_t>(kTetrahedronEdges[e][1])]) {
-      swaps = static_cast<std::uint8_t>(swaps | (1u << e));
-    }
-  }
-  refresh_swaps_[position] = swaps;
 }
 
 template <class Real>
@@ -251,6 +218,8 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
   const Real* xs = x.data()->data();
   Real* fs = f.data()->data();
   Real* blocks = blocks_.data();
+  const std::array<Index, 6>* edges_of_tetrahedra = &mesh_->edges_of_tetrahedron(0);
+  const Index* slots = edge_slot_.data();
   const RotationMethod method = parameters_.method;
   constexpr int W = kernels::kLanes<Real>;
   run_schedule(tetrahedron_schedule_, threads_, [&](Index begin, Index end) {
@@ -302,17 +271,24 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
         }
       }
       if constexpr (kRefresh) {
+        // Each local edge block goes to its mesh edge's slot, transposed where the local edge runs
+        // from the higher to the lower vertex.
         kernels::rotated_shapes(batch);
-        const std::uint8_t* swaps = refresh_swaps_.data() + first;
-        const std::uint32_t* offsets = refresh_offsets_.data() + 6 * static_cast<std::size_t>(first);
-        for (int e = 0; e < 6; ++e) {
-          const int k = kTetrahedronEdges[static_cast<std::size_t>(e)][0];
-          const int m = kTetrahedronEdges[static_cast<std::size_t>(e)][1];
-          for (int l = 0; l < W; ++l) batch.swap[l] = (swaps[l < count ? l : 0] >> e) & 1u;
-          kernels::edge_block(batch, k, m);
+        for (std::size_t e = 0; e < 6; ++e) {
+          const auto k = static_cast<std::size_t>(kTetrahedronEdges[e][0]);
+          const auto m = static_cast<std::size_t>(kTetrahedronEdges[e][1]);
+          kernels::edge_block(batch, static_cast<int>(k), static_cast<int>(m));
           for (int l = 0; l < count; ++l) {
-            Real* entry = blocks + offsets[6 * l + e];
-            for (int i = 0; i < 9; ++i) entry[i * kernels::kEdgeLanes<Real>] += batch.block[i][l];
+            const Index t = lane_tetrahedron[l];
+            const Index edge = edges_of_tetrahedra[t][e];
+            Real* entry = blocks + 9 * static_cast<std::size_t>(slots[edge]);
+            if (tetrahedra[t][k] < tetrahedra[t][m]) {
+              for (int i = 0; i < 9; ++i) entry[i] += batch.block[i][l];
+            } else {
+              for (int col = 0; col < 3; ++col) {
+                for (int row = 0; row < 3; ++row) entry[3 * row + col] += batch.block[3 * col + row][l];
+              }
+            }
           }
         }
       }
@@ -326,41 +302,31 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   check_size(dx, "dx");
   check_size(df, "df");
   ensure_linearisation();
+  using kernels::Packed;
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
-  const Real* in = dx.data()->data();
-  Real* out = df.data()->data();
-  const Real* blocks = blocks_.data();
-  const Edge* vertices = edge_vertices_.data();
-  constexpr int L = kernels::kEdgeLanes<Real>;
-  run_schedule(edge_schedule_, threads_, [&](Index begin, Index end) {
-    // Groups hold whole SIMD groups of edges sorted by lower vertex u: the products of a group are
-    // computed at once, then df[v] += K w and u's share -K^T w summed along u's run.
-    alignas(32) Real w[3][L], kw[3][L], ktw[3][L];
-    Index low = -1;
-    Real sum[3] = {0, 0, 0};
-    for (Index first = begin; first < end; first += L) {
-      const Edge* v = vertices + first;
-      for (int l = 0; l < L; ++l) {
-        const Real* xu = in + 3 * v[l][0];
-        const Real* xv = in + 3 * v[l][1];
-        for (int c = 0; c < 3; ++c) w[c][l] = xv[c] - xu[c];
-      }
-      kernels::edge_products(blocks + 9 * static_cast<std::size_t>(first), k, w, kw, ktw);
-      for (int l = 0; l < L; ++l) {
-        Real* dv = out + 3 * v[l][1];
-        for (int c = 0; c < 3; ++c) dv[c] += kw[c][l];
-        if (v[l][0] != low) {
-          if (low >= 0) {
-            for (int c = 0; c < 3; ++c) out[3 * low + c] += sum[c];
-          }
-          low = v[l][0];
-          sum[0] = sum[1] = sum[2] = 0;
-        }
-        for (int c = 0; c < 3; ++c) sum[c] -= ktw[c][l];
-      }
+  const std::size_t n = dx.size();
+  // Points padded to four values: k dx in, the sum of the edge terms out.
+  packed_in_.resize(n);
+  packed_out_.resize(n);
+  Real* in = packed_in_.data()->value;
+  Real* out = packed_out_.data()->value;
+  const Real* dx_values = dx.data()->data();
+  parallel_ranges(threads_, n, [in, out, dx_values, k](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const Packed<Real> v = {k * dx_values[3 * i], k * dx_values[3 * i + 1], k * dx_values[3 * i + 2], Real(0)};
+      const Packed<Real> zero{};
+      std::memcpy(in + 4 * i, &v, sizeof v);
+      std::memcpy(out + 4 * i, &zero, sizeof zero);
     }
-    if (low >= 0) {
-      for (int c = 0; c < 3; ++c) out[3 * low + c] += sum[c];
+  });
+  run_schedule(edge_schedule_, threads_, [&](Index begin, Index end) {
+    kernels::add_edge_terms(in, out, blocks_.data(), edge_vertices_.data(), static_cast<std::size_t>(begin),
+                            static_cast<std::size_t>(end));
+  });
+  Real* df_values = df.data()->data();
+  parallel_ranges(threads_, n, [out, df_values](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      for (std::size_t c = 0; c < 3; ++c) df_values[3 * i + c] += out[4 * i + c];
     }
   });
 }
@@ -369,7 +335,7 @@ template <class Real>
 Mat3<Real> CorotationalForceField<Real>::block(Index slot) const {
   Mat3<Real> m;
   for (int i = 0; i < 9; ++i) {
-    m.data()[i] = blocks_[kernels::edge_block_offset<Real>(static_cast<std::size_t>(slot), i)];
+    m.data()[i] = blocks_[9 * static_cast<std::size_t>(slot) + static_cast<std::size_t>(i)];
   }
   return m;
 }
@@ -462,8 +428,8 @@ std::size_t CorotationalForceField<Real>::memory_bytes() const {
   std::size_t free_bytes = bytes(free_slots_);
   for (const auto& slots : free_slots_) free_bytes += bytes(slots);
   return bytes(rest_positions_) + bytes(shape_) + bytes(mu_) + bytes(lambda_) + bytes(blocks_) +
-         bytes(edge_slot_) + bytes(edge_vertices_) + bytes(refresh_offsets_) + bytes(refresh_swaps_) +
-         bytes(position_) + free_bytes +
+         bytes(edge_slot_) + bytes(edge_vertices_) + bytes(position_) + free_bytes +
+         bytes(packed_in_) + bytes(packed_out_) +
          schedule_bytes(tetrahedron_schedule_) + schedule_bytes(edge_schedule_) + bytes(last_positions_) +
          sizeof(*this);
 }

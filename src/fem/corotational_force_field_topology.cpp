@@ -48,9 +48,6 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
     if (p != last) {
       tets.order[p] = tets.order[last];
       position_[static_cast<std::size_t>(tets.order[p])] = static_cast<Index>(p);
-      std::copy_n(refresh_offsets_.begin() + static_cast<std::ptrdiff_t>(6 * last), 6,
-                  refresh_offsets_.begin() + static_cast<std::ptrdiff_t>(6 * p));
-      refresh_swaps_[p] = refresh_swaps_[last];
     }
     const auto from = static_cast<std::size_t>(move.from), to = static_cast<std::size_t>(move.to);
     if (from != to) {
@@ -104,21 +101,16 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
 
 template <class Real>
 Index CorotationalForceField<Real>::place_edge(const Edge& edge) {
-  constexpr std::size_t lanes = kernels::kEdgeLanes<Real>;
   auto& own = free_slots_[static_cast<std::size_t>(edge_schedule_.group_for(edge))];
   auto& serial = free_slots_.back();
   if (own.empty() && serial.empty()) {
-    // A new SIMD group of slots at the end, owned by the last (serial) group.
-    const auto begin = edge_vertices_.size();
-    edge_vertices_.resize(begin + lanes, edge);
-    blocks_.resize(9 * edge_vertices_.size(), Real(0));
-    for (std::size_t i = lanes; i-- > 0;) serial.push_back(static_cast<Index>(begin + i));
-    num_free_slots_ += static_cast<Index>(lanes);
+    // A new slot at the end, owned by the last (serial) group.
+    serial.push_back(static_cast<Index>(edge_vertices_.size()));
+    edge_vertices_.push_back(edge);
+    blocks_.resize(9 * edge_vertices_.size() + kernels::kBlockTail, Real(0));
+    ++num_free_slots_;
     edge_schedule_.group_begin.back() = static_cast<Index>(edge_vertices_.size());
     edge_schedule_.group_end.back() = static_cast<Index>(edge_vertices_.size());
-    if (9 * edge_vertices_.size() > std::numeric_limits<std::uint32_t>::max()) {
-      throw make_error("FastTetrahedralCorotationalForceField: more edges than this force field can index");
-    }
   }
   auto& from = own.empty() ? serial : own;
   const Index slot = from.back();
@@ -136,14 +128,11 @@ void CorotationalForceField<Real>::place_tetrahedron(Index t) {
   if (tets.group_end[g] == tets.group_begin[g + 1]) {
     // The serial group is the last one: it grows at the end.
     tets.order.push_back(-1);
-    refresh_offsets_.resize(refresh_offsets_.size() + 6);
-    refresh_swaps_.push_back(0);
     ++tets.group_begin[g + 1];
   }
   const auto position = static_cast<std::size_t>(tets.group_end[g]++);
   tets.order[position] = t;
   position_.push_back(static_cast<Index>(position));
-  set_refresh_data(position);
 }
 
 // True when the serial phase or the free slots have grown enough to cost more than a rebuild.

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 namespace fastcorot::kernels {
 
@@ -14,16 +15,37 @@ namespace fastcorot::kernels {
 template <class Real>
 inline constexpr int kLanes = 64 / sizeof(Real);
 
-// Edge blocks are stored in groups of kEdgeLanes edges (one AVX2 register), entry i of the edge in
-// lane l of a group at group[i * kEdgeLanes + l]: add_dforce loads each entry of a whole group at once.
+// One point's three coordinates and a spare lane (zero in inputs): add_dforce works on whole points
+// with one SIMD operation per vector (GCC's vector extension: AVX2 for double, SSE for float).
 template <class Real>
-inline constexpr int kEdgeLanes = 32 / sizeof(Real);
+struct PackedType;
+template <>
+struct PackedType<double> {
+  typedef double type __attribute__((vector_size(32)));
+};
+template <>
+struct PackedType<float> {
+  typedef float type __attribute__((vector_size(16)));
+};
+template <class Real>
+using Packed = typename PackedType<Real>::type;
+
+// The four values at p (unaligned; the fourth may belong to the next block or point).
+template <class Real>
+inline Packed<Real> load_packed(const Real* p) {
+  Packed<Real> v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
 
 template <class Real>
-inline std::size_t edge_block_offset(std::size_t slot, int i) {
-  constexpr auto L = static_cast<std::size_t>(kEdgeLanes<Real>);
-  return (slot / L) * 9 * L + static_cast<std::size_t>(i) * L + slot % L;
+inline Packed<Real> broadcast(Real a) {
+  return Packed<Real>{a, a, a, a};
 }
+
+// Edge blocks are 3×3 column-major, nine values per slot; a column is read as four values, so the
+// block array ends with kBlockTail spare zeros after its last block.
+inline constexpr std::size_t kBlockTail = 3;
 
 template <class Real>
 struct ElementBatch {
@@ -38,7 +60,6 @@ struct ElementBatch {
   alignas(64) Real f[4][3][W];    // forces on the four vertices
   alignas(64) Real r[4][3][W];    // rotated shape vectors Q^T s~_j
   alignas(64) Real block[9][W];   // one edge block, column-major
-  bool swap[W];                   // the edge's lower vertex is local vertex l, not k
 };
 
 // s~_0 = -(s~_1 + s~_2 + s~_3).
@@ -146,54 +167,61 @@ inline void rotated_shapes(ElementBatch<Real>& b) {
   }
 }
 
-// The block of local edge (k, l) oriented from its lower vertex u to its higher one v (u = k unless
-// swap): lambda r_v r_u^T + mu r_u r_v^T + mu (s~_k . s~_l) I.
+// The block of local edge (k, m) oriented from k to m: lambda r_m r_k^T + mu r_k r_m^T + mu (s~_k . s~_m) I
+// (the block oriented from m to k is its transpose). With P = r_m r_k^T, entry (row, col) is
+// lambda P(row, col) + mu P(col, row).
 template <class Real>
-inline void edge_block(ElementBatch<Real>& b, int k, int l_vertex) {
+inline void edge_block(ElementBatch<Real>& b, int k, int m) {
   constexpr int W = ElementBatch<Real>::W;
+  const auto& rk = b.r[k];
+  const auto& rm = b.r[m];
   const auto& sk = b.s[k];
-  const auto& sl = b.s[l_vertex];
-  alignas(64) Real ru[3][W], rv[3][W];
-  for (int c = 0; c < 3; ++c) {
-#pragma omp simd
-    for (int l = 0; l < W; ++l) {
-      ru[c][l] = b.swap[l] ? b.r[l_vertex][c][l] : b.r[k][c][l];
-      rv[c][l] = b.swap[l] ? b.r[k][c][l] : b.r[l_vertex][c][l];
-    }
-  }
+  const auto& sm = b.s[m];
   for (int col = 0; col < 3; ++col) {
     for (int row = 0; row < 3; ++row) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        b.block[3 * col + row][l] = b.lambda[l] * rv[row][l] * ru[col][l] + b.mu[l] * ru[row][l] * rv[col][l];
+        b.block[3 * col + row][l] = b.lambda[l] * rm[row][l] * rk[col][l] + b.mu[l] * rm[col][l] * rk[row][l];
       }
     }
   }
 #pragma omp simd
   for (int l = 0; l < W; ++l) {
-    const Real diagonal = b.mu[l] * (sk[0][l] * sl[0][l] + sk[1][l] * sl[1][l] + sk[2][l] * sl[2][l]);
+    const Real diagonal = b.mu[l] * (sk[0][l] * sm[0][l] + sk[1][l] * sm[1][l] + sk[2][l] * sm[2][l]);
     b.block[0][l] += diagonal;
     b.block[4][l] += diagonal;
     b.block[8][l] += diagonal;
   }
 }
 
-// For one group of kEdgeLanes edges with blocks K (grouped layout) and w = dx_v - dx_u per lane:
-// kw = K (k w) and ktw = K^T (k w).
-template <class Real>
-inline void edge_products(const Real* group, Real k, const Real (&w)[3][kEdgeLanes<Real>],
-                          Real (&kw)[3][kEdgeLanes<Real>], Real (&ktw)[3][kEdgeLanes<Real>]) {
-  constexpr int L = kEdgeLanes<Real>;
-  const auto m = [&](int i, int l) { return group[i * L + l]; };
-#pragma omp simd
-  for (int l = 0; l < L; ++l) {
-    const Real w0 = k * w[0][l], w1 = k * w[1][l], w2 = k * w[2][l];
-    kw[0][l] = m(0, l) * w0 + m(3, l) * w1 + m(6, l) * w2;
-    kw[1][l] = m(1, l) * w0 + m(4, l) * w1 + m(7, l) * w2;
-    kw[2][l] = m(2, l) * w0 + m(5, l) * w1 + m(8, l) * w2;
-    ktw[0][l] = m(0, l) * w0 + m(1, l) * w1 + m(2, l) * w2;
-    ktw[1][l] = m(3, l) * w0 + m(4, l) * w1 + m(5, l) * w2;
-    ktw[2][l] = m(6, l) * w0 + m(7, l) * w1 + m(8, l) * w2;
+// add_dforce over the edge slots [begin, end) (sorted by lower vertex u), on points padded to four
+// values: `in` holds k dx, `out` receives the sums. For the edge (u, v) with block K and
+// w = in[v] - in[u]: out[v] += K w at once, and u's share -K^T w summed along u's run, K^T w being
+// (c_0.w, c_1.w, c_2.w) for the columns c_j of K: lane-wise products summed over the run, then over
+// the lanes. (A function of its own so that no store here may alias the pointers.)
+template <class Real, class Pair>
+inline void add_edge_terms(const Real* in, Real* out, const Real* blocks, const Pair* vertices, std::size_t begin,
+                           std::size_t end) {
+  using P = Packed<Real>;
+  for (std::size_t slot = begin; slot < end;) {
+    const auto u = static_cast<std::size_t>(vertices[slot][0]);
+    const P x_u = load_packed(in + 4 * u);
+    P t0{}, t1{}, t2{};
+    do {
+      const auto v = static_cast<std::size_t>(vertices[slot][1]);
+      const P w = load_packed(in + 4 * v) - x_u;
+      const Real* block = blocks + 9 * slot;
+      const P c0 = load_packed(block), c1 = load_packed(block + 3), c2 = load_packed(block + 6);
+      const P sum = load_packed(out + 4 * v) + (c0 * broadcast(w[0]) + c1 * broadcast(w[1]) + c2 * broadcast(w[2]));
+      std::memcpy(out + 4 * v, &sum, sizeof sum);
+      t0 += c0 * w;
+      t1 += c1 * w;
+      t2 += c2 * w;
+      ++slot;
+    } while (slot < end && static_cast<std::size_t>(vertices[slot][0]) == u);
+    const P share = {t0[0] + t0[1] + t0[2], t1[0] + t1[1] + t1[2], t2[0] + t2[1] + t2[2], Real(0)};
+    const P total = load_packed(out + 4 * u) - share;
+    std::memcpy(out + 4 * u, &total, sizeof total);
   }
 }
 

@@ -127,7 +127,6 @@ class CorotationalForceField {
   void set_rest_data(Index t);
   void place_tetrahedron(Index t);
   Index place_edge(const Edge& edge);
-  void set_refresh_data(std::size_t position);
   bool schedules_degraded() const;
   void check_size(std::span<const Vec3<Real>> v, const char* what) const;
   TetrahedronRest<Real> element_rest(Index t) const;
@@ -150,12 +149,11 @@ class CorotationalForceField {
   ScatterSchedule tetrahedron_schedule_;
   std::vector<Index> position_;  // position of each tetrahedron in tetrahedron_schedule_.order
   // Edges are stored in the order of their schedule (grouped like the tetrahedra, sorted by lower
-  // then higher vertex within a group, each group padded with empty slots to whole SIMD groups), so
-  // add_dforce streams through memory: edge_slot_ gives the slot of each mesh edge,
-  // edge_vertices_ the (lower, higher) vertices of each slot, and blocks_ the K_E of each slot
-  // oriented from the lower to the higher vertex (column-major 3×3, grouped as force_kernels.h says).
-  // Slots of removed edges stay where they are (zero blocks) and go to their group's free list
-  // with the padding slots, for edges added later.
+  // then higher vertex within a group), so add_dforce streams through memory: edge_slot_ gives the
+  // slot of each mesh edge, edge_vertices_ the (lower, higher) vertices of each slot, and blocks_
+  // the K_E of each slot oriented from the lower to the higher vertex (column-major 3×3, nine
+  // values per slot, then kernels::kBlockTail spare zeros). Slots of removed edges stay where they
+  // are (zero blocks) and go to their group's free list, for edges added later.
   ScatterSchedule edge_schedule_;  // in slots
   std::vector<Index> edge_slot_;
   std::vector<Edge> edge_vertices_;
@@ -163,10 +161,12 @@ class CorotationalForceField {
   Index num_free_slots_ = 0;
   mutable std::vector<Real> blocks_;
   mutable bool stale_ = true;  // blocks_ do not hold the linearisation yet
-  // Per tetrahedron in visiting order: the offsets in blocks_ of its six edge blocks, and a bit per
-  // edge oriented against its local edge.
-  std::vector<std::uint32_t> refresh_offsets_;
-  std::vector<std::uint8_t> refresh_swaps_;
+  // add_dforce's points padded to four values, aligned for SIMD loads (k dx, and the edge terms
+  // before they join df).
+  struct alignas(4 * sizeof(Real)) PaddedPoint {
+    Real value[4];
+  };
+  mutable std::vector<PaddedPoint> packed_in_, packed_out_;
   Mat3<Real> block(Index slot) const;
   std::vector<Vec3<Real>> last_positions_;  // x of the last add_force (empty before the first)
 };
