@@ -225,6 +225,31 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
   run_schedule(tetrahedron_schedule_, threads_, [&](Index begin, Index end) {
     kernels::ElementBatch<Real> batch;
     Index lane_tetrahedron[W];
+    // For the refresh: where each lane's six blocks start and whether the local edge runs from the
+    // higher to the lower vertex, for this batch and the next; the next batch's blocks are fetched
+    // while this one computes (those of a large mesh live beyond the core's caches).
+    struct BlockTargets {
+      Real* entry[W][6];
+      bool swap[6][W];
+    };
+    BlockTargets targets[2];
+    const auto locate_blocks = [&](Index from, BlockTargets& to) {
+      const Index last = std::min<Index>(end, from + W);
+      for (auto& lanes : to.swap) std::fill(std::begin(lanes), std::end(lanes), false);
+      for (Index i = from; i < last; ++i) {
+        const auto l = static_cast<std::size_t>(i - from);
+        const Index t = tetrahedron_schedule_.order[static_cast<std::size_t>(i)];
+        for (std::size_t e = 0; e < 6; ++e) {
+          Real* entry = blocks + 9 * static_cast<std::size_t>(slots[edges_of_tetrahedra[t][e]]);
+          __builtin_prefetch(entry, 1);
+          __builtin_prefetch(entry + 8, 1);
+          to.entry[l][e] = entry;
+          const auto k = static_cast<std::size_t>(kTetrahedronEdges[e][0]);
+          const auto m = static_cast<std::size_t>(kTetrahedronEdges[e][1]);
+          to.swap[e][l] = tetrahedra[t][k] > tetrahedra[t][m];
+        }
+      }
+    };
     for (Index first = begin; first < end; first += W) {
       const int count = static_cast<int>(std::min<Index>(W, end - first));
       // Gather; lanes past the end repeat the first element and are not scattered.
@@ -243,6 +268,10 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
         }
         batch.mu[l] = mu_[static_cast<std::size_t>(t)];
         batch.lambda[l] = lambda_[static_cast<std::size_t>(t)];
+      }
+      if constexpr (kRefresh) {
+        if (first == begin) locate_blocks(first, targets[0]);
+        locate_blocks(first + W, targets[(first - begin) / W % 2 == 0 ? 1 : 0]);
       }
       kernels::first_shape_vector(batch);
       if (method == RotationMethod::qr) {
@@ -271,24 +300,14 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
         }
       }
       if constexpr (kRefresh) {
-        // Each local edge block goes to its mesh edge's slot, transposed where the local edge runs
-        // from the higher to the lower vertex.
+        // Each local edge block goes to its mesh edge's slot.
         kernels::rotated_shapes(batch);
+        const BlockTargets& here = targets[(first - begin) / W % 2];
         for (std::size_t e = 0; e < 6; ++e) {
-          const auto k = static_cast<std::size_t>(kTetrahedronEdges[e][0]);
-          const auto m = static_cast<std::size_t>(kTetrahedronEdges[e][1]);
-          kernels::edge_block(batch, static_cast<int>(k), static_cast<int>(m));
+          kernels::edge_block(batch, kTetrahedronEdges[e][0], kTetrahedronEdges[e][1], here.swap[e]);
           for (int l = 0; l < count; ++l) {
-            const Index t = lane_tetrahedron[l];
-            const Index edge = edges_of_tetrahedra[t][e];
-            Real* entry = blocks + 9 * static_cast<std::size_t>(slots[edge]);
-            if (tetrahedra[t][k] < tetrahedra[t][m]) {
-              for (int i = 0; i < 9; ++i) entry[i] += batch.block[i][l];
-            } else {
-              for (int col = 0; col < 3; ++col) {
-                for (int row = 0; row < 3; ++row) entry[3 * row + col] += batch.block[3 * col + row][l];
-              }
-            }
+            Real* entry = here.entry[l][e];
+            for (int i = 0; i < 9; ++i) entry[i] += batch.block[i][l];
           }
         }
       }
@@ -302,7 +321,6 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   check_size(dx, "dx");
   check_size(df, "df");
   ensure_linearisation();
-  using kernels::Packed;
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
   const std::size_t n = dx.size();
   // Points padded to four values: k dx in, the sum of the edge terms out.
@@ -313,10 +331,8 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   const Real* dx_values = dx.data()->data();
   parallel_ranges(threads_, n, [in, out, dx_values, k](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-      const Packed<Real> v = {k * dx_values[3 * i], k * dx_values[3 * i + 1], k * dx_values[3 * i + 2], Real(0)};
-      const Packed<Real> zero{};
-      std::memcpy(in + 4 * i, &v, sizeof v);
-      std::memcpy(out + 4 * i, &zero, sizeof zero);
+      store_packed(in + 4 * i, Packed<Real>{k * dx_values[3 * i], k * dx_values[3 * i + 1], k * dx_values[3 * i + 2], Real(0)});
+      store_packed(out + 4 * i, Packed<Real>{});
     }
   });
   run_schedule(edge_schedule_, threads_, [&](Index begin, Index end) {

@@ -6,8 +6,9 @@
 #pragma once
 
 #include <cmath>
+#include "fastcorot/core/packed.h"
+
 #include <cstddef>
-#include <cstring>
 
 namespace fastcorot::kernels {
 
@@ -15,33 +16,8 @@ namespace fastcorot::kernels {
 template <class Real>
 inline constexpr int kLanes = 64 / sizeof(Real);
 
-// One point's three coordinates and a spare lane (zero in inputs): add_dforce works on whole points
-// with one SIMD operation per vector (GCC's vector extension: AVX2 for double, SSE for float).
-template <class Real>
-struct PackedType;
-template <>
-struct PackedType<double> {
-  typedef double type __attribute__((vector_size(32)));
-};
-template <>
-struct PackedType<float> {
-  typedef float type __attribute__((vector_size(16)));
-};
-template <class Real>
-using Packed = typename PackedType<Real>::type;
-
-// The four values at p (unaligned; the fourth may belong to the next block or point).
-template <class Real>
-inline Packed<Real> load_packed(const Real* p) {
-  Packed<Real> v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-template <class Real>
-inline Packed<Real> broadcast(Real a) {
-  return Packed<Real>{a, a, a, a};
-}
+// add_dforce works on whole points: three coordinates and a spare lane (zero in inputs) in one
+// Packed (fastcorot/core/packed.h).
 
 // Edge blocks are 3×3 column-major, nine values per slot; a column is read as four values, so the
 // block array ends with kBlockTail spare zeros after its last block.
@@ -59,6 +35,8 @@ struct ElementBatch {
   alignas(64) Real stress[3][3][W];
   alignas(64) Real f[4][3][W];    // forces on the four vertices
   alignas(64) Real r[4][3][W];    // rotated shape vectors Q^T s~_j
+  alignas(64) Real lambda_r[4][3][W];  // lambda r_j
+  alignas(64) Real mu_r[4][3][W];      // mu r_j
   alignas(64) Real block[9][W];   // one edge block, column-major
 };
 
@@ -152,7 +130,7 @@ inline void element_forces(ElementBatch<Real>& b) {
   }
 }
 
-// r_j = Q^T s~_j for the four vertices.
+// r_j = Q^T s~_j for the four vertices, and lambda r_j, mu r_j.
 template <class Real>
 inline void rotated_shapes(ElementBatch<Real>& b) {
   constexpr int W = ElementBatch<Real>::W;
@@ -161,30 +139,39 @@ inline void rotated_shapes(ElementBatch<Real>& b) {
     for (int i = 0; i < 3; ++i) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        b.r[j][i][l] = q[0][i][l] * b.s[j][0][l] + q[1][i][l] * b.s[j][1][l] + q[2][i][l] * b.s[j][2][l];
+        const Real r = q[0][i][l] * b.s[j][0][l] + q[1][i][l] * b.s[j][1][l] + q[2][i][l] * b.s[j][2][l];
+        b.r[j][i][l] = r;
+        b.lambda_r[j][i][l] = b.lambda[l] * r;
+        b.mu_r[j][i][l] = b.mu[l] * r;
       }
     }
   }
 }
 
-// The block of local edge (k, m) oriented from k to m: lambda r_m r_k^T + mu r_k r_m^T + mu (s~_k . s~_m) I
-// (the block oriented from m to k is its transpose). With P = r_m r_k^T, entry (row, col) is
-// lambda P(row, col) + mu P(col, row).
+// The block of local edge (k, m) oriented from its lower vertex u to its higher one v (u = k unless
+// swap[l]): lambda r_v r_u^T + mu r_u r_v^T + mu (s~_k . s~_m) I.
 template <class Real>
-inline void edge_block(ElementBatch<Real>& b, int k, int m) {
+inline void edge_block(ElementBatch<Real>& b, int k, int m, const bool (&swap)[ElementBatch<Real>::W]) {
   constexpr int W = ElementBatch<Real>::W;
-  const auto& rk = b.r[k];
-  const auto& rm = b.r[m];
-  const auto& sk = b.s[k];
-  const auto& sm = b.s[m];
+  alignas(64) Real ru[3][W], lambda_rv[3][W], mu_rv[3][W];
+  for (int c = 0; c < 3; ++c) {
+#pragma omp simd
+    for (int l = 0; l < W; ++l) {
+      ru[c][l] = swap[l] ? b.r[m][c][l] : b.r[k][c][l];
+      lambda_rv[c][l] = swap[l] ? b.lambda_r[k][c][l] : b.lambda_r[m][c][l];
+      mu_rv[c][l] = swap[l] ? b.mu_r[k][c][l] : b.mu_r[m][c][l];
+    }
+  }
   for (int col = 0; col < 3; ++col) {
     for (int row = 0; row < 3; ++row) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        b.block[3 * col + row][l] = b.lambda[l] * rm[row][l] * rk[col][l] + b.mu[l] * rm[col][l] * rk[row][l];
+        b.block[3 * col + row][l] = lambda_rv[row][l] * ru[col][l] + mu_rv[col][l] * ru[row][l];
       }
     }
   }
+  const auto& sk = b.s[k];
+  const auto& sm = b.s[m];
 #pragma omp simd
   for (int l = 0; l < W; ++l) {
     const Real diagonal = b.mu[l] * (sk[0][l] * sm[0][l] + sk[1][l] * sm[1][l] + sk[2][l] * sm[2][l]);
@@ -213,7 +200,7 @@ inline void add_edge_terms(const Real* in, Real* out, const Real* blocks, const 
       const Real* block = blocks + 9 * slot;
       const P c0 = load_packed(block), c1 = load_packed(block + 3), c2 = load_packed(block + 6);
       const P sum = load_packed(out + 4 * v) + (c0 * broadcast(w[0]) + c1 * broadcast(w[1]) + c2 * broadcast(w[2]));
-      std::memcpy(out + 4 * v, &sum, sizeof sum);
+      store_packed(out + 4 * v, sum);
       t0 += c0 * w;
       t1 += c1 * w;
       t2 += c2 * w;
@@ -221,7 +208,7 @@ inline void add_edge_terms(const Real* in, Real* out, const Real* blocks, const 
     } while (slot < end && static_cast<std::size_t>(vertices[slot][0]) == u);
     const P share = {t0[0] + t0[1] + t0[2], t1[0] + t1[1] + t1[2], t2[0] + t2[1] + t2[2], Real(0)};
     const P total = load_packed(out + 4 * u) - share;
-    std::memcpy(out + 4 * u, &total, sizeof total);
+    store_packed(out + 4 * u, total);
   }
 }
 

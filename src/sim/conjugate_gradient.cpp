@@ -1,6 +1,7 @@
 #include "fastcorot/sim/conjugate_gradient.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/packed.h"
 #include "fastcorot/core/parallel.h"
 
 #include <cmath>
@@ -31,15 +32,13 @@ void ConjugateGradientSolver<Real>::restore_carried_state(const std::vector<std:
 
 namespace {
 
-// sum_i a[i] b[i] over [begin, end) with four interleaved partial sums (a fixed order, which the
-// compiler keeps in one SIMD register), then added pairwise.
+// sum_i a[i] b[i] over [begin, end) with four interleaved partial sums (lane k sums the products
+// i = begin + k mod 4: a fixed order, in one SIMD register), then added pairwise.
 template <class Real>
 Real dot_range(const Real* a, const Real* b, std::size_t begin, std::size_t end) {
-  Real partial[4] = {0, 0, 0, 0};
+  Packed<Real> partial{};
   std::size_t i = begin;
-  for (; i + 4 <= end; i += 4) {
-    for (std::size_t k = 0; k < 4; ++k) partial[k] += a[i + k] * b[i + k];
-  }
+  for (; i + 4 <= end; i += 4) partial += load_packed(a + i) * load_packed(b + i);
   for (; i < end; ++i) partial[0] += a[i] * b[i];
   return (partial[0] + partial[1]) + (partial[2] + partial[3]);
 }

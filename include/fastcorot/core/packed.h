@@ -1,0 +1,41 @@
+// Four values of one scalar type in one SIMD register (GCC's vector extension, which Clang shares:
+// AVX2 for double, SSE for float; plain code where neither exists). Lane-wise arithmetic with the
+// usual operators, so results are those of the same scalar operations, lane by lane.
+#pragma once
+
+#include <cstring>
+
+namespace fastcorot {
+
+template <class Real>
+struct PackedType;
+template <>
+struct PackedType<double> {
+  typedef double type __attribute__((vector_size(32)));
+};
+template <>
+struct PackedType<float> {
+  typedef float type __attribute__((vector_size(16)));
+};
+template <class Real>
+using Packed = typename PackedType<Real>::type;
+
+// The four values at p (no alignment needed).
+template <class Real>
+inline Packed<Real> load_packed(const Real* p) {
+  Packed<Real> v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <class Real>
+inline void store_packed(Real* p, const Packed<Real>& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+template <class Real>
+inline Packed<Real> broadcast(Real a) {
+  return Packed<Real>{a, a, a, a};
+}
+
+}  // namespace fastcorot
