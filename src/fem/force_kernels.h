@@ -1,13 +1,15 @@
-// The inner loops of CorotationalForceField on plain scalars, for a batch of kLanes tetrahedra at
-// once: every quantity is an array over the batch, and each formula is a loop over the lanes that
-// the compiler turns into SIMD instructions (`omp simd`; one simple loop per quantity, which GCC
-// vectorises reliably). The formulas are those of SPEC.md written in the rest frame of the rotation
-// method (corotational_force_field.h explains the frame). Internal to src/fem.
+// The inner loops of CorotationalForceField on plain scalars. Forces and the stiffness refresh work
+// on a batch of kLanes tetrahedra at once: every quantity is an array over the batch, and each
+// formula is a loop over the lanes that the compiler turns into SIMD instructions (`omp simd`; one
+// simple loop per quantity, which GCC vectorises reliably). add_dforce works on whole points
+// instead: three coordinates and a spare lane in one Packed register (add_edge_terms). The formulas
+// are those of SPEC.md written in the rest frame of the rotation method (corotational_force_field.h
+// explains the frame). Internal to src/fem.
 #pragma once
 
-#include <cmath>
 #include "fastcorot/core/packed.h"
 
+#include <cmath>
 #include <cstddef>
 
 namespace fastcorot::kernels {
@@ -15,9 +17,6 @@ namespace fastcorot::kernels {
 // Two AVX2 registers per quantity: enough independent work to hide the latency of sqrt and division.
 template <class Real>
 inline constexpr int kLanes = 64 / sizeof(Real);
-
-// add_dforce works on whole points: three coordinates and a spare lane (zero in inputs) in one
-// Packed (fastcorot/core/packed.h).
 
 // Edge blocks are 3×3 column-major, nine values per slot; a column is read as four values, so the
 // block array ends with kBlockTail spare zeros after its last block.
