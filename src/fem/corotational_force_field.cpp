@@ -218,7 +218,9 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
   const Real* xs = x.data()->data();
   Real* fs = f.data()->data();
   Real* blocks = blocks_.data();
-  const std::array<Index, 6>* edges_of_tetrahedra = &mesh_->edges_of_tetrahedron(0);
+  // (A field emptied by topological changes has no tetrahedron 0.)
+  const std::array<Index, 6>* edges_of_tetrahedra =
+      mesh_->num_tetrahedra() > 0 ? &mesh_->edges_of_tetrahedron(0) : nullptr;
   const Index* slots = edge_slot_.data();
   const RotationMethod method = parameters_.method;
   constexpr int W = kernels::kLanes<Real>;

@@ -288,6 +288,25 @@ TEST(ForceFieldTopology, PerTetrahedronMaterialsFollowTheirTetrahedra) {
   expect_close(outputs(field, x, dx), outputs(fresh, x, dx), 1e-12, "per-tetrahedron E");
 }
 
+TEST(ForceFieldTopology, AnEmptiedFieldAddsNothing) {
+  BeamCase s(4, parameters<double>(RotationMethod::qr));
+  const auto& [grid, x, dx, mesh, owned] = s;
+  CorotationalForceField<double>& field = *owned;
+  std::vector<Index> all(grid.tetrahedra.size());
+  std::iota(all.begin(), all.end(), Index(0));
+  field.remove_tetrahedra(all);
+  ASSERT_EQ(mesh->num_tetrahedra(), 0);
+  const Vec3<double> marker(1.5, -2.0, 0.25);
+  std::vector<Vec3<double>> f(x.size(), marker), df(x.size(), marker);
+  field.add_force(x, f);
+  field.add_dforce(dx, df, -0.3);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(f[i], marker) << "point " << i;
+    EXPECT_EQ(df[i], marker) << "point " << i;
+  }
+  EXPECT_EQ(field.stiffness_matrix(1.0).nonZeros(), 0);
+}
+
 TEST(ForceFieldTopology, PerTetrahedronListsSurviveRemovingEverythingAndAddingBack) {
   // Removing every tetrahedron empties a per-tetrahedron list; tetrahedra added afterwards take
   // entry 0 of the list given at construction (not a value of an empty list), and a list shrunk to
