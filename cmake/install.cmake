@@ -7,7 +7,9 @@ install(TARGETS fastcorot EXPORT fastcorotTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
-install(DIRECTORY include/fastcorot DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# core/packed.h stays internal: its inline functions return SIMD vectors, whose passing depends on
+# the instruction set a consumer compiles for.
+install(DIRECTORY include/fastcorot DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} PATTERN "packed.h" EXCLUDE)
 install(EXPORT fastcorotTargets NAMESPACE fastcorot::
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/fastcorot)
 

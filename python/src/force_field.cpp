@@ -9,6 +9,7 @@
 #include <pybind11/stl.h>
 
 #include <memory>
+#include <mutex>
 #include <variant>
 
 namespace fastcorot::python {
@@ -124,6 +125,7 @@ class ForceField {
       PointArray<Real> force = zeros<Real>();
       {
         py::gil_scoped_release release;
+        const std::lock_guard lock(*busy_);
         f.add_force(as_points<Real>(positions), mutable_points(force));
       }
       return force;
@@ -137,6 +139,7 @@ class ForceField {
       PointArray<Real> dforce = zeros<Real>();
       {
         py::gil_scoped_release release;
+        const std::lock_guard lock(*busy_);
         f.add_dforce(as_points<Real>(displacement), mutable_points(dforce), static_cast<Real>(k_factor));
       }
       return dforce;
@@ -148,6 +151,7 @@ class ForceField {
       using Real = real_of<decltype(f)>;
       const auto positions = points<Real>(x, "x");
       py::gil_scoped_release release;
+      const std::lock_guard lock(*busy_);
       return static_cast<double>(f.potential_energy(as_points<Real>(positions)));
     });
   }
@@ -160,6 +164,7 @@ class ForceField {
       Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix;
       {
         py::gil_scoped_release release;
+        const std::lock_guard lock(*busy_);
         matrix = f.stiffness_matrix(static_cast<Real>(k_factor));
         matrix.makeCompressed();
       }
@@ -188,6 +193,7 @@ class ForceField {
   py::array remove_tetrahedra(py::handle indices) {
     const std::vector<Index> list = index_list(indices, "indices");
     return visit([&](auto& f) -> py::array {
+      const std::lock_guard lock(*busy_);
       const Index before = f.mesh().num_tetrahedra();
       const TopologyChange change = f.remove_tetrahedra(list);
       return index_array(old_to_new(before, change.tetrahedron_moves));
@@ -196,7 +202,10 @@ class ForceField {
 
   void add_tetrahedra(py::handle tetrahedra) {
     const auto tets = index_tuples<4>(tetrahedra, "tetrahedra");
-    visit([&](auto& f) { f.add_tetrahedra(tets); });
+    visit([&](auto& f) {
+      const std::lock_guard lock(*busy_);
+      f.add_tetrahedra(tets);
+    });
   }
 
   py::array tetrahedra() const {
@@ -212,7 +221,10 @@ class ForceField {
   py::array rotations() const {
     return visit([&](const auto& f) -> py::array {
       using Real = real_of<decltype(f)>;
-      const auto all = f.rotations();
+      const auto all = [&] {
+        const std::lock_guard lock(*busy_);
+        return f.rotations();
+      }();
       py::array_t<Real> out({static_cast<py::ssize_t>(all.size()), py::ssize_t(3), py::ssize_t(3)});
       auto o = out.template mutable_unchecked<3>();
       for (std::size_t t = 0; t < all.size(); ++t) {
@@ -254,6 +266,11 @@ class ForceField {
 
  private:
   std::variant<std::unique_ptr<Field<double>>, std::unique_ptr<Field<float>>> field_;
+  // One call into the field at a time: the methods above give up the GIL while they compute, and a
+  // field keeps scratch and linearisation state, so two Python threads on one field take turns.
+  // Nothing waits for the GIL while holding this lock (so no deadlock with a thread that holds the
+  // GIL and waits for it).
+  std::unique_ptr<std::mutex> busy_ = std::make_unique<std::mutex>();
 };
 
 }  // namespace

@@ -153,3 +153,39 @@ def test_per_tetrahedron_parameters_and_explicit_edges_are_accepted():
     listed = fastcorot.ForceField(points, tetrahedra, young_modulus=[800] * len(tetrahedra),
                                   poisson_ratio=np.full(len(tetrahedra), 0.2), edges=uniform.edges[::-1, ::-1])
     np.testing.assert_allclose(listed.add_force(x), uniform.add_force(x), rtol=0, atol=1e-12 * np.abs(x).max() * 800)
+
+
+def test_two_python_threads_on_one_field_take_turns():
+    """The methods give up the GIL while they compute; calls on one field from two threads must
+    still give exactly the results of the same calls made one after another."""
+    import threading
+
+    points, tetrahedra, x = small_mesh()
+    field = fastcorot.ForceField(points, tetrahedra, young_modulus=1000.0, poisson_ratio=0.3)
+    rng = np.random.default_rng(3)
+    positions = [x + 0.05 * rng.standard_normal(x.shape) for _ in range(4)]
+    dx = rng.standard_normal(x.shape)
+    expected = []
+    for p in positions:
+        force = field.add_force(p)
+        expected.append((force, field.add_dforce(dx, 1.0)))
+    failures = []
+
+    def work(k):
+        # A force depends on its positions only; K dx uses the linearisation of whichever
+        # add_force came last (the other thread's may slip in between), so it must be one of the
+        # sequential products, bit for bit.
+        for _ in range(30):
+            force = field.add_force(positions[k])
+            if not np.array_equal(force, expected[k][0]):
+                failures.append(("force", k))
+            product = field.add_dforce(dx, 1.0)
+            if not any(np.array_equal(product, e[1]) for e in expected):
+                failures.append(("dforce", k))
+
+    threads = [threading.Thread(target=work, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert failures == []

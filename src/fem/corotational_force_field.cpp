@@ -328,8 +328,8 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   // Points padded to four values: k dx in, the sum of the edge terms out.
   packed_in_.resize(n);
   packed_out_.resize(n);
-  Real* in = packed_in_.data()->value;
-  Real* out = packed_out_.data()->value;
+  Real* in = reinterpret_cast<Real*>(packed_in_.data());
+  Real* out = reinterpret_cast<Real*>(packed_out_.data());
   const Real* dx_values = dx.data()->data();
   parallel_ranges(threads_, n, [in, out, dx_values, k](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {

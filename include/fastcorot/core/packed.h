@@ -1,6 +1,7 @@
 // Four values of one scalar type in one SIMD register (GCC's vector extension, which Clang shares:
 // AVX2 for double, SSE for float; plain code where neither exists). Lane-wise arithmetic with the
-// usual operators, so results are those of the same scalar operations, lane by lane.
+// usual operators, so results are those of the same scalar operations, lane by lane. Internal to the
+// library's sources and tests (not installed: cmake/install.cmake).
 #pragma once
 
 #include <cstring>

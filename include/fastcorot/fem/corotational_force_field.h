@@ -11,6 +11,9 @@
 // applied in vertex order. Loops that scatter into shared arrays follow a ScatterSchedule, so any
 // thread count gives bitwise the same results. The straightforward element-by-element form of the
 // same computation (tetrahedron_element.h) is what the tests compare against.
+//
+// One object is not to be called from several threads at once (even its const members keep scratch
+// and linearisation state); its own threads are set_threads'.
 #pragma once
 
 #include "fastcorot/core/phase_times.h"
@@ -113,8 +116,8 @@ class CorotationalForceField {
   // Where add_force adds its time (null: not timed).
   void set_phase_times(PhaseTimes* times) { times_ = times; }
 
-  // Bytes held by the force field (rest data, edge blocks, schedules, last positions), not
-  // counting the shared mesh.
+  // Bytes held by the force field (rest data, edge blocks, schedules, last positions, add_dforce's
+  // padded points once it has run), not counting the shared mesh.
   std::size_t memory_bytes() const;
 
  private:
