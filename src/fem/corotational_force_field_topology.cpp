@@ -10,7 +10,6 @@
 #include "force_kernels.h"
 
 #include <algorithm>
-#include <limits>
 
 namespace fastcorot {
 

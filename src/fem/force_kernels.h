@@ -34,8 +34,6 @@ struct ElementBatch {
   alignas(64) Real stress[3][3][W];
   alignas(64) Real f[4][3][W];    // forces on the four vertices
   alignas(64) Real r[4][3][W];    // rotated shape vectors Q^T s~_j
-  alignas(64) Real lambda_r[4][3][W];  // lambda r_j
-  alignas(64) Real mu_r[4][3][W];      // mu r_j
   alignas(64) Real block[9][W];   // one edge block, column-major
 };
 
@@ -129,7 +127,7 @@ inline void element_forces(ElementBatch<Real>& b) {
   }
 }
 
-// r_j = Q^T s~_j for the four vertices, and lambda r_j, mu r_j.
+// r_j = Q^T s~_j for the four vertices.
 template <class Real>
 inline void rotated_shapes(ElementBatch<Real>& b) {
   constexpr int W = ElementBatch<Real>::W;
@@ -138,10 +136,7 @@ inline void rotated_shapes(ElementBatch<Real>& b) {
     for (int i = 0; i < 3; ++i) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        const Real r = q[0][i][l] * b.s[j][0][l] + q[1][i][l] * b.s[j][1][l] + q[2][i][l] * b.s[j][2][l];
-        b.r[j][i][l] = r;
-        b.lambda_r[j][i][l] = b.lambda[l] * r;
-        b.mu_r[j][i][l] = b.mu[l] * r;
+        b.r[j][i][l] = q[0][i][l] * b.s[j][0][l] + q[1][i][l] * b.s[j][1][l] + q[2][i][l] * b.s[j][2][l];
       }
     }
   }
@@ -152,20 +147,19 @@ inline void rotated_shapes(ElementBatch<Real>& b) {
 template <class Real>
 inline void edge_block(ElementBatch<Real>& b, int k, int m, const bool (&swap)[ElementBatch<Real>::W]) {
   constexpr int W = ElementBatch<Real>::W;
-  alignas(64) Real ru[3][W], lambda_rv[3][W], mu_rv[3][W];
+  alignas(64) Real ru[3][W], rv[3][W];
   for (int c = 0; c < 3; ++c) {
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
       ru[c][l] = swap[l] ? b.r[m][c][l] : b.r[k][c][l];
-      lambda_rv[c][l] = swap[l] ? b.lambda_r[k][c][l] : b.lambda_r[m][c][l];
-      mu_rv[c][l] = swap[l] ? b.mu_r[k][c][l] : b.mu_r[m][c][l];
+      rv[c][l] = swap[l] ? b.r[k][c][l] : b.r[m][c][l];
     }
   }
   for (int col = 0; col < 3; ++col) {
     for (int row = 0; row < 3; ++row) {
 #pragma omp simd
       for (int l = 0; l < W; ++l) {
-        b.block[3 * col + row][l] = lambda_rv[row][l] * ru[col][l] + mu_rv[col][l] * ru[row][l];
+        b.block[3 * col + row][l] = b.lambda[l] * rv[row][l] * ru[col][l] + b.mu[l] * ru[row][l] * rv[col][l];
       }
     }
   }
