@@ -230,12 +230,11 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
     // while this one computes (those of a large mesh live beyond the core's caches).
     struct BlockTargets {
       Real* entry[W][6];
-      bool swap[6][W];
+      bool swap[W][6];
     };
     BlockTargets targets[2];
     const auto locate_blocks = [&](Index from, BlockTargets& to) {
       const Index last = std::min<Index>(end, from + W);
-      for (auto& lanes : to.swap) std::fill(std::begin(lanes), std::end(lanes), false);
       for (Index i = from; i < last; ++i) {
         const auto l = static_cast<std::size_t>(i - from);
         const Index t = tetrahedron_schedule_.order[static_cast<std::size_t>(i)];
@@ -246,7 +245,7 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
           to.entry[l][e] = entry;
           const auto k = static_cast<std::size_t>(kTetrahedronEdges[e][0]);
           const auto m = static_cast<std::size_t>(kTetrahedronEdges[e][1]);
-          to.swap[e][l] = tetrahedra[t][k] > tetrahedra[t][m];
+          to.swap[l][e] = tetrahedra[t][k] > tetrahedra[t][m];
         }
       }
     };
@@ -303,13 +302,8 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
         // Each local edge block goes to its mesh edge's slot.
         kernels::rotated_shapes(batch);
         const BlockTargets& here = targets[(first - begin) / W % 2];
-        for (std::size_t e = 0; e < 6; ++e) {
-          kernels::edge_block(batch, kTetrahedronEdges[e][0], kTetrahedronEdges[e][1], here.swap[e]);
-          for (int l = 0; l < count; ++l) {
-            Real* entry = here.entry[l][e];
-            for (int i = 0; i < 9; ++i) entry[i] += batch.block[i][l];
-          }
-        }
+        kernels::edge_diagonals(batch);
+        for (int l = 0; l < count; ++l) kernels::add_edge_blocks(batch, l, here.entry[l], here.swap[l]);
       }
     }
   });

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "fastcorot/core/packed.h"
+#include "fastcorot/topology/tet_mesh.h"
 
 #include <cmath>
 #include <cstddef>
@@ -34,7 +35,8 @@ struct ElementBatch {
   alignas(64) Real stress[3][3][W];
   alignas(64) Real f[4][3][W];    // forces on the four vertices
   alignas(64) Real r[4][3][W];    // rotated shape vectors Q^T s~_j
-  alignas(64) Real block[9][W];   // one edge block, column-major
+  alignas(64) Real diagonal[6][W];  // per local edge: mu (s~_k . s~_m)
+  alignas(64) Real corner[6][W];    // per local edge: its block's entry (2, 2)
 };
 
 // s~_0 = -(s~_1 + s~_2 + s~_3).
@@ -142,35 +144,57 @@ inline void rotated_shapes(ElementBatch<Real>& b) {
   }
 }
 
-// The block of local edge (k, m) oriented from its lower vertex u to its higher one v (u = k unless
-// swap[l]): lambda r_v r_u^T + mu r_u r_v^T + mu (s~_k . s~_m) I.
+// Per local edge e = (k, m) of kTetrahedronEdges: the diagonal term mu (s~_k . s~_m) of its block
+// and the block's last entry, (lambda + mu) r_k[2] r_m[2] plus that term (the same for either
+// orientation).
 template <class Real>
-inline void edge_block(ElementBatch<Real>& b, int k, int m, const bool (&swap)[ElementBatch<Real>::W]) {
+inline void edge_diagonals(ElementBatch<Real>& b) {
   constexpr int W = ElementBatch<Real>::W;
-  alignas(64) Real ru[3][W], rv[3][W];
-  for (int c = 0; c < 3; ++c) {
+  for (int e = 0; e < 6; ++e) {
+    const int k = kTetrahedronEdges[static_cast<std::size_t>(e)][0];
+    const int m = kTetrahedronEdges[static_cast<std::size_t>(e)][1];
+    const auto& sk = b.s[k];
+    const auto& sm = b.s[m];
 #pragma omp simd
     for (int l = 0; l < W; ++l) {
-      ru[c][l] = swap[l] ? b.r[m][c][l] : b.r[k][c][l];
-      rv[c][l] = swap[l] ? b.r[k][c][l] : b.r[m][c][l];
+      const Real diagonal = b.mu[l] * (sk[0][l] * sm[0][l] + sk[1][l] * sm[1][l] + sk[2][l] * sm[2][l]);
+      b.diagonal[e][l] = diagonal;
+      b.corner[e][l] = b.lambda[l] * b.r[m][2][l] * b.r[k][2][l] + b.mu[l] * b.r[k][2][l] * b.r[m][2][l] + diagonal;
     }
   }
-  for (int col = 0; col < 3; ++col) {
-    for (int row = 0; row < 3; ++row) {
-#pragma omp simd
-      for (int l = 0; l < W; ++l) {
-        b.block[3 * col + row][l] = b.lambda[l] * rv[row][l] * ru[col][l] + b.mu[l] * ru[row][l] * rv[col][l];
-      }
-    }
+}
+
+// Adds lane l's six edge blocks into the block array: the block of local edge e, oriented from its
+// lower vertex u to its higher one v (from k to m unless swap[e]), at entry[e] (nine values,
+// column-major): lambda r_v r_u^T + mu r_u r_v^T + mu (s~_k . s~_m) I. The first eight values are
+// two Packed sums of permuted rotated shape vectors, the ninth is the batch's corner.
+template <class Real>
+inline void add_edge_blocks(const ElementBatch<Real>& b, int l, Real* const (&entry)[6], const bool (&swap)[6]) {
+  using P = Packed<Real>;
+  // With r = (x, y, z): entries 0..3 are lambda (v_x, v_y, v_z, v_x) * (u_x, u_x, u_x, u_y) +
+  // mu (u_x, u_y, u_z, u_x) * (v_x, v_x, v_x, v_y), and entries 4..7 the same with (y, z, x, y)
+  // and (y, y, z, z).
+  P lambda_a[4], mu_a[4], col_a[4], lambda_b[4], mu_b[4], col_b[4];
+  const P lambda = broadcast(b.lambda[l]), mu = broadcast(b.mu[l]);
+  for (int j = 0; j < 4; ++j) {
+    const P r = {b.r[j][0][l], b.r[j][1][l], b.r[j][2][l], Real(0)};
+    const P a = permute<0, 1, 2, 0>(r), c = permute<1, 2, 0, 1>(r);
+    lambda_a[j] = lambda * a;
+    mu_a[j] = mu * a;
+    col_a[j] = permute<0, 0, 0, 1>(r);
+    lambda_b[j] = lambda * c;
+    mu_b[j] = mu * c;
+    col_b[j] = permute<1, 1, 2, 2>(r);
   }
-  const auto& sk = b.s[k];
-  const auto& sm = b.s[m];
-#pragma omp simd
-  for (int l = 0; l < W; ++l) {
-    const Real diagonal = b.mu[l] * (sk[0][l] * sm[0][l] + sk[1][l] * sm[1][l] + sk[2][l] * sm[2][l]);
-    b.block[0][l] += diagonal;
-    b.block[4][l] += diagonal;
-    b.block[8][l] += diagonal;
+  for (int e = 0; e < 6; ++e) {
+    const int k = kTetrahedronEdges[static_cast<std::size_t>(e)][0];
+    const int m = kTetrahedronEdges[static_cast<std::size_t>(e)][1];
+    const int u = swap[e] ? m : k, v = swap[e] ? k : m;
+    const P diagonal = {b.diagonal[e][l], Real(0), Real(0), Real(0)};
+    Real* to = entry[e];
+    store_packed(to, load_packed(to) + (lambda_a[v] * col_a[u] + mu_a[u] * col_a[v] + diagonal));
+    store_packed(to + 4, load_packed(to + 4) + (lambda_b[v] * col_b[u] + mu_b[u] * col_b[v] + diagonal));
+    to[8] += b.corner[e][l];
   }
 }
 

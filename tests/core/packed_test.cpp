@@ -42,5 +42,13 @@ TYPED_TEST(PackedTest, ArithmeticIsTheScalarArithmeticLaneByLane) {
   EXPECT_EQ(Packed<Real>{}[2], Real(0));
 }
 
+TYPED_TEST(PackedTest, PermuteReordersAndRepeatsLanes) {
+  using Real = TypeParam;
+  const Packed<Real> v = {Real(10), Real(11), Real(12), Real(13)};
+  const Packed<Real> p = permute<2, 0, 0, 3>(v);
+  const Real expected[4] = {Real(12), Real(10), Real(10), Real(13)};
+  for (int lane = 0; lane < 4; ++lane) EXPECT_EQ(p[lane], expected[lane]) << "lane " << lane;
+}
+
 }  // namespace
 }  // namespace fastcorot

@@ -39,4 +39,10 @@ inline Packed<Real> broadcast(Real a) {
   return Packed<Real>{a, a, a, a};
 }
 
+// The lanes (v[i0], v[i1], v[i2], v[i3]) of a Packed v.
+template <int i0, int i1, int i2, int i3, class Pack>
+inline Pack permute(const Pack& v) {
+  return __builtin_shufflevector(v, v, i0, i1, i2, i3);
+}
+
 }  // namespace fastcorot
