@@ -238,14 +238,14 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
       for (Index i = from; i < last; ++i) {
         const auto l = static_cast<std::size_t>(i - from);
         const Index t = tetrahedron_schedule_.order[static_cast<std::size_t>(i)];
+        const Tetrahedron tet = tetrahedra[t];
+        const std::array<Index, 6> edges = edges_of_tetrahedra[t];
         for (std::size_t e = 0; e < 6; ++e) {
-          Real* entry = blocks + 9 * static_cast<std::size_t>(slots[edges_of_tetrahedra[t][e]]);
+          Real* entry = blocks + 9 * static_cast<std::size_t>(slots[edges[e]]);
           __builtin_prefetch(entry, 1);
           __builtin_prefetch(entry + 8, 1);
           to.entry[l][e] = entry;
-          const auto k = static_cast<std::size_t>(kTetrahedronEdges[e][0]);
-          const auto m = static_cast<std::size_t>(kTetrahedronEdges[e][1]);
-          to.swap[l][e] = tetrahedra[t][k] > tetrahedra[t][m];
+          to.swap[l][e] = tet[static_cast<std::size_t>(kTetrahedronEdges[e][0])] > tet[static_cast<std::size_t>(kTetrahedronEdges[e][1])];
         }
       }
     };
