@@ -13,15 +13,28 @@ ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::arr
     bandwidth = std::max(bandwidth, *high - *low);
   }
   ScatterSchedule schedule;
-  const Index part_size = std::max<Index>({2 * bandwidth + 1, min_part, 1});
-  schedule.parts = std::clamp<Index>(num_points / part_size, 1, 64);
-  schedule.num_points = num_points;
+  const Index part_size = std::max<Index>({bandwidth + 1, min_part, 1});
+  const Index most = std::clamp<Index>(num_points / part_size, 1, 64);
+  const Index parts = most >= 4 ? most / 4 * 4 : std::min<Index>(most, 2);
+  schedule.parts = parts;
+  // An item goes to the group of its lowest point's part: cut where the count of items by lowest
+  // point reaches the next multiple of items / parts, keeping every part at least part_size long.
+  std::vector<std::int64_t> below(static_cast<std::size_t>(num_points) + 1, 0);  // items with lowest point < v
+  for (const auto& item : items) ++below[static_cast<std::size_t>(*std::min_element(item.begin(), item.end())) + 1];
+  for (std::size_t v = 1; v < below.size(); ++v) below[v] += below[v - 1];
+  schedule.part_begin.assign(static_cast<std::size_t>(parts) + 1, num_points);
+  schedule.part_begin[0] = 0;
+  for (Index p = 1; p < parts; ++p) {
+    const std::int64_t target = static_cast<std::int64_t>(items.size()) * p / parts;
+    const auto reached = std::lower_bound(below.begin(), below.end(), target);
+    const Index cut = static_cast<Index>(reached - below.begin());
+    const auto pi = static_cast<std::size_t>(p);
+    schedule.part_begin[pi] = std::clamp<Index>(cut, schedule.part_begin[pi - 1] + part_size,
+                                                num_points - (parts - p) * part_size);
+  }
 
-  // Group key: phase-major, then part.
-  const Index parts = schedule.parts;
-  const Index groups_before[ScatterSchedule::kPhases + 1] = {0, parts, parts + (parts / 2),
-                                                             parts + (parts / 2) + ((parts - 1) / 2),
-                                                             parts + (parts / 2) + ((parts - 1) / 2) + 1};
+  // Group key: phase-major (even parts, odd parts, the serial group), then part.
+  const Index groups_before[ScatterSchedule::kPhases + 1] = {0, (parts + 1) / 2, parts, parts + 1};
   schedule.group_begin.assign(static_cast<std::size_t>(groups_before[ScatterSchedule::kPhases]) + 1, 0);
   std::vector<Index> group_of(items.size());
   for (std::size_t i = 0; i < items.size(); ++i) group_of[i] = schedule.group_for(items[i]);

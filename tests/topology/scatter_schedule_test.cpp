@@ -49,13 +49,34 @@ void check_schedule(Index num_points, std::span<const std::array<Index, K>> item
 
 TEST(ScatterSchedule, GridTetrahedraAndEdges) {
   RegularGrid grid;
-  grid.n = {10, 6, 40};  // z slowest: parts of at least 256 points
+  grid.n = {10, 6, 40};  // z slowest
   const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
   const auto tets = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
   EXPECT_GE(tets.parts, 3);
   check_schedule<4>(mesh.num_points(), mesh.tetrahedra(), tets);
   const auto edges = make_scatter_schedule<2>(mesh.num_points(), mesh.edges());
   check_schedule<2>(mesh.num_points(), mesh.edges(), edges);
+}
+
+TEST(ScatterSchedule, PartsAreLongerThanTheBandwidthAndComeInFours) {
+  // 4,000 points, items of index span 441 (the 40 x 10 x 10 benchmark beam's): at most 9 parts of
+  // 442 points, so 8; each phase then has four groups of about the same size.
+  RegularGrid grid;
+  grid.n = {40, 10, 10};
+  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const auto tets = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
+  ASSERT_EQ(tets.parts, 8);
+  EXPECT_EQ(tets.phase_begin[1] - tets.phase_begin[0], 4);
+  EXPECT_EQ(tets.phase_begin[2] - tets.phase_begin[1], 4);
+  ASSERT_EQ(tets.part_begin.size(), 9u);
+  EXPECT_EQ(tets.part_begin.front(), 0);
+  EXPECT_EQ(tets.part_begin.back(), mesh.num_points());
+  for (std::size_t p = 0; p < 8; ++p) EXPECT_GE(tets.part_begin[p + 1] - tets.part_begin[p], 442) << "part " << p;
+  const double mean = mesh.num_tetrahedra() / 8.0;
+  for (Index g = 0; g < 8; ++g) {
+    EXPECT_NEAR(tets.group_end[g] - tets.group_begin[g], mean, 0.1 * mean) << "group " << g;
+  }
+  check_schedule<4>(mesh.num_points(), mesh.tetrahedra(), tets);
 }
 
 TEST(ScatterSchedule, PartsAreCutFromTheBandwidth) {
@@ -67,7 +88,7 @@ TEST(ScatterSchedule, PartsAreCutFromTheBandwidth) {
   const auto wide = make_scatter_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), 16);
   EXPECT_EQ(wide.parts, 1);
   check_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), wide);
-  // Narrow items (span 9) over 2000 points with parts of at least 2 * 9 + 1 points: capped at 64 parts.
+  // Narrow items (span 9) over 2000 points with parts of at least 16 points: capped at 64 parts.
   items.clear();
   for (Index i = 0; i + 9 < 2000; i += 3) items.push_back({i, i + 9, i + 4, i + 1});
   const auto narrow = make_scatter_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), 16);

@@ -3,18 +3,21 @@
 // the loop can run on several threads without races and with results that do not depend on the
 // thread count.
 //
-// The points are cut into `parts` contiguous index ranges; the cut depends on the mesh only (its
-// point count and its bandwidth, the largest index span of one item), never on the threads. An item
-// whose points all lie in part p goes to group p of phase 0; an item spanning parts p and p + 1 goes
-// to group p of phase 1 (p even) or phase 2 (p odd); any other item to the single group of phase 3.
-// Two items in different groups of one phase never share a point, so the groups of a phase may run
-// concurrently; phases run one after the other, and each group runs its items in the given order.
-// Every array entry therefore receives its contributions in one fixed order.
+// The points are cut into `parts` contiguous index ranges, each longer than the mesh's bandwidth
+// (the largest index span of one item), so that an item lies in one part or in two neighbouring
+// ones; the cut depends on the mesh only, never on the threads. Part p's group holds the items
+// whose lowest point lies in part p and whose highest lies in part p or p + 1: groups of even parts
+// run in phase 0, those of odd parts in phase 1, and any other item (only ever one added later)
+// goes to the single group of phase 2. Two groups of one phase never share a point (part p's group
+// touches parts p and p + 1 only), so they may run concurrently; phases run one after the other,
+// and each group runs its items in the given order. Every array entry therefore receives its
+// contributions in one fixed order. The part count is a multiple of four where the mesh allows, and
+// the cuts give every group about as many items, so that both phases split evenly over two threads.
 //
 // Groups may keep room for more items (topological changes): group g owns the positions
 // [group_begin[g], group_begin[g + 1]) and visits [group_begin[g], group_end[g]). An item added
 // later goes to the group its points say (group_for) when that group has room, else to the single
-// group of phase 3, which is the last one and so can always grow at the end.
+// group of phase 2, which is the last one and so can always grow at the end.
 #pragma once
 
 #include "fastcorot/core/types.h"
@@ -28,10 +31,10 @@
 namespace fastcorot {
 
 struct ScatterSchedule {
-  static constexpr int kPhases = 4;
+  static constexpr int kPhases = 3;
 
   Index parts = 1;
-  Index num_points = 0;
+  std::vector<Index> part_begin;  // part p holds the points [part_begin[p], part_begin[p + 1])
   std::vector<Index> order;        // item indices in visiting order
   std::vector<Index> group_begin;  // group g owns order[group_begin[g], group_begin[g + 1])
   std::vector<Index> group_end;    // and visits order[group_begin[g], group_end[g])
@@ -46,7 +49,7 @@ struct ScatterSchedule {
 };
 
 // Schedules `items` (point indices in [0, num_points)) keeping their relative order within each
-// group. Parts hold at least twice the bandwidth (and at least `min_part` points), at most 64.
+// group. Parts hold more points than the bandwidth and at least `min_part`; at most 64 parts.
 template <std::size_t K>
 ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::array<Index, K>> items,
                                       Index min_part = 256);
@@ -66,13 +69,11 @@ template <std::size_t K>
 Index ScatterSchedule::group_for(const std::array<Index, K>& item) const {
   const auto [low, high] = std::minmax_element(item.begin(), item.end());
   const auto part_of = [&](Index v) {
-    return static_cast<Index>(static_cast<std::int64_t>(v) * parts / std::max<Index>(num_points, 1));
+    return static_cast<Index>(std::upper_bound(part_begin.begin() + 1, part_begin.end() - 1, v) - part_begin.begin()) - 1;
   };
   const Index p = part_of(*low), q = part_of(*high);
-  // Groups are numbered phase-major: parts groups in phase 0, then the even and odd pairs of
-  // adjacent parts, then phase 3's single group.
-  if (p == q) return p;
-  if (q == p + 1) return (p % 2 == 0) ? parts + p / 2 : parts + parts / 2 + p / 2;
+  // Groups are numbered phase-major: the even parts' groups, the odd parts', then the serial one.
+  if (q == p || q == p + 1) return (p % 2 == 0) ? p / 2 : (parts + 1) / 2 + p / 2;
   return num_groups() - 1;
 }
 
