@@ -1,6 +1,7 @@
 #include "fastcorot/sim/mass.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/parallel.h"
 
 #include <cmath>
 
@@ -55,6 +56,23 @@ void Mass<Real>::add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> o
     }
     out[static_cast<std::size_t>(row)] += factor * sum;
   }
+}
+
+template <class Real>
+void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor, int threads) const {
+  parallel_ranges(threads, vertex_masses_.size(), [&](std::size_t begin, std::size_t end) {
+    if (is_lumped()) {
+      for (std::size_t i = begin; i < end; ++i) out[i] = (factor * vertex_masses_[i]) * dx[i];
+      return;
+    }
+    for (std::size_t row = begin; row < end; ++row) {
+      Vec3<Real> sum = Vec3<Real>::Zero();
+      for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(matrix_, static_cast<Eigen::Index>(row)); it; ++it) {
+        sum += it.value() * dx[static_cast<std::size_t>(it.col())];
+      }
+      out[row] = factor * sum;
+    }
+  });
 }
 
 template <class Real>

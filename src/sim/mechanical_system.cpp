@@ -71,8 +71,11 @@ template <class Real>
 void MechanicalSystem<Real>::multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
                                       std::span<Vec3<Real>> out) const {
   const PhaseTimer timer(timer_slot(&PhaseTimes::matrix_vector));
-  set_zero(out);
-  if (factors.m != 0 && mass.size() != 0) mass.add_mdx(dx, out, factors.m);
+  if (factors.m != 0 && mass.size() != 0) {
+    mass.multiply(dx, out, factors.m, threads_);
+  } else {
+    set_zero(out);
+  }
   for (const auto& field : force_fields) field->add_dforce(dx, out, factors.k, factors.b);
   project(out);
 }

@@ -161,6 +161,39 @@ TEST(Mass, ConsistentAddMdxAppliesTheScalarMatrixToEachAxis) {
   EXPECT_NEAR(out[0].z(), 1.1, 1e-15);
 }
 
+// multiply writes what add_mdx adds to zero, bit for bit, on one thread or two (3,000 points: more
+// than one chunk of the parallel loop).
+TEST(Mass, MultiplyIsAddMdxIntoZeroOnAnyThreadCount) {
+  const std::size_t n = 3000;
+  std::vector<double> masses(n);
+  Points dx(n);
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (std::size_t i = 0; i < n; ++i) {
+    masses[i] = 0.5 + std::sin(0.37 * double(i)) * 0.25;
+    dx[i] = Vec3<double>(std::cos(0.1 * double(i)), -1.0 + 1e-3 * double(i), std::sin(0.7 * double(i)));
+    const auto row = static_cast<Index>(i);
+    triplets.emplace_back(row, row, 2.0 * masses[i]);
+    if (i + 1 < n) {
+      triplets.emplace_back(row, row + 1, 0.3 * masses[i]);
+      triplets.emplace_back(row + 1, row, 0.3 * masses[i]);
+    }
+  }
+  Eigen::SparseMatrix<double> matrix(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  for (const auto& mass : {Mass<double>::lumped(masses), Mass<double>::consistent(matrix)}) {
+    Points expected(n, Vec3<double>::Zero());
+    mass.add_mdx(dx, expected, -0.75);
+    for (int threads : {1, 2}) {
+      Points out(n, Vec3<double>(9, 9, 9));  // overwritten, not added to
+      mass.multiply(dx, out, -0.75, threads);
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(out[i], expected[i]) << (mass.is_lumped() ? "lumped" : "consistent") << ", point " << i << ", "
+                                       << threads << " threads";
+      }
+    }
+  }
+}
+
 TEST(Mass, LumpedGravityIsMassTimesG) {
   const auto mass = Mass<double>::lumped({2.0, 0.5});
   Points f = {Vec3<double>(1, 0, 0), Vec3<double>(0, 0, 0)};

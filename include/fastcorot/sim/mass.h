@@ -35,6 +35,9 @@ class Mass {
 
   // out += factor · M dx
   void add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor) const;
+  // out = factor · M dx (every point written; the rows on up to `threads` threads, the same bits for
+  // any count).
+  void multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor, int threads) const;
   // f += M g (the weight of each vertex)
   void add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const;
   // factor · M as 3×3 blocks (diagonal blocks m I, or M_ij I) at the given scalar offset.
