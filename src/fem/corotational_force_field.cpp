@@ -433,7 +433,7 @@ template <class Real>
 std::size_t CorotationalForceField<Real>::memory_bytes() const {
   const auto bytes = [](const auto& v) { return v.capacity() * sizeof(v[0]); };
   const auto schedule_bytes = [&](const ScatterSchedule& s) {
-    return bytes(s.order) + bytes(s.group_begin) + bytes(s.group_end);
+    return bytes(s.order) + bytes(s.group_begin) + bytes(s.group_end) + bytes(s.part_begin);
   };
   std::size_t free_bytes = bytes(free_slots_);
   for (const auto& slots : free_slots_) free_bytes += bytes(slots);
