@@ -2,8 +2,8 @@
 // corotational_force_field.cpp). Each change costs time proportional to the tetrahedra and edges
 // it touches: removed tetrahedra leave their schedule group (its last member takes the place),
 // removed edges leave a free slot in theirs, and new items go to the group their points select
-// when it has room, else to the serial group of phase 3. When too much has gone to phase 3 or too
-// many slots are free, everything is rebuilt once (amortised over the changes that led there).
+// when it has room, else to the serial group of the last phase. When too much has gone there or
+// too many slots are free, everything is rebuilt once (amortised over the changes that led there).
 #include "fastcorot/fem/corotational_force_field.h"
 
 #include "fastcorot/core/error.h"

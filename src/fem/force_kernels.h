@@ -1,8 +1,10 @@
 // The inner loops of CorotationalForceField on plain scalars. Forces and the stiffness refresh work
 // on a batch of kLanes tetrahedra at once: every quantity is an array over the batch, and each
 // formula is a loop over the lanes that the compiler turns into SIMD instructions (`omp simd`; one
-// simple loop per quantity, which GCC vectorises reliably). add_dforce works on whole points
-// instead: three coordinates and a spare lane in one Packed register (add_edge_terms). The formulas
+// simple loop per quantity, which GCC vectorises reliably). Where whole vectors of one tetrahedron
+// or point go to memory, a Packed register holds three coordinates and a spare lane instead: the
+// refresh adds each tetrahedron's edge blocks that way (add_edge_blocks), and add_dforce works on
+// points throughout (add_edge_terms). The formulas
 // are those of SPEC.md written in the rest frame of the rotation method (corotational_force_field.h
 // explains the frame). Internal to src/fem.
 #pragma once
