@@ -43,18 +43,29 @@ Real Mass<Real>::total_mass() const {
   return total;
 }
 
+namespace {
+
+// sum_j M_ij dx_j over the stored entries of row i.
+template <class Real>
+Vec3<Real> row_product(const Eigen::SparseMatrix<Real, Eigen::RowMajor>& matrix, std::size_t row,
+                       std::span<const Vec3<Real>> dx) {
+  Vec3<Real> sum = Vec3<Real>::Zero();
+  for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(matrix, static_cast<Eigen::Index>(row)); it; ++it) {
+    sum += it.value() * dx[static_cast<std::size_t>(it.col())];
+  }
+  return sum;
+}
+
+}  // namespace
+
 template <class Real>
 void Mass<Real>::add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor) const {
   if (is_lumped()) {
     for (std::size_t i = 0; i < vertex_masses_.size(); ++i) out[i] += (factor * vertex_masses_[i]) * dx[i];
     return;
   }
-  for (Eigen::Index row = 0; row < matrix_.outerSize(); ++row) {
-    Vec3<Real> sum = Vec3<Real>::Zero();
-    for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(matrix_, row); it; ++it) {
-      sum += it.value() * dx[static_cast<std::size_t>(it.col())];
-    }
-    out[static_cast<std::size_t>(row)] += factor * sum;
+  for (std::size_t row = 0; row < static_cast<std::size_t>(matrix_.outerSize()); ++row) {
+    out[row] += factor * row_product(matrix_, row, dx);
   }
 }
 
@@ -65,13 +76,7 @@ void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> 
       for (std::size_t i = begin; i < end; ++i) out[i] = (factor * vertex_masses_[i]) * dx[i];
       return;
     }
-    for (std::size_t row = begin; row < end; ++row) {
-      Vec3<Real> sum = Vec3<Real>::Zero();
-      for (typename Eigen::SparseMatrix<Real, Eigen::RowMajor>::InnerIterator it(matrix_, static_cast<Eigen::Index>(row)); it; ++it) {
-        sum += it.value() * dx[static_cast<std::size_t>(it.col())];
-      }
-      out[row] = factor * sum;
-    }
+    for (std::size_t row = begin; row < end; ++row) out[row] = factor * row_product(matrix_, row, dx);
   });
 }
 

@@ -7,11 +7,15 @@ namespace fastcorot {
 template <std::size_t K>
 ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::array<Index, K>> items,
                                       Index min_part) {
+  // The bandwidth, and the items counted by lowest point: below[v] items have their lowest point < v.
   Index bandwidth = 0;
+  std::vector<std::int64_t> below(static_cast<std::size_t>(num_points) + 1, 0);
   for (const auto& item : items) {
     const auto [low, high] = std::minmax_element(item.begin(), item.end());
     bandwidth = std::max(bandwidth, *high - *low);
+    ++below[static_cast<std::size_t>(*low) + 1];
   }
+  for (std::size_t v = 1; v < below.size(); ++v) below[v] += below[v - 1];
   ScatterSchedule schedule;
   const Index part_size = std::max<Index>({bandwidth + 1, min_part, 1});
   const Index most = std::clamp<Index>(num_points / part_size, 1, 64);
@@ -19,9 +23,6 @@ ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::arr
   schedule.parts = parts;
   // An item goes to the group of its lowest point's part: cut where the count of items by lowest
   // point reaches the next multiple of items / parts, keeping every part at least part_size long.
-  std::vector<std::int64_t> below(static_cast<std::size_t>(num_points) + 1, 0);  // items with lowest point < v
-  for (const auto& item : items) ++below[static_cast<std::size_t>(*std::min_element(item.begin(), item.end())) + 1];
-  for (std::size_t v = 1; v < below.size(); ++v) below[v] += below[v - 1];
   schedule.part_begin.assign(static_cast<std::size_t>(parts) + 1, num_points);
   schedule.part_begin[0] = 0;
   for (Index p = 1; p < parts; ++p) {
