@@ -204,10 +204,11 @@ inline void add_edge_blocks(const ElementBatch<Real>& b, int l, Real* const (&en
 // values: `in` holds k dx, `out` receives the sums. For the edge (u, v) with block K and
 // w = in[v] - in[u]: out[v] += K w at once, and u's share -K^T w summed along u's run, K^T w being
 // (c_0.w, c_1.w, c_2.w) for the columns c_j of K: lane-wise products summed over the run, then over
-// the lanes. (A function of its own so that no store here may alias the pointers.)
+// the lanes. Never inlined and with restrict pointers: inlined into the schedule's lambda, GCC kept
+// w on the stack between iterations (a store and a reload on the critical path of every edge).
 template <class Real, class Pair>
-inline void add_edge_terms(const Real* in, Real* out, const Real* blocks, const Pair* vertices, std::size_t begin,
-                           std::size_t end) {
+[[gnu::noinline]] void add_edge_terms(const Real* __restrict in, Real* __restrict out, const Real* __restrict blocks,
+                                      const Pair* __restrict vertices, std::size_t begin, std::size_t end) {
   using P = Packed<Real>;
   for (std::size_t slot = begin; slot < end;) {
     const auto u = static_cast<std::size_t>(vertices[slot][0]);
