@@ -213,8 +213,22 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
     });
   }
   const Tetrahedron* tetrahedra = mesh_->tetrahedra().data();
+  // Points padded to four values (add_dforce's scratch arrays): the positions in, the forces out,
+  // so that a point is one SIMD load or load-add-store.
+  using P = Packed<Real>;
+  const std::size_t n = x.size();
+  packed_in_.resize(n);
+  packed_out_.resize(n);
+  Real* padded_x = reinterpret_cast<Real*>(packed_in_.data());
+  Real* padded_f = reinterpret_cast<Real*>(packed_out_.data());
   const Real* xs = x.data()->data();
   Real* fs = f.data()->data();
+  parallel_ranges(threads_, n, [padded_x, padded_f, xs](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      store_packed(padded_x + 4 * i, P{xs[3 * i], xs[3 * i + 1], xs[3 * i + 2], Real(0)});
+      store_packed(padded_f + 4 * i, P{});
+    }
+  });
   Real* blocks = blocks_.data();
   // (A field emptied by topological changes has no tetrahedron 0.)
   const std::array<Index, 6>* edges_of_tetrahedra =
@@ -255,18 +269,29 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
       for (int l = 0; l < W; ++l) {
         const Index t = tetrahedron_schedule_.order[static_cast<std::size_t>(first + (l < count ? l : 0))];
         lane_tetrahedron[l] = t;
-        const Tetrahedron& tet = tetrahedra[t];
-        const Real* x0 = xs + 3 * tet[0];
-        for (int j = 0; j < 3; ++j) {
-          const Real* xj = xs + 3 * tet[static_cast<std::size_t>(j) + 1];
-          for (int c = 0; c < 3; ++c) batch.d[j][c][l] = xj[c] - x0[c];
-        }
         const Real* shape = shape_.data() + 9 * static_cast<std::size_t>(t);
         for (int j = 0; j < 3; ++j) {
           for (int c = 0; c < 3; ++c) batch.s[j + 1][c][l] = shape[3 * j + c];
         }
         batch.mu[l] = mu_[static_cast<std::size_t>(t)];
         batch.lambda[l] = lambda_[static_cast<std::size_t>(t)];
+      }
+      // Edge vectors d_j = x_{j+1} - x_0, four lanes at a time: each point one load, the differences
+      // transposed into the batch's rows.
+      for (int g = 0; g < W; g += 4) {
+        P points[4][4];  // [vertex][lane - g]
+        for (int i = 0; i < 4; ++i) {
+          const Tetrahedron& tet = tetrahedra[lane_tetrahedron[g + i]];
+          for (int j = 0; j < 4; ++j) points[j][i] = load_packed(padded_x + 4 * tet[static_cast<std::size_t>(j)]);
+        }
+        for (int j = 0; j < 3; ++j) {
+          P dx, dy, dz;
+          points_to_lanes(points[j + 1][0] - points[0][0], points[j + 1][1] - points[0][1],
+                          points[j + 1][2] - points[0][2], points[j + 1][3] - points[0][3], dx, dy, dz);
+          store_packed(&batch.d[j][0][g], dx);
+          store_packed(&batch.d[j][1][g], dy);
+          store_packed(&batch.d[j][2][g], dz);
+        }
       }
       if constexpr (kRefresh) {
         if (first == begin) locate_blocks(first, targets[0]);
@@ -291,11 +316,20 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
         }
       }
       kernels::element_forces(batch);
-      for (int l = 0; l < count; ++l) {
-        const Tetrahedron& tet = tetrahedra[lane_tetrahedron[l]];
+      // Forces, four lanes at a time: transposed into points, then one load-add-store per vertex
+      // (lanes in order, vertices in order within a lane).
+      for (int g = 0; g < count; g += 4) {
+        P forces[4][4];  // [vertex][lane - g]
         for (int j = 0; j < 4; ++j) {
-          Real* fj = fs + 3 * tet[static_cast<std::size_t>(j)];
-          for (int c = 0; c < 3; ++c) fj[c] += batch.f[j][c][l];
+          lanes_to_points(load_packed(&batch.f[j][0][g]), load_packed(&batch.f[j][1][g]), load_packed(&batch.f[j][2][g]),
+                          forces[j]);
+        }
+        for (int i = 0; i < std::min(4, count - g); ++i) {
+          const Tetrahedron& tet = tetrahedra[lane_tetrahedron[g + i]];
+          for (int j = 0; j < 4; ++j) {
+            Real* to = padded_f + 4 * tet[static_cast<std::size_t>(j)];
+            store_packed(to, load_packed(to) + forces[j][i]);
+          }
         }
       }
       if constexpr (kRefresh) {
@@ -305,6 +339,11 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
         kernels::edge_diagonals(batch);
         for (int l = 0; l < count; ++l) kernels::add_edge_blocks(batch, l, here.entry[l], here.swap[l]);
       }
+    }
+  });
+  parallel_ranges(threads_, n, [padded_f, fs](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      for (std::size_t c = 0; c < 3; ++c) fs[3 * i + c] += padded_f[4 * i + c];
     }
   });
 }

@@ -50,5 +50,26 @@ TYPED_TEST(PackedTest, PermuteReordersAndRepeatsLanes) {
   for (int lane = 0; lane < 4; ++lane) EXPECT_EQ(p[lane], expected[lane]) << "lane " << lane;
 }
 
+TYPED_TEST(PackedTest, PointsToLanesAndBackTransposes) {
+  using Real = TypeParam;
+  using P = Packed<Real>;
+  // Point i is (10 i + 1, 10 i + 2, 10 i + 3, 10 i + 4); the fourth value must not matter.
+  P points[4];
+  for (int i = 0; i < 4; ++i) points[i] = P{Real(10 * i + 1), Real(10 * i + 2), Real(10 * i + 3), Real(10 * i + 4)};
+  P x, y, z;
+  points_to_lanes(points[0], points[1], points[2], points[3], x, y, z);
+  for (int lane = 0; lane < 4; ++lane) {
+    EXPECT_EQ(x[lane], Real(10 * lane + 1)) << "lane " << lane;
+    EXPECT_EQ(y[lane], Real(10 * lane + 2)) << "lane " << lane;
+    EXPECT_EQ(z[lane], Real(10 * lane + 3)) << "lane " << lane;
+  }
+  P back[4];
+  lanes_to_points(x, y, z, back);
+  for (int i = 0; i < 4; ++i) {
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(back[i][c], Real(10 * i + c + 1)) << "point " << i << ", coordinate " << c;
+    EXPECT_EQ(back[i][3], Real(0)) << "point " << i;
+  }
+}
+
 }  // namespace
 }  // namespace fastcorot

@@ -45,4 +45,31 @@ inline Pack permute(const Pack& v) {
   return __builtin_shufflevector(v, v, i0, i1, i2, i3);
 }
 
+// Four points (x, y, z, anything) as rows → their coordinates as three rows of four lanes:
+// x = (a[0], b[0], c[0], d[0]), y = (a[1], ...), z = (a[2], ...).
+template <class Pack>
+inline void points_to_lanes(const Pack& a, const Pack& b, const Pack& c, const Pack& d, Pack& x, Pack& y, Pack& z) {
+  const Pack ab02 = __builtin_shufflevector(a, b, 0, 4, 2, 6);  // a0 b0 a2 b2
+  const Pack ab13 = __builtin_shufflevector(a, b, 1, 5, 3, 7);  // a1 b1 a3 b3
+  const Pack cd02 = __builtin_shufflevector(c, d, 0, 4, 2, 6);
+  const Pack cd13 = __builtin_shufflevector(c, d, 1, 5, 3, 7);
+  x = __builtin_shufflevector(ab02, cd02, 0, 1, 4, 5);
+  y = __builtin_shufflevector(ab13, cd13, 0, 1, 4, 5);
+  z = __builtin_shufflevector(ab02, cd02, 2, 3, 6, 7);
+}
+
+// The reverse: three rows of four lanes → four points (x[l], y[l], z[l], 0).
+template <class Pack>
+inline void lanes_to_points(const Pack& x, const Pack& y, const Pack& z, Pack (&points)[4]) {
+  const Pack zero{};
+  const Pack xy02 = __builtin_shufflevector(x, y, 0, 4, 2, 6);  // x0 y0 x2 y2
+  const Pack xy13 = __builtin_shufflevector(x, y, 1, 5, 3, 7);  // x1 y1 x3 y3
+  const Pack z02 = __builtin_shufflevector(z, zero, 0, 4, 2, 6);  // z0 0 z2 0
+  const Pack z13 = __builtin_shufflevector(z, zero, 1, 5, 3, 7);
+  points[0] = __builtin_shufflevector(xy02, z02, 0, 1, 4, 5);
+  points[1] = __builtin_shufflevector(xy13, z13, 0, 1, 4, 5);
+  points[2] = __builtin_shufflevector(xy02, z02, 2, 3, 6, 7);
+  points[3] = __builtin_shufflevector(xy13, z13, 2, 3, 6, 7);
+}
+
 }  // namespace fastcorot
