@@ -194,8 +194,9 @@ inline void add_edge_blocks(const ElementBatch<Real>& b, int l, Real* const (&en
     const int u = swap[e] ? m : k, v = swap[e] ? k : m;
     const P diagonal = {b.diagonal[e][l], Real(0), Real(0), Real(0)};
     Real* to = entry[e];
-    store_packed(to, load_packed(to) + (lambda_a[v] * col_a[u] + mu_a[u] * col_a[v] + diagonal));
-    store_packed(to + 4, load_packed(to + 4) + (lambda_b[v] * col_b[u] + mu_b[u] * col_b[v] + diagonal));
+    // (Grouped so that both products fuse into multiply-adds.)
+    store_packed(to, load_packed(to) + (lambda_a[v] * col_a[u] + (mu_a[u] * col_a[v] + diagonal)));
+    store_packed(to + 4, load_packed(to + 4) + (lambda_b[v] * col_b[u] + (mu_b[u] * col_b[v] + diagonal)));
     to[8] += b.corner[e][l];
   }
 }
