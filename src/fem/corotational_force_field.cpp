@@ -223,11 +223,8 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
   Real* padded_f = reinterpret_cast<Real*>(packed_out_.data());
   const Real* xs = x.data()->data();
   Real* fs = f.data()->data();
-  parallel_ranges(threads_, n, [padded_x, padded_f, xs](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      store_packed(padded_x + 4 * i, P{xs[3 * i], xs[3 * i + 1], xs[3 * i + 2], Real(0)});
-      store_packed(padded_f + 4 * i, P{});
-    }
+  parallel_ranges(threads_, n, [padded_x, padded_f, xs, n](std::size_t begin, std::size_t end) {
+    kernels::pad_points(xs, Real(1), n, padded_x, padded_f, begin, end);
   });
   Real* blocks = blocks_.data();
   // (A field emptied by topological changes has no tetrahedron 0.)
@@ -362,11 +359,8 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   Real* in = reinterpret_cast<Real*>(packed_in_.data());
   Real* out = reinterpret_cast<Real*>(packed_out_.data());
   const Real* dx_values = dx.data()->data();
-  parallel_ranges(threads_, n, [in, out, dx_values, k](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      store_packed(in + 4 * i, Packed<Real>{k * dx_values[3 * i], k * dx_values[3 * i + 1], k * dx_values[3 * i + 2], Real(0)});
-      store_packed(out + 4 * i, Packed<Real>{});
-    }
+  parallel_ranges(threads_, n, [in, out, dx_values, k, n](std::size_t begin, std::size_t end) {
+    kernels::pad_points(dx_values, k, n, in, out, begin, end);
   });
   run_schedule(edge_schedule_, threads_, [&](Index begin, Index end) {
     kernels::add_edge_terms(in, out, blocks_.data(), edge_vertices_.data(), static_cast<std::size_t>(begin),

@@ -12,6 +12,7 @@
 #include "fastcorot/core/packed.h"
 #include "fastcorot/topology/tet_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -198,6 +199,25 @@ inline void add_edge_blocks(const ElementBatch<Real>& b, int l, Real* const (&en
     store_packed(to, load_packed(to) + (lambda_a[v] * col_a[u] + (mu_a[u] * col_a[v] + diagonal)));
     store_packed(to + 4, load_packed(to + 4) + (lambda_b[v] * col_b[u] + (mu_b[u] * col_b[v] + diagonal)));
     to[8] += b.corner[e][l];
+  }
+}
+
+// For the points [begin, end) of an array `from` of `count` points of three values: to[i] =
+// (scale x, scale y, scale z, 0) and zeroed[i] = 0, four values each. One four-value load per point,
+// but for the array's last point, which nothing follows.
+template <class Real>
+inline void pad_points(const Real* from, Real scale, std::size_t count, Real* to, Real* zeroed, std::size_t begin,
+                       std::size_t end) {
+  using P = Packed<Real>;
+  const std::size_t whole = std::min(end, count - 1);
+  std::size_t i = begin;
+  for (; i < whole; ++i) {
+    store_packed(to + 4 * i, __builtin_shufflevector(load_packed(from + 3 * i) * scale, P{}, 0, 1, 2, 4));
+    store_packed(zeroed + 4 * i, P{});
+  }
+  for (; i < end; ++i) {
+    store_packed(to + 4 * i, P{scale * from[3 * i], scale * from[3 * i + 1], scale * from[3 * i + 2], Real(0)});
+    store_packed(zeroed + 4 * i, P{});
   }
 }
 
