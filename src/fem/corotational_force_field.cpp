@@ -339,9 +339,7 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
     }
   });
   parallel_ranges(threads_, n, [padded_f, fs](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      for (std::size_t c = 0; c < 3; ++c) fs[3 * i + c] += padded_f[4 * i + c];
-    }
+    kernels::add_padded_points(padded_f, fs, begin, end);
   });
 }
 
@@ -368,9 +366,7 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   });
   Real* df_values = df.data()->data();
   parallel_ranges(threads_, n, [out, df_values](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i) {
-      for (std::size_t c = 0; c < 3; ++c) df_values[3 * i + c] += out[4 * i + c];
-    }
+    kernels::add_padded_points(out, df_values, begin, end);
   });
 }
 

@@ -221,6 +221,15 @@ inline void pad_points(const Real* from, Real scale, std::size_t count, Real* to
   }
 }
 
+// The reverse of pad_points: to[i] += the first three of the four values padded[i], for the points
+// [begin, end).
+template <class Real>
+inline void add_padded_points(const Real* padded, Real* to, std::size_t begin, std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    for (std::size_t c = 0; c < 3; ++c) to[3 * i + c] += padded[4 * i + c];
+  }
+}
+
 // add_dforce over the edge slots [begin, end) (sorted by lower vertex u), on points padded to four
 // values: `in` holds k dx, `out` receives the sums. For the edge (u, v) with block K and
 // w = in[v] - in[u]: out[v] += K w at once, and u's share -K^T w summed along u's run, K^T w being
