@@ -4,9 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <random>
+#include <thread>
 #include <vector>
 
 namespace fastcorot {
@@ -51,6 +56,76 @@ TEST(RunTasks, RunsEveryTaskOnce) {
     run_tasks(threads, 37, [&](int i) { runs[static_cast<std::size_t>(i)]++; });
     for (const auto& r : runs) EXPECT_EQ(r.load(), 1);
   }
+}
+
+// The sum of 0..count-1, each task adding its index on whichever thread runs it.
+long long sum_of_tasks(int threads, int count) {
+  std::atomic<long long> sum{0};
+  run_tasks(threads, count, [&](int i) { sum += i; });
+  return sum.load();
+}
+
+long long expected_sum(int count) { return static_cast<long long>(count) * (count - 1) / 2; }
+
+TEST(RunTasks, ThreadCountsChangingBetweenRuns) {
+  // Workers left out of a run (fewer threads than last time) must not run its tasks, and must join
+  // the next run that wants them.
+  for (int round = 0; round < 200; ++round) {
+    for (int threads : {2, 5, 3, 1, 4, 2}) {
+      const int count = 1 + (round * 7 + threads) % 40;
+      ASSERT_EQ(sum_of_tasks(threads, count), expected_sum(count)) << threads << " threads, " << count << " tasks";
+    }
+  }
+}
+
+TEST(RunTasks, WakesWorkersThatFellAsleep) {
+  EXPECT_EQ(sum_of_tasks(3, 30), expected_sum(30));
+  // Well past the time workers spin before they sleep.
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(sum_of_tasks(3, 30), expected_sum(30));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_EQ(sum_of_tasks(2, 30), expected_sum(30));
+}
+
+TEST(RunTasks, NestedLoopsRunInsideTheirTask) {
+  std::vector<long long> inner(8, 0);
+  run_tasks(2, 8, [&](int i) {
+    std::atomic<long long> sum{0};
+    run_tasks(2, 100, [&](int j) { sum += j; });
+    inner[static_cast<std::size_t>(i)] = sum.load();
+  });
+  for (long long s : inner) EXPECT_EQ(s, expected_sum(100));
+}
+
+TEST(RunTasks, ConcurrentCallersEachGetTheirOwnWorkers) {
+  // As when a Simulation steps its objects on threads of their own.
+  std::vector<std::thread> callers;
+  std::atomic<int> failures{0};
+  for (int c = 0; c < 4; ++c) {
+    callers.emplace_back([&failures, c] {
+      for (int round = 0; round < 300; ++round) {
+        const int count = 1 + (round + c) % 25;
+        if (sum_of_tasks(2 + c % 2, count) != expected_sum(count)) ++failures;
+      }
+    });
+  }
+  for (auto& caller : callers) caller.join();
+  EXPECT_EQ(failures.load(), 0);
+}
+
+TEST(RunTasks, ForkedChildRunsItsOwnWorkers) {
+  ASSERT_EQ(sum_of_tasks(2, 16), expected_sum(16));  // the parent's workers exist
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    alarm(20);  // a child whose workers never come ends here, and fails
+    _exit(sum_of_tasks(2, 16) == expected_sum(16) && sum_of_tasks(3, 9) == expected_sum(9) ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(sum_of_tasks(2, 16), expected_sum(16));
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 // Deterministic parallel loops. Work is cut into tasks whose boundaries depend on the problem size
 // only, never on the thread count, and anything combined across tasks (sums, scatters into shared
 // arrays) is combined in task order. So results are bitwise the same for 1 thread or many.
-// Threads come from OpenMP (GCC's libgomp): its workers stay warm between the short parallel regions
-// of a time step, which costs about a microsecond each.
+// Threads are a team of workers per concurrent caller (src/core/parallel.cpp) that spin briefly
+// between the short parallel loops of a time step, so that starting one costs well under a
+// microsecond (OpenMP's regions cost about two on the 2-core VM), then sleep.
 #pragma once
 
 #include <algorithm>
