@@ -102,25 +102,43 @@ TetrahedronRest<Real> CorotationalForceField<Real>::element_rest(Index t) const 
 }
 
 template <class Real>
+std::size_t CorotationalForceField<Real>::rest_index(std::size_t position, std::size_t value) const {
+  constexpr auto W = static_cast<std::size_t>(kernels::kLanes<Real>);
+  return (position / W * kRestValues + value) * W + position % W;
+}
+
+template <class Real>
+void CorotationalForceField<Real>::move_rest_data(std::size_t from, std::size_t to) {
+  for (std::size_t v = 0; v < kRestValues; ++v) rest_[rest_index(to, v)] = rest_[rest_index(from, v)];
+}
+
+// Writes tetrahedron t's rest data at its position, making room for the position if needed.
+template <class Real>
 void CorotationalForceField<Real>::set_rest_data(Index t) {
   const TetrahedronRest<Real> rest = element_rest(t);
-  const auto i = static_cast<std::size_t>(t);
-  for (int j = 1; j < 4; ++j) {
+  const auto position = static_cast<std::size_t>(position_[static_cast<std::size_t>(t)]);
+  constexpr auto W = static_cast<std::size_t>(kernels::kLanes<Real>);
+  const std::size_t blocks = tetrahedron_schedule_.order.size() / W + 1;
+  if (rest_.size() < blocks * kRestValues * W) rest_.resize(blocks * kRestValues * W, Real(0));
+  for (std::size_t j = 1; j < 4; ++j) {
     const Vec3<Real> s = rest.rest_rotation * rest.shape[j];
-    for (int c = 0; c < 3; ++c) shape_[9 * i + 3 * static_cast<std::size_t>(j - 1) + static_cast<std::size_t>(c)] = s[c];
+    for (std::size_t c = 0; c < 3; ++c) rest_[rest_index(position, 3 * (j - 1) + c)] = s[static_cast<Index>(c)];
   }
-  mu_[i] = rest.mu;
-  lambda_[i] = rest.lambda;
+  rest_[rest_index(position, 9)] = rest.mu;
+  rest_[rest_index(position, 10)] = rest.lambda;
 }
 
 template <class Real>
 void CorotationalForceField<Real>::rebuild() {
   const auto n = static_cast<std::size_t>(mesh_->num_tetrahedra());
-  shape_.assign(9 * n, Real(0));
-  mu_.assign(n, Real(0));
-  lambda_.assign(n, Real(0));
+  tetrahedron_schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra(), 256, kernels::kLanes<Real>);
+  const auto& visiting = tetrahedron_schedule_.order;
+  position_.assign(n, 0);
+  for (std::size_t position = 0; position < visiting.size(); ++position) {
+    if (visiting[position] >= 0) position_[static_cast<std::size_t>(visiting[position])] = static_cast<Index>(position);
+  }
+  rest_.clear();
   for (std::size_t t = 0; t < n; ++t) set_rest_data(static_cast<Index>(t));
-  tetrahedron_schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra());
 
   // Edges sorted by (lower, higher) vertex, then scheduled (which keeps that order within groups);
   // slot i of the internal arrays holds the edge at position i of the schedule.
@@ -154,11 +172,6 @@ void CorotationalForceField<Real>::rebuild() {
   edge_schedule_.group_end.assign(edge_schedule_.group_begin.begin() + 1, edge_schedule_.group_begin.end());
   edge_schedule_.order.clear();  // positions are slots
 
-  const auto& visiting = tetrahedron_schedule_.order;
-  position_.resize(visiting.size());
-  for (std::size_t position = 0; position < visiting.size(); ++position) {
-    position_[static_cast<std::size_t>(visiting[position])] = static_cast<Index>(position);
-  }
   blocks_.assign(9 * edge_vertices_.size() + kernels::kBlockTail, Real(0));
   stale_ = true;
 }
@@ -262,17 +275,18 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
     };
     for (Index first = begin; first < end; first += W) {
       const int count = static_cast<int>(std::min<Index>(W, end - first));
-      // Gather; lanes past the end repeat the first element and are not scattered.
+      // Gather: the rest data is the batch's block (groups start at multiples of W); lanes past the
+      // end take the first element's points, their rest data is whatever the block holds there,
+      // and they are not scattered.
       for (int l = 0; l < W; ++l) {
-        const Index t = tetrahedron_schedule_.order[static_cast<std::size_t>(first + (l < count ? l : 0))];
-        lane_tetrahedron[l] = t;
-        const Real* shape = shape_.data() + 9 * static_cast<std::size_t>(t);
-        for (int j = 0; j < 3; ++j) {
-          for (int c = 0; c < 3; ++c) batch.s[j + 1][c][l] = shape[3 * j + c];
-        }
-        batch.mu[l] = mu_[static_cast<std::size_t>(t)];
-        batch.lambda[l] = lambda_[static_cast<std::size_t>(t)];
+        lane_tetrahedron[l] = tetrahedron_schedule_.order[static_cast<std::size_t>(first + (l < count ? l : 0))];
       }
+      const Real* rest = rest_.data() + rest_index(static_cast<std::size_t>(first), 0);
+      for (int j = 0; j < 3; ++j) {
+        for (int c = 0; c < 3; ++c) std::copy_n(rest + (3 * j + c) * W, W, batch.s[j + 1][c]);
+      }
+      std::copy_n(rest + 9 * W, W, batch.mu);
+      std::copy_n(rest + 10 * W, W, batch.lambda);
       // Edge vectors d_j = x_{j+1} - x_0, four lanes at a time: each point one load, the differences
       // transposed into the batch's rows.
       for (int g = 0; g < W; g += 4) {
@@ -466,7 +480,7 @@ std::size_t CorotationalForceField<Real>::memory_bytes() const {
   };
   std::size_t free_bytes = bytes(free_slots_);
   for (const auto& slots : free_slots_) free_bytes += bytes(slots);
-  return bytes(rest_positions_) + bytes(shape_) + bytes(mu_) + bytes(lambda_) + bytes(blocks_) +
+  return bytes(rest_positions_) + bytes(rest_) + bytes(blocks_) +
          bytes(edge_slot_) + bytes(edge_vertices_) + bytes(position_) + free_bytes +
          bytes(packed_in_) + bytes(packed_out_) +
          schedule_bytes(tetrahedron_schedule_) + schedule_bytes(edge_schedule_) + bytes(last_positions_) +

@@ -47,19 +47,15 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
     if (p != last) {
       tets.order[p] = tets.order[last];
       position_[static_cast<std::size_t>(tets.order[p])] = static_cast<Index>(p);
+      move_rest_data(last, p);  // rest data stays with its position
     }
+    tets.order[last] = -1;
     const auto from = static_cast<std::size_t>(move.from), to = static_cast<std::size_t>(move.to);
     if (from != to) {
       position_[to] = position_[from];
       tets.order[static_cast<std::size_t>(position_[to])] = move.to;
-      std::copy_n(shape_.begin() + static_cast<std::ptrdiff_t>(9 * from), 9, shape_.begin() + static_cast<std::ptrdiff_t>(9 * to));
-      mu_[to] = mu_[from];
-      lambda_[to] = lambda_[from];
     }
     position_.pop_back();
-    mu_.pop_back();
-    lambda_.pop_back();
-    shape_.resize(shape_.size() - 9);
   }
   // Per-tetrahedron parameter lists follow; a single value applies to every tetrahedron.
   if (young_per_tetrahedron_) apply_moves(parameters_.young_modulus, std::span<const IndexMove>(change.tetrahedron_moves));
@@ -84,11 +80,8 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
   for (Index t = first; t < first + change.num_added_tetrahedra; ++t) {
     if (young_per_tetrahedron_) parameters_.young_modulus.push_back(added_young_);
     if (poisson_per_tetrahedron_) parameters_.poisson_ratio.push_back(added_poisson_);
-    shape_.resize(shape_.size() + 9);
-    mu_.push_back(0);
-    lambda_.push_back(0);
-    set_rest_data(t);
     place_tetrahedron(t);
+    set_rest_data(t);
   }
 
   if (schedules_degraded()) {

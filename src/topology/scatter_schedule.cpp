@@ -6,7 +6,7 @@ namespace fastcorot {
 
 template <std::size_t K>
 ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::array<Index, K>> items,
-                                      Index min_part) {
+                                      Index min_part, Index align) {
   // The bandwidth, and the items counted by lowest point: below[v] items have their lowest point < v.
   Index bandwidth = 0;
   std::vector<std::int64_t> below(static_cast<std::size_t>(num_points) + 1, 0);
@@ -39,18 +39,23 @@ ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::arr
   schedule.group_begin.assign(static_cast<std::size_t>(groups_before[ScatterSchedule::kPhases]) + 1, 0);
   std::vector<Index> group_of(items.size());
   for (std::size_t i = 0; i < items.size(); ++i) group_of[i] = schedule.group_for(items[i]);
-  const Index num_groups = groups_before[ScatterSchedule::kPhases];
-  for (Index g : group_of) ++schedule.group_begin[static_cast<std::size_t>(g) + 1];
-  for (std::size_t g = 0; g < static_cast<std::size_t>(num_groups); ++g) {
-    schedule.group_begin[g + 1] += schedule.group_begin[g];
+  const auto num_groups = static_cast<std::size_t>(groups_before[ScatterSchedule::kPhases]);
+  std::vector<Index> sizes(num_groups, 0);
+  for (Index g : group_of) ++sizes[static_cast<std::size_t>(g)];
+  // Each group starts at a multiple of `align`; the positions between a group's items and the next
+  // group are room (order -1), for items added later.
+  const Index step = std::max<Index>(align, 1);
+  schedule.group_end.resize(num_groups);
+  for (std::size_t g = 0; g < num_groups; ++g) {
+    schedule.group_end[g] = schedule.group_begin[g] + sizes[g];
+    schedule.group_begin[g + 1] = g + 1 < num_groups ? (schedule.group_end[g] + step - 1) / step * step : schedule.group_end[g];
   }
-  schedule.order.resize(items.size());
+  schedule.order.assign(static_cast<std::size_t>(schedule.group_begin.back()), -1);
   std::vector<Index> next(schedule.group_begin.begin(), schedule.group_begin.end() - 1);
   for (std::size_t i = 0; i < items.size(); ++i) {
     schedule.order[static_cast<std::size_t>(next[static_cast<std::size_t>(group_of[i])]++)] = static_cast<Index>(i);
   }
   for (int p = 0; p <= ScatterSchedule::kPhases; ++p) schedule.phase_begin[static_cast<std::size_t>(p)] = groups_before[p];
-  schedule.group_end.assign(schedule.group_begin.begin() + 1, schedule.group_begin.end());
   return schedule;
 }
 
@@ -59,7 +64,7 @@ Index ScatterSchedule::group_at(Index position) const {
   return static_cast<Index>(it - group_begin.begin()) - 1;
 }
 
-template ScatterSchedule make_scatter_schedule(Index, std::span<const std::array<Index, 2>>, Index);
-template ScatterSchedule make_scatter_schedule(Index, std::span<const std::array<Index, 4>>, Index);
+template ScatterSchedule make_scatter_schedule(Index, std::span<const std::array<Index, 2>>, Index, Index);
+template ScatterSchedule make_scatter_schedule(Index, std::span<const std::array<Index, 4>>, Index, Index);
 
 }  // namespace fastcorot

@@ -19,24 +19,30 @@ namespace {
 
 template <std::size_t K>
 void check_schedule(Index num_points, std::span<const std::array<Index, K>> items, const ScatterSchedule& s) {
-  // A permutation of the items, each group in increasing item order.
-  std::vector<Index> sorted = s.order;
+  // The visited positions hold a permutation of the items, each group in increasing item order;
+  // the room after a group's items holds -1.
+  ASSERT_EQ(s.group_begin.front(), 0);
+  ASSERT_EQ(s.group_begin.back(), static_cast<Index>(s.order.size()));
+  ASSERT_EQ(s.group_end.size() + 1, s.group_begin.size());
+  std::vector<Index> sorted;
+  for (Index g = 0; g < s.num_groups(); ++g) {
+    ASSERT_LE(s.group_begin[g], s.group_end[g]);
+    ASSERT_LE(s.group_end[g], s.group_begin[g + 1]);
+    EXPECT_TRUE(std::is_sorted(s.order.begin() + s.group_begin[g], s.order.begin() + s.group_end[g]));
+    sorted.insert(sorted.end(), s.order.begin() + s.group_begin[g], s.order.begin() + s.group_end[g]);
+    for (Index i = s.group_end[g]; i < s.group_begin[g + 1]; ++i) EXPECT_EQ(s.order[i], -1) << "room " << i;
+  }
   std::sort(sorted.begin(), sorted.end());
   std::vector<Index> all(items.size());
   std::iota(all.begin(), all.end(), 0);
   EXPECT_EQ(sorted, all);
-  ASSERT_EQ(s.group_begin.front(), 0);
-  ASSERT_EQ(s.group_begin.back(), static_cast<Index>(items.size()));
   EXPECT_EQ(s.phase_begin.front(), 0);
   EXPECT_EQ(s.phase_begin.back(), s.num_groups());
-  for (Index g = 0; g < s.num_groups(); ++g) {
-    EXPECT_TRUE(std::is_sorted(s.order.begin() + s.group_begin[g], s.order.begin() + s.group_begin[g + 1]));
-  }
   // Groups of one phase touch disjoint points.
   for (int phase = 0; phase < ScatterSchedule::kPhases; ++phase) {
     std::vector<Index> owner(static_cast<std::size_t>(num_points), -1);
     for (Index g = s.phase_begin[phase]; g < s.phase_begin[phase + 1]; ++g) {
-      for (Index i = s.group_begin[g]; i < s.group_begin[g + 1]; ++i) {
+      for (Index i = s.group_begin[g]; i < s.group_end[g]; ++i) {
         for (Index v : items[static_cast<std::size_t>(s.order[i])]) {
           auto& o = owner[static_cast<std::size_t>(v)];
           EXPECT_TRUE(o == -1 || o == g) << "point " << v << " in groups " << o << " and " << g << " of phase " << phase;
@@ -94,6 +100,27 @@ TEST(ScatterSchedule, PartsAreCutFromTheBandwidth) {
   const auto narrow = make_scatter_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), 16);
   EXPECT_EQ(narrow.parts, 64);
   check_schedule<4>(2000, std::span<const std::array<Index, 4>>(items), narrow);
+}
+
+TEST(ScatterSchedule, GroupsStartAtMultiplesOfTheAlignment) {
+  RegularGrid grid;
+  grid.n = {40, 10, 10};
+  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const auto plain = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
+  const auto aligned = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra(), 256, 8);
+  check_schedule<4>(mesh.num_points(), mesh.tetrahedra(), aligned);
+  ASSERT_EQ(aligned.num_groups(), plain.num_groups());
+  Index room = 0;
+  for (Index g = 0; g < aligned.num_groups(); ++g) {
+    EXPECT_EQ(aligned.group_begin[g] % 8, 0) << "group " << g;
+    // The same items in the same order as without alignment; less than one batch of room.
+    EXPECT_TRUE(std::equal(aligned.order.begin() + aligned.group_begin[g], aligned.order.begin() + aligned.group_end[g],
+                           plain.order.begin() + plain.group_begin[g], plain.order.begin() + plain.group_end[g]))
+        << "group " << g;
+    EXPECT_LT(aligned.group_begin[g + 1] - aligned.group_end[g], 8) << "group " << g;
+    room += aligned.group_begin[g + 1] - aligned.group_end[g];
+  }
+  EXPECT_GT(room, 0);  // the grid's groups are not all multiples of 8 long
 }
 
 TEST(ScatterSchedule, SmallMeshIsOnePart) {

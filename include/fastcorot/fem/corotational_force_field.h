@@ -145,10 +145,15 @@ class CorotationalForceField {
   int threads_ = 1;
   PhaseTimes* times_ = nullptr;
 
-  // Per tetrahedron (mesh order): shape vectors s~_1..s~_3 in the method's rest frame (R0 s_j;
-  // s~_0 = -(s~_1 + s~_2 + s~_3)), nine values each, and mu |V|, lambda |V|.
-  std::vector<Real> shape_;
-  std::vector<Real> mu_, lambda_;
+  // Per tetrahedron, kept by its position in tetrahedron_schedule_.order (whose groups start at
+  // multiples of the kernels' batch width W, so that a batch's data is one block): shape vectors
+  // s~_1..s~_3 in the method's rest frame (R0 s_j; s~_0 = -(s~_1 + s~_2 + s~_3)), nine values, then
+  // mu |V| and lambda |V|: kRestValues rows of W values per block of W positions (rest_index).
+  // Positions that hold no tetrahedron hold finite leftovers (a batch's spare lanes read them).
+  static constexpr std::size_t kRestValues = 11;
+  std::vector<Real> rest_;
+  std::size_t rest_index(std::size_t position, std::size_t value) const;
+  void move_rest_data(std::size_t from, std::size_t to);
   ScatterSchedule tetrahedron_schedule_;
   std::vector<Index> position_;  // position of each tetrahedron in tetrahedron_schedule_.order
   // Edges are stored in the order of their schedule (grouped like the tetrahedra, sorted by lower
