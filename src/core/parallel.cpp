@@ -6,6 +6,8 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <exception>
+#include <utility>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -77,6 +79,7 @@ class Team {
     call_ = call;
     context_ = context;
     count_ = count;
+    failure_ = nullptr;
     remaining_.store(threads - 1, std::memory_order_relaxed);
     const std::uint64_t run_number = (signal_.load(std::memory_order_relaxed) >> kThreadBits) + 1;
     signal_.store(run_number << kThreadBits | static_cast<std::uint64_t>(threads));
@@ -90,6 +93,9 @@ class Team {
     if (!spin_until([this] { return remaining_.load(std::memory_order_acquire) == 0; })) {
       while (remaining_.load(std::memory_order_acquire) != 0) std::this_thread::yield();
     }
+    // Tasks are not meant to throw; one that does (out of memory, say) ends the run's other tasks
+    // normally and its exception reaches the caller, as in a serial loop.
+    if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
   }
 
   static constexpr int kMaxThreads = (1 << 16) - 1;
@@ -97,10 +103,15 @@ class Team {
  private:
   static constexpr int kThreadBits = 16;
 
-  void share(int index, int threads) const {
+  void share(int index, int threads) noexcept {
     const int begin = static_cast<int>(static_cast<long long>(count_) * index / threads);
     const int end = static_cast<int>(static_cast<long long>(count_) * (index + 1) / threads);
-    for (int i = begin; i < end; ++i) call_(context_, i);
+    try {
+      for (int i = begin; i < end; ++i) call_(context_, i);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(failure_mutex_);
+      if (!failure_) failure_ = std::current_exception();
+    }
   }
 
   void work(int index, std::uint64_t seen) {
@@ -131,6 +142,8 @@ class Team {
   Call call_ = nullptr;
   const void* context_ = nullptr;
   int count_ = 0;
+  std::exception_ptr failure_;  // the first exception a task of the run threw
+  std::mutex failure_mutex_;
   std::vector<std::thread> workers_;
 };
 
@@ -192,9 +205,12 @@ void run_tasks(int threads, int count, void (*call)(const void*, int), const voi
     return;
   }
   Teams& teams = Teams::instance();
-  Team* team = teams.acquire();
-  team->run(threads, count, call, context);
-  teams.release(team);
+  struct Lease {
+    Teams& teams;
+    Team* team;
+    ~Lease() { teams.release(team); }
+  } lease{teams, teams.acquire()};
+  lease.team->run(threads, count, call, context);
 }
 
 }  // namespace fastcorot::detail

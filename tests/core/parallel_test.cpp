@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -111,6 +112,23 @@ TEST(RunTasks, ConcurrentCallersEachGetTheirOwnWorkers) {
   }
   for (auto& caller : callers) caller.join();
   EXPECT_EQ(failures.load(), 0);
+}
+
+TEST(RunTasks, ATaskThatThrowsReachesTheCallerAfterTheOthersRan) {
+  for (int thrower : {0, 9, 19}) {  // the caller's share, and the workers'
+    std::vector<std::atomic<int>> runs(20);
+    EXPECT_THROW(run_tasks(3, 20,
+                           [&](int i) {
+                             runs[static_cast<std::size_t>(i)]++;
+                             if (i == thrower) throw std::runtime_error("task failed");
+                           }),
+                 std::runtime_error)
+        << "task " << thrower;
+    // Each share stops at its failing task; the other shares ran whole, and nothing ran twice.
+    for (const auto& r : runs) EXPECT_LE(r.load(), 1);
+    EXPECT_EQ(runs[static_cast<std::size_t>(thrower)].load(), 1);
+  }
+  EXPECT_EQ(sum_of_tasks(3, 20), expected_sum(20));  // the team still works
 }
 
 TEST(RunTasks, ForkedChildRunsItsOwnWorkers) {

@@ -17,7 +17,8 @@ void run_tasks(int threads, int count, void (*call)(const void*, int), const voi
 }  // namespace detail
 
 // Calls task(i) for every i in [0, count), on up to `threads` threads; returns when all are done.
-// Tasks must not throw, and tasks that run concurrently must write disjoint memory.
+// Tasks that run concurrently must write disjoint memory. If a task throws, the rest of its thread's
+// share is skipped, the other threads finish theirs, and the first exception reaches the caller.
 template <class Task>
 void run_tasks(int threads, int count, const Task& task) {
   if (threads <= 1 || count <= 1) {
