@@ -7,10 +7,10 @@
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
-#include <utility>
 #include <memory>
 #include <mutex>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace fastcorot::detail {
