@@ -131,7 +131,8 @@ void CorotationalForceField<Real>::set_rest_data(Index t) {
 template <class Real>
 void CorotationalForceField<Real>::rebuild() {
   const auto n = static_cast<std::size_t>(mesh_->num_tetrahedra());
-  tetrahedron_schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra(), 256, kernels::kLanes<Real>);
+  tetrahedron_schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra(), kDefaultMinPart,
+                                                   kernels::kLanes<Real>);
   const auto& visiting = tetrahedron_schedule_.order;
   position_.assign(n, 0);
   for (std::size_t position = 0; position < visiting.size(); ++position) {

@@ -107,7 +107,7 @@ TEST(ScatterSchedule, GroupsStartAtMultiplesOfTheAlignment) {
   grid.n = {40, 10, 10};
   const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
   const auto plain = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
-  const auto aligned = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra(), 256, 8);
+  const auto aligned = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra(), kDefaultMinPart, 8);
   check_schedule<4>(mesh.num_points(), mesh.tetrahedra(), aligned);
   ASSERT_EQ(aligned.num_groups(), plain.num_groups());
   Index room = 0;

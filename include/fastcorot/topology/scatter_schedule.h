@@ -48,13 +48,16 @@ struct ScatterSchedule {
   Index group_for(const std::array<Index, K>& item) const;
 };
 
+// The least number of points of a part, unless asked otherwise.
+inline constexpr Index kDefaultMinPart = 256;
+
 // Schedules `items` (point indices in [0, num_points)) keeping their relative order within each
 // group. Parts hold more points than the bandwidth and at least `min_part`; at most 64 parts. Every
 // group starts at a multiple of `align` (a SIMD batch of items then begins on a batch of data kept
 // by position), the positions up to the next group being its room (order -1).
 template <std::size_t K>
 ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::array<Index, K>> items,
-                                      Index min_part = 256, Index align = 1);
+                                      Index min_part = kDefaultMinPart, Index align = 1);
 
 // Calls body(begin, end) for every group, [begin, end) being its range of positions in
 // schedule.order: phases in order, the groups of a phase on up to `threads` threads.
