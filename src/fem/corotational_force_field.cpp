@@ -283,6 +283,12 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
         lane_tetrahedron[l] = tetrahedron_schedule_.order[static_cast<std::size_t>(first + (l < count ? l : 0))];
       }
       const Real* rest = rest_.data() + rest_index(static_cast<std::size_t>(first), 0);
+      if (first + W < end) {
+        // The next batch's rest block (kRestValues rows of 64 bytes, contiguous): within a step the
+        // products stream the edge blocks through the caches in between, so it is rarely there.
+        const char* next = reinterpret_cast<const char*>(rest + kRestValues * W);
+        for (std::size_t byte = 0; byte <= kRestValues * W * sizeof(Real); byte += 64) __builtin_prefetch(next + byte);
+      }
       for (int j = 0; j < 3; ++j) {
         for (int c = 0; c < 3; ++c) std::copy_n(rest + (3 * j + c) * W, W, batch.s[j + 1][c]);
       }
@@ -308,6 +314,12 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
       if constexpr (kRefresh) {
         if (first == begin) locate_blocks(first, targets[0]);
         locate_blocks(first + W, targets[(first - begin) / W % 2 == 0 ? 1 : 0]);
+        // The mesh data that locating the batch after next will read.
+        for (Index i = first + 2 * W; i < std::min<Index>(end, first + 3 * W); ++i) {
+          const Index t = tetrahedron_schedule_.order[static_cast<std::size_t>(i)];
+          __builtin_prefetch(&tetrahedra[t]);
+          __builtin_prefetch(&edges_of_tetrahedra[t]);
+        }
       }
       kernels::first_shape_vector(batch);
       if (method == RotationMethod::qr) {
