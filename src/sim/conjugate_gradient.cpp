@@ -43,6 +43,28 @@ Real dot_range(const Real* a, const Real* b, std::size_t begin, std::size_t end)
   return (partial[0] + partial[1]) + (partial[2] + partial[3]);
 }
 
+// x += alpha p and r -= alpha q over [begin, end), returning the new r^T r summed exactly as
+// dot_range(r, r, begin, end) would sum it (the same lanes, in the same order), in the same loop:
+// the sum's chain of additions then overlaps the updates instead of running after them.
+template <class Real>
+Real update_range(Real* x, Real* r, const Real* p, const Real* q, Real alpha, std::size_t begin, std::size_t end) {
+  const Packed<Real> a = broadcast(alpha);
+  Packed<Real> partial{};
+  std::size_t i = begin;
+  for (; i + 4 <= end; i += 4) {
+    store_packed(x + i, load_packed(x + i) + a * load_packed(p + i));
+    const Packed<Real> ri = load_packed(r + i) - a * load_packed(q + i);
+    store_packed(r + i, ri);
+    partial += ri * ri;
+  }
+  for (; i < end; ++i) {
+    x[i] += alpha * p[i];
+    r[i] -= alpha * q[i];
+    partial[0] += r[i] * r[i];
+  }
+  return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+}
+
 template <class Real>
 Real* flat(std::span<Vec3<Real>> v) {
   return v.data()->data();
@@ -118,11 +140,7 @@ LinearSolveReport ConjugateGradientSolver<Real>::solve(const MechanicalSystem<Re
     {
       const PhaseTimer timer(vector_time);
       rho = parallel_sum<Real>(threads, m, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-          xs[i] += alpha * p[i];
-          r[i] -= alpha * q[i];
-        }
-        return dot_range(r, r, begin, end);
+        return update_range(xs, r, p, q, alpha, begin, end);
       });
     }
     report.iterations = iteration;
