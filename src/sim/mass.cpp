@@ -1,6 +1,7 @@
 #include "fastcorot/sim/mass.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/packed.h"
 #include "fastcorot/core/parallel.h"
 
 #include <cmath>
@@ -78,7 +79,19 @@ void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> 
     const auto* in = reinterpret_cast<const Real*>(dx.data());
     auto* to = reinterpret_cast<Real*>(out.data());
     parallel_ranges(threads, vertex_masses_.size(), [masses, in, to, factor](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
+      // Four points (twelve values) at a time as three packs, each value times its point's
+      // factor · mass: the same products as one point at a time.
+      using P = Packed<Real>;
+      std::size_t i = begin;
+      for (; i + 4 <= end; i += 4) {
+        const P m = broadcast(factor) * load_packed(masses + i);
+        const Real* from = in + 3 * i;
+        Real* out = to + 3 * i;
+        store_packed(out, permute<0, 0, 0, 1>(m) * load_packed(from));
+        store_packed(out + 4, permute<1, 1, 2, 2>(m) * load_packed(from + 4));
+        store_packed(out + 8, permute<2, 3, 3, 3>(m) * load_packed(from + 8));
+      }
+      for (; i < end; ++i) {
         const Real m = factor * masses[i];
         for (std::size_t c = 0; c < 3; ++c) to[3 * i + c] = m * in[3 * i + c];
       }
