@@ -86,10 +86,10 @@ void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> 
       for (; i + 4 <= end; i += 4) {
         const P m = broadcast(factor) * load_packed(masses + i);
         const Real* from = in + 3 * i;
-        Real* out = to + 3 * i;
-        store_packed(out, permute<0, 0, 0, 1>(m) * load_packed(from));
-        store_packed(out + 4, permute<1, 1, 2, 2>(m) * load_packed(from + 4));
-        store_packed(out + 8, permute<2, 3, 3, 3>(m) * load_packed(from + 8));
+        Real* into = to + 3 * i;
+        store_packed(into, permute<0, 0, 0, 1>(m) * load_packed(from));
+        store_packed(into + 4, permute<1, 1, 2, 2>(m) * load_packed(from + 4));
+        store_packed(into + 8, permute<2, 3, 3, 3>(m) * load_packed(from + 8));
       }
       for (; i < end; ++i) {
         const Real m = factor * masses[i];

@@ -161,10 +161,11 @@ TEST(Mass, ConsistentAddMdxAppliesTheScalarMatrixToEachAxis) {
   EXPECT_NEAR(out[0].z(), 1.1, 1e-15);
 }
 
-// multiply writes what add_mdx adds to zero, bit for bit, on one thread or two (3,000 points: more
-// than one chunk of the parallel loop).
+// multiply writes what add_mdx adds to zero, bit for bit, on one thread or two (3,001 points: more
+// than one chunk of the parallel loop, the last one not a multiple of the four points the lumped
+// product takes at a time).
 TEST(Mass, MultiplyIsAddMdxIntoZeroOnAnyThreadCount) {
-  const std::size_t n = 3000;
+  const std::size_t n = 3001;
   std::vector<double> masses(n);
   Points dx(n);
   std::vector<Eigen::Triplet<double>> triplets;
