@@ -32,15 +32,22 @@ void ConjugateGradientSolver<Real>::restore_carried_state(const std::vector<std:
 
 namespace {
 
-// sum_i a[i] b[i] over [begin, end) with four interleaved partial sums (lane k sums the products
-// i = begin + k mod 4: a fixed order, in one SIMD register), then added pairwise.
+// Every sum here keeps four interleaved partial sums in one SIMD register (lane k sums the terms
+// i = begin + k mod 4, those past the last whole four in lane 0: a fixed order), then adds the
+// lanes pairwise.
+template <class Real>
+Real sum_lanes(const Packed<Real>& partial) {
+  return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+}
+
+// sum_i a[i] b[i] over [begin, end).
 template <class Real>
 Real dot_range(const Real* a, const Real* b, std::size_t begin, std::size_t end) {
   Packed<Real> partial{};
   std::size_t i = begin;
   for (; i + 4 <= end; i += 4) partial += load_packed(a + i) * load_packed(b + i);
   for (; i < end; ++i) partial[0] += a[i] * b[i];
-  return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+  return sum_lanes<Real>(partial);
 }
 
 // x += alpha p and r -= alpha q over [begin, end), returning the new r^T r summed exactly as
@@ -62,7 +69,7 @@ Real update_range(Real* x, Real* r, const Real* p, const Real* q, Real alpha, st
     r[i] -= alpha * q[i];
     partial[0] += r[i] * r[i];
   }
-  return (partial[0] + partial[1]) + (partial[2] + partial[3]);
+  return sum_lanes<Real>(partial);
 }
 
 template <class Real>
