@@ -407,20 +407,34 @@ Mat3<Real> CorotationalForceField<Real>::block(Index slot) const {
 }
 
 template <class Real>
-void CorotationalForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset,
-                                                 Real b_factor) const {
+void CorotationalForceField<Real>::add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor,
+                                                       Real b_factor) const {
   // Row sums of each element's stiffness vanish, so a vertex's diagonal block is minus the sum of
   // its off-diagonal blocks: with block(lo, hi) = -k K^T and block(hi, lo) = -k K for the edge
   // block K oriented from lo to hi, diagonal(lo) += k K^T and diagonal(hi) += k K.
+  if (diagonal.size() != static_cast<std::size_t>(mesh_->num_points())) {
+    throw make_error("diagonal blocks: ", diagonal.size(), " blocks for a mesh of ", mesh_->num_points(), " points");
+  }
   ensure_linearisation();
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
-  std::vector<Mat3<Real>> diagonal(static_cast<std::size_t>(mesh_->num_points()), Mat3<Real>::Zero());
-  std::vector<bool> used(diagonal.size(), false);
   for (const Index slot : edge_slot_) {
     const Index a = edge_vertices_[static_cast<std::size_t>(slot)][0], b = edge_vertices_[static_cast<std::size_t>(slot)][1];
     const Mat3<Real> block = k * this->block(slot);
     diagonal[static_cast<std::size_t>(a)] += block.transpose();
     diagonal[static_cast<std::size_t>(b)] += block;
+  }
+}
+
+template <class Real>
+void CorotationalForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset,
+                                                 Real b_factor) const {
+  std::vector<Mat3<Real>> diagonal(static_cast<std::size_t>(mesh_->num_points()), Mat3<Real>::Zero());
+  add_diagonal_blocks(diagonal, k_factor, b_factor);
+  const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
+  std::vector<bool> used(diagonal.size(), false);
+  for (const Index slot : edge_slot_) {
+    const Index a = edge_vertices_[static_cast<std::size_t>(slot)][0], b = edge_vertices_[static_cast<std::size_t>(slot)][1];
+    const Mat3<Real> block = k * this->block(slot);
     used[static_cast<std::size_t>(a)] = used[static_cast<std::size_t>(b)] = true;
     sink.add_block(offset + 3 * a, offset + 3 * b, -block.transpose());
     sink.add_block(offset + 3 * b, offset + 3 * a, -block);

@@ -2,11 +2,13 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/sim/conjugate_gradient.h"
+#include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
 #include "scene_data.h"
 #include "topology_change_processor.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -220,7 +222,7 @@ class Builder {
       throw make_error(integrator.where(), ": no linear solver in node ", solver_node.path,
                        " or below (add CGLinearSolver or EigenSimplicialLDLT)");
     }
-    object.linear_solver = build_linear_solver(*linear_solvers.front());
+    object.linear_solver = build_linear_solver(*linear_solvers.front(), n);
     simulation_.objects.push_back(std::move(object));
     states_.push_back(state.object);
   }
@@ -436,7 +438,8 @@ class Builder {
     }
   }
 
-  std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c) {
+  std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c, Index points) {
+    if (c.type() == "PCGLinearSolver") return build_pcg(c, points);
     if (c.type() != "CGLinearSolver") return std::make_unique<SparseDirectSolver<double>>();
     if (data_.boolean(c, "warmStart", false)) {
       throw make_error(c.where(), ": warmStart=\"true\" is not supported (the solve starts from zero)");
@@ -447,6 +450,38 @@ class Builder {
     p.threshold = data_.real(c, "threshold", 1e-5);
     try {
       return std::make_unique<ConjugateGradientSolver<double>>(p);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  std::unique_ptr<LinearSolver<double>> build_pcg(Component& c, Index points) {
+    PreconditionedConjugateGradientSolver<double>::Parameters p;
+    p.iterations = static_cast<int>(data_.real(c, "iterations", 25));
+    p.tolerance = data_.real(c, "tolerance", 1e-5);
+    p.update_step = static_cast<int>(data_.real(c, "update_step", 1));
+    if (!data_.boolean(c, "build_precond", true)) p.update_step = std::numeric_limits<int>::max();
+    p.preconditioner = Preconditioner::none;
+    Component* preconditioner = nullptr;
+    if (c.has("preconditioner")) {
+      preconditioner = &data_.resolve_object(*c.node, c.object->attributes.at("preconditioner"), c);
+    } else if (c.has("preconditioners")) {
+      const std::string name = data_.text(c, "preconditioners", "");
+      preconditioner = &data_.resolve_object(*c.node, "@" + name, c, name);
+    }
+    if (preconditioner && data_.boolean(c, "use_precond", true)) {
+      if (preconditioner->type() == "BlockJacobiPreconditioner") {
+        p.preconditioner = Preconditioner::block_jacobi;
+      } else if (preconditioner->type() == "JacobiPreconditioner") {
+        p.preconditioner = Preconditioner::jacobi;
+      } else {
+        throw make_error(c.where(), ": preconditioner ", preconditioner->where(),
+                         " is not supported; supported: BlockJacobiPreconditioner, JacobiPreconditioner");
+      }
+    }
+    if (!preconditioner) info_.push_back(c.where() + ": no preconditioner: plain conjugate gradient iterations");
+    try {
+      return std::make_unique<PreconditionedConjugateGradientSolver<double>>(p, points);
     } catch (const Error& error) {
       throw make_error(c.where(), ": ", error.what());
     }

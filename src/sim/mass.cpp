@@ -126,6 +126,18 @@ void Mass<Real>::add_to_matrix(MatrixSink<Real>& sink, Real factor, Index offset
 }
 
 template <class Real>
+void Mass<Real>::add_diagonal_blocks(std::span<Mat3<Real>> blocks, Real factor) const {
+  if (blocks.size() != vertex_masses_.size()) {
+    throw make_error("mass diagonal: ", blocks.size(), " blocks for ", vertex_masses_.size(), " points");
+  }
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    const Real m = is_lumped() ? vertex_masses_[i] : matrix_.coeff(row, row);
+    blocks[i].diagonal().array() += factor * m;
+  }
+}
+
+template <class Real>
 Real Mass<Real>::kinetic_energy(std::span<const Vec3<Real>> v) const {
   std::vector<Vec3<Real>> mv(v.size(), Vec3<Real>::Zero());
   add_mdx(v, mv, Real(1));

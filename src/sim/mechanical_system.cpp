@@ -103,6 +103,18 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
 }
 
 template <class Real>
+void MechanicalSystem<Real>::diagonal_blocks(const MatrixFactors<Real>& factors, std::span<Mat3<Real>> blocks) const {
+  if (blocks.size() != static_cast<std::size_t>(size())) {
+    throw make_error("diagonal blocks: ", blocks.size(), " blocks for a system of ", size(), " points");
+  }
+  for (auto& block : blocks) block.setZero();
+  if (mass.size() != 0) mass.add_diagonal_blocks(blocks, factors.m);
+  for (const auto& field : force_fields) field->add_diagonal_blocks(blocks, factors.k, factors.b);
+  for (Index i : fixed) blocks[static_cast<std::size_t>(i)].setIdentity();
+  for (Index i : isolated) blocks[static_cast<std::size_t>(i)].setIdentity();
+}
+
+template <class Real>
 void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
   for (Index i : fixed) v[static_cast<std::size_t>(i)].setZero();
   for (Index i : isolated) v[static_cast<std::size_t>(i)].setZero();

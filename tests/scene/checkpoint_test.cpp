@@ -32,6 +32,7 @@ struct SceneText {
   std::string young = "2000";
   std::string dt = "0.01";
   std::string cg_tolerance = "1e-10";
+  std::string solver;  // replaces the CGLinearSolver when set
 };
 
 std::string scene_text(const SceneText& s) {
@@ -39,8 +40,9 @@ std::string scene_text(const SceneText& s) {
   <Node name=")" +
          s.cg_name + R"(">
     <EulerImplicitSolver rayleighStiffness="0.1" rayleighMass="0.1"/>
-    <CGLinearSolver iterations="30" tolerance=")" +
-         s.cg_tolerance + R"(" threshold="1e-20"/>
+    )" + (s.solver.empty() ? R"(<CGLinearSolver iterations="30" tolerance=")" + s.cg_tolerance + R"(" threshold="1e-20"/>)"
+                           : s.solver) +
+         R"(
     <RegularGridTopology name="grid" n=")" +
          s.grid_n + R"(" min="0 0 0" max=")" + s.grid_max + R"("/>
     <MechanicalObject/>
@@ -149,6 +151,30 @@ TEST(Checkpoint, TheCarriedSolverStateIsWhatMakesItBitwise) {
   run_to(resumed, 6);
   run_to(forgetful, 6);
   expect_same_state(resumed, uninterrupted);
+  EXPECT_NE(flatten(forgetful.objects[0].system.state.position),
+            flatten(uninterrupted.objects[0].system.state.position));
+}
+
+TEST(Checkpoint, APreconditionedSolverResumesFromItsPreviousSolutionAndBlocks) {
+  // PCGLinearSolver starts each solve from the previous one's solution and, with update_step 2,
+  // keeps its block-Jacobi preconditioner for two solves: both travel in the checkpoint.
+  SceneText s;
+  s.solver = R"(<PCGLinearSolver iterations="4" tolerance="1e-30" preconditioner="@P" update_step="2"/>
+    <BlockJacobiPreconditioner name="P"/>)";
+  Simulation<double> uninterrupted = build(s);
+  run_to(uninterrupted, 6);
+  const fs::path path = checkpoint_at(3, "pcg.ckpt", s);
+  Simulation<double> resumed = build(s);
+  restore_checkpoint(path, resumed);
+  run_to(resumed, 6);
+  expect_same_state(resumed, uninterrupted);
+  // Forgetting the previous solution (and the blocks) changes the trajectory.
+  Simulation<double> forgetful = build(s);
+  restore_checkpoint(path, forgetful);
+  auto state = forgetful.objects[0].linear_solver->carried_state();
+  std::fill(state.begin() + 1, state.end(), 0);
+  forgetful.objects[0].linear_solver->restore_carried_state(state);
+  run_to(forgetful, 6);
   EXPECT_NE(flatten(forgetful.objects[0].system.state.position),
             flatten(uninterrupted.objects[0].system.state.position));
 }

@@ -73,6 +73,11 @@ class CorotationalForceField {
   // offset + 3i and column offset + 3j.
   void add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset = 0, Real b_factor = 0) const;
 
+  // diagonal[v] += the (v, v) block of (k_factor + b_factor · rayleighStiffness) · df/dx, for every
+  // point v (one block per point of the mesh): the diagonal blocks add_stiffness assembles, with the
+  // same bits, for block-Jacobi preconditioning. Throws fastcorot::Error for a wrong size.
+  void add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor = 0) const;
+
   // The 3#V × 3#V matrix k_factor · df/dx (row = 3 · vertex + axis).
   Eigen::SparseMatrix<Real> stiffness_matrix(Real k_factor = 1) const;
 

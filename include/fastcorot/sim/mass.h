@@ -42,6 +42,9 @@ class Mass {
   void add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const;
   // factor · M as 3×3 blocks (diagonal blocks m I, or M_ij I) at the given scalar offset.
   void add_to_matrix(MatrixSink<Real>& sink, Real factor, Index offset = 0) const;
+  // blocks[i] += factor · M_ii · I (the lumped mass, or the consistent matrix's diagonal entry): the
+  // diagonal blocks of factor · M. Throws fastcorot::Error for a wrong size.
+  void add_diagonal_blocks(std::span<Mat3<Real>> blocks, Real factor) const;
   // 1/2 v^T M v
   Real kinetic_energy(std::span<const Vec3<Real>> v) const;
 

@@ -74,6 +74,10 @@ class MechanicalSystem {
   // diagonal set to 1, as SOFA's projective constraints do to an assembled matrix.
   Eigen::SparseMatrix<Real> assemble(const MatrixFactors<Real>& factors) const;
 
+  // The 3×3 diagonal blocks of the same matrix, one per point, as assemble() has them (identity for
+  // fixed and isolated points); overwrites `blocks` (#V blocks). For block-Jacobi preconditioning.
+  void diagonal_blocks(const MatrixFactors<Real>& factors, std::span<Mat3<Real>> blocks) const;
+
   // Zeroes the entries of fixed and isolated points.
   void project(std::span<Vec3<Real>> v) const;
 

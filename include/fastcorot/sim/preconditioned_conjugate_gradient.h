@@ -1,0 +1,65 @@
+// Preconditioned conjugate gradient as SOFA's PCGLinearSolver computes it (docs/sofa-solvers.md §2.4),
+// with the preconditioners of SOFA's JacobiPreconditioner (the inverse of the system matrix's
+// diagonal) and BlockJacobiPreconditioner (the inverses of its 3×3 diagonal blocks), built from the
+// matrix of the current step without assembling it:
+//   r = b - A x0, z = P r, rho = r . z; while iteration <= iterations and rho > tolerance · b . b:
+//   q = A w, alpha = rho / w . q, x += alpha w, r -= alpha q, z = P r, beta = (r . z) / rho, w = z + beta w
+// with w = z first. Unlike CGLinearSolver it starts from its previous solution x0 (zero before the
+// first solve): SOFA's ODE solvers hand it their solution vector, which keeps the last step's.
+// The stopping test is on r . P r, not |r|, against tolerance · |b|^2 (not squared).
+#pragma once
+
+#include "fastcorot/sim/linear_solver.h"
+
+#include <string_view>
+#include <vector>
+
+namespace fastcorot {
+
+enum class Preconditioner { none, jacobi, block_jacobi };
+
+// "none", "jacobi", "block_jacobi".
+std::string_view preconditioner_name(Preconditioner preconditioner);
+
+template <class Real>
+class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
+ public:
+  struct Parameters {
+    int iterations = 25;
+    Real tolerance = Real(1e-5);
+    Preconditioner preconditioner = Preconditioner::block_jacobi;
+    // The preconditioner is rebuilt at the first solve and then every `update_step` solves (SOFA's
+    // update_step / assemblingRate); in between it keeps the blocks of an earlier matrix.
+    int update_step = 1;
+  };
+
+  // For systems of `points` points. Throws fastcorot::Error for iterations < 1, update_step < 1, a
+  // negative or non-finite tolerance, or points < 0.
+  PreconditionedConjugateGradientSolver(Parameters parameters, Index points);
+
+  // Throws fastcorot::Error when the system does not have the solver's point count, or when a
+  // diagonal block (block_jacobi) or entry (jacobi) of the system matrix is singular or not finite,
+  // naming the point.
+  LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
+                          std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
+
+  const Parameters& parameters() const { return parameters_; }
+  // The inverse blocks P applies (zero before the first solve).
+  std::span<const Mat3<Real>> preconditioner_blocks() const { return inverse_; }
+
+  // The solve count, the previous solution and, when the preconditioner outlives a solve
+  // (update_step > 1), its blocks, all as bit patterns: a resumed run continues bitwise.
+  std::vector<std::int64_t> carried_state() const override;
+  void restore_carried_state(const std::vector<std::int64_t>& state) override;
+
+ private:
+  void build_preconditioner(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors);
+
+  Parameters parameters_;
+  std::int64_t solves_ = 0;
+  std::vector<Vec3<Real>> previous_;  // the last solution: the next solve's start
+  std::vector<Mat3<Real>> inverse_;   // P, one block per point
+  std::vector<Vec3<Real>> r_, w_, q_, s_;
+};
+
+}  // namespace fastcorot

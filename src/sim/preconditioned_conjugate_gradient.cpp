@@ -1,0 +1,213 @@
+#include "fastcorot/sim/preconditioned_conjugate_gradient.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/core/parallel.h"
+#include "solver_vectors.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+namespace fastcorot {
+
+std::string_view preconditioner_name(Preconditioner preconditioner) {
+  switch (preconditioner) {
+    case Preconditioner::none: return "none";
+    case Preconditioner::jacobi: return "jacobi";
+    case Preconditioner::block_jacobi: return "block_jacobi";
+  }
+  return "?";
+}
+
+namespace {
+
+// A value's bit pattern as an integer and back (checkpoints store carried state as integers).
+template <class Real>
+std::int64_t to_bits(Real value) {
+  if constexpr (sizeof(Real) == 8) {
+    return std::bit_cast<std::int64_t>(value);
+  } else {
+    return std::bit_cast<std::int32_t>(value);
+  }
+}
+
+template <class Real>
+Real from_bits(std::int64_t bits) {
+  if constexpr (sizeof(Real) == 8) {
+    return std::bit_cast<Real>(bits);
+  } else {
+    return std::bit_cast<Real>(static_cast<std::int32_t>(bits));
+  }
+}
+
+}  // namespace
+
+template <class Real>
+PreconditionedConjugateGradientSolver<Real>::PreconditionedConjugateGradientSolver(Parameters parameters,
+                                                                                   Index points)
+    : parameters_(parameters) {
+  if (parameters_.iterations < 1) {
+    throw make_error("PCGLinearSolver: iterations = ", parameters_.iterations, ": must be at least 1");
+  }
+  if (!(parameters_.tolerance >= 0) || !std::isfinite(parameters_.tolerance)) {
+    throw make_error("PCGLinearSolver: tolerance = ", parameters_.tolerance, ": must be finite and >= 0");
+  }
+  if (parameters_.update_step < 1) {
+    throw make_error("PCGLinearSolver: update_step = ", parameters_.update_step, ": must be at least 1");
+  }
+  if (points < 0) throw make_error("PCGLinearSolver: ", points, " points");
+  previous_.assign(static_cast<std::size_t>(points), Vec3<Real>::Zero());
+  inverse_.assign(static_cast<std::size_t>(points), Mat3<Real>::Zero());
+}
+
+template <class Real>
+void PreconditionedConjugateGradientSolver<Real>::build_preconditioner(const MechanicalSystem<Real>& system,
+                                                                       const MatrixFactors<Real>& factors) {
+  system.diagonal_blocks(factors, inverse_);
+  for (std::size_t i = 0; i < inverse_.size(); ++i) {
+    Mat3<Real>& block = inverse_[i];
+    if (parameters_.preconditioner == Preconditioner::jacobi) {
+      const Vec3<Real> d = block.diagonal();
+      for (int axis = 0; axis < 3; ++axis) {
+        if (d[axis] == 0 || !std::isfinite(d[axis])) {
+          throw make_error("PCGLinearSolver: Jacobi preconditioner: the system matrix's diagonal entry of point ",
+                           i, ", axis ", "xyz"[axis], " is ", d[axis], " (cannot be inverted)");
+        }
+      }
+      block = d.cwiseInverse().asDiagonal();
+    } else {
+      const Real determinant = block.determinant();
+      if (determinant == 0 || !std::isfinite(determinant)) {
+        throw make_error("PCGLinearSolver: block-Jacobi preconditioner: the system matrix's diagonal block of "
+                         "point ", i, " has determinant ", determinant, " (cannot be inverted)");
+      }
+      block = block.inverse().eval();
+    }
+  }
+}
+
+template <class Real>
+LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const MechanicalSystem<Real>& system,
+                                                                     const MatrixFactors<Real>& factors,
+                                                                     std::span<const Vec3<Real>> rhs,
+                                                                     std::span<Vec3<Real>> x) {
+  using solver_vectors::dot_range;
+  const std::size_t n = previous_.size();
+  if (rhs.size() != n || x.size() != n || static_cast<std::size_t>(system.size()) != n) {
+    throw make_error("PCGLinearSolver: a system of ", system.size(), " points; this solver was made for ", n);
+  }
+  const int threads = system.threads();
+  double* vector_time = system.timer_slot(&PhaseTimes::solver_vectors);
+  const bool precondition = parameters_.preconditioner != Preconditioner::none;
+  if (precondition && solves_ % parameters_.update_step == 0) {
+    const PhaseTimer timer(vector_time);
+    build_preconditioner(system, factors);
+  }
+  ++solves_;
+  r_.resize(n);
+  w_.resize(n);
+  q_.resize(n);
+  s_.resize(n);
+  std::copy(previous_.begin(), previous_.end(), x.begin());
+  system.multiply(factors, x, q_);  // A x0, even for x0 = 0, as SOFA does
+
+  const Vec3<Real>* b = rhs.data();
+  Vec3<Real>* r = r_.data();
+  Vec3<Real>* w = w_.data();
+  Vec3<Real>* s = s_.data();
+  const Vec3<Real>* q = q_.data();
+  Vec3<Real>* xs = x.data();
+  const Mat3<Real>* inverse = inverse_.data();
+  // z = P r for the points [begin, end), returning sum r . z over them in point order.
+  const auto precondition_range = [&](Vec3<Real>* z, std::size_t begin, std::size_t end) {
+    Real sum = 0;
+    for (std::size_t i = begin; i < end; ++i) {
+      z[i] = precondition ? Vec3<Real>(inverse[i] * r[i]) : r[i];
+      sum += r[i].dot(z[i]);
+    }
+    return sum;
+  };
+  Real b_norm = 0, rho = 0;
+  {
+    const PhaseTimer timer(vector_time);
+    const Real* flat_b = b->data();
+    b_norm = parallel_sum<Real>(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
+      return dot_range(flat_b, flat_b, begin, end);
+    });
+    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) r[i] = b[i] - q[i];
+      return precondition_range(w, begin, end);
+    });
+  }
+  const Real tolerance = parameters_.tolerance * b_norm;
+  LinearSolveReport report;
+  for (int iteration = 1; iteration <= parameters_.iterations && rho > tolerance; ++iteration) {
+    system.multiply(factors, w_, q_);
+    const PhaseTimer timer(vector_time);
+    const Real* flat_w = w->data();
+    const Real* flat_q = q->data();
+    const Real den = parallel_sum<Real>(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
+      return dot_range(flat_w, flat_q, begin, end);
+    });
+    // SOFA divides regardless; a zero or non-finite curvature would only spread NaN, so stop here.
+    if (den == 0 || !std::isfinite(den)) break;
+    const Real alpha = rho / den;
+    const Real rho_previous = rho;
+    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        xs[i] += alpha * w[i];
+        r[i] -= alpha * q[i];
+      }
+      return precondition_range(s, begin, end);
+    });
+    const Real beta = rho / rho_previous;
+    parallel_ranges(threads, n, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) w[i] = s[i] + beta * w[i];
+    });
+    report.iterations = iteration;
+  }
+  std::copy(x.begin(), x.end(), previous_.begin());
+  report.relative_residual = b_norm > 0 ? std::sqrt(std::max(rho, Real(0)) / b_norm) : Real(0);
+  return report;
+}
+
+template <class Real>
+std::vector<std::int64_t> PreconditionedConjugateGradientSolver<Real>::carried_state() const {
+  std::vector<std::int64_t> state{solves_};
+  for (const auto& v : previous_) {
+    for (int c = 0; c < 3; ++c) state.push_back(to_bits(v[c]));
+  }
+  if (parameters_.update_step > 1) {
+    for (const auto& block : inverse_) {
+      for (int c = 0; c < 9; ++c) state.push_back(to_bits(block.data()[c]));
+    }
+  }
+  return state;
+}
+
+template <class Real>
+void PreconditionedConjugateGradientSolver<Real>::restore_carried_state(const std::vector<std::int64_t>& state) {
+  const std::size_t n = previous_.size();
+  const std::size_t expected = 1 + 3 * n + (parameters_.update_step > 1 ? 9 * n : 0);
+  if (state.size() != expected || state[0] < 0) {
+    throw make_error("PCGLinearSolver: expected ", expected, " values to restore (solve count, ", n,
+                     " points' previous solution", parameters_.update_step > 1 ? ", preconditioner blocks" : "",
+                     "), got ", state.size());
+  }
+  solves_ = state[0];
+  std::size_t k = 1;
+  for (auto& v : previous_) {
+    for (int c = 0; c < 3; ++c) v[c] = from_bits<Real>(state[k++]);
+  }
+  if (parameters_.update_step > 1) {
+    for (auto& block : inverse_) {
+      for (int c = 0; c < 9; ++c) block.data()[c] = from_bits<Real>(state[k++]);
+    }
+  }
+}
+
+template class PreconditionedConjugateGradientSolver<float>;
+template class PreconditionedConjugateGradientSolver<double>;
+
+}  // namespace fastcorot

@@ -1,0 +1,341 @@
+// PreconditionedConjugateGradientSolver: SOFA's PCGLinearSolver with Jacobi and block-Jacobi
+// preconditioners (docs/sofa-solvers.md §2.4). The reference is a plain dense implementation of
+// the same iteration written here, on the matrix obtained column by column from the matrix-free
+// product, with P inverted from that matrix's own diagonal.
+#include "fastcorot/sim/preconditioned_conjugate_gradient.h"
+
+#include "fastcorot/core/error.h"
+#include "support/deformations.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace fastcorot {
+namespace {
+
+using Points = std::vector<Vec3<double>>;
+using PCG = PreconditionedConjugateGradientSolver<double>;
+
+PCG::Parameters parameters(Preconditioner preconditioner, int iterations, double tolerance, int update_step = 1) {
+  PCG::Parameters p;
+  p.preconditioner = preconditioner;
+  p.iterations = iterations;
+  p.tolerance = tolerance;
+  p.update_step = update_step;
+  return p;
+}
+
+MechanicalSystem<double> mass_system(std::vector<double> masses) {
+  MechanicalSystem<double> system;
+  system.state.position.assign(masses.size(), Vec3<double>::Zero());
+  system.mass = Mass<double>::lumped(std::move(masses));
+  system.finalize();
+  return system;
+}
+
+constexpr MatrixFactors<double> kMassOnly{1.0, 0.0, 0.0};
+
+// A 4 x 3 x 3 grid of points (72 tetrahedra), deformed and linearised there, lumped masses, the
+// points of the face x = 0 fixed.
+MechanicalSystem<double> small_beam(unsigned seed) {
+  Points rest;
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 4; ++i) rest.emplace_back(i, j, k);
+    }
+  }
+  const auto at = [](int i, int j, int k) { return static_cast<Index>(i + 4 * (j + 3 * k)); };
+  std::vector<Tetrahedron> tets;
+  for (int k = 0; k < 2; ++k) {
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        const Index c[8] = {at(i, j, k), at(i + 1, j, k), at(i + 1, j + 1, k), at(i, j + 1, k),
+                            at(i, j, k + 1), at(i + 1, j, k + 1), at(i + 1, j + 1, k + 1), at(i, j + 1, k + 1)};
+        // six tetrahedra around the diagonal c0-c6
+        const int split[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+        for (const auto& s : split) tets.push_back({c[s[0]], c[s[1]], c[s[2]], c[s[3]]});
+      }
+    }
+  }
+  auto mesh = std::make_shared<TetMesh>(static_cast<Index>(rest.size()), tets);
+  CorotationalForceField<double>::Parameters p;
+  p.young_modulus = {2000.0};
+  p.poisson_ratio = {0.3};
+  p.rayleigh_stiffness = 0.1;
+  auto field = std::make_shared<CorotationalForceField<double>>(mesh, rest, p);
+  std::mt19937 rng(seed);
+  const Points x = testing::perturbed(rest, 0.15, rng);
+  Points f(rest.size(), Vec3<double>::Zero());
+  field->add_force(x, f);
+  MechanicalSystem<double> system;
+  system.state.position = x;
+  system.state.rest_position = rest;
+  system.force_fields.push_back(field);
+  std::vector<double> masses(rest.size());
+  for (std::size_t i = 0; i < masses.size(); ++i) masses[i] = 0.5 + 0.01 * static_cast<double>(i);
+  system.mass = Mass<double>::lumped(masses);
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) system.fixed.push_back(at(0, j, k));
+  }
+  system.finalize();
+  return system;
+}
+
+// Implicit Euler's factors for h = 0.05, rm = 0.1, rs = 0.1 (docs/sofa-solvers.md §1.2).
+constexpr MatrixFactors<double> kEuler{1.005, -0.05, -0.05 * 0.15};
+
+Eigen::VectorXd flat(const Points& p) {
+  Eigen::VectorXd v(3 * static_cast<Eigen::Index>(p.size()));
+  for (std::size_t i = 0; i < p.size(); ++i) v.segment<3>(3 * static_cast<Eigen::Index>(i)) = p[i];
+  return v;
+}
+
+// The system matrix, column by column from the matrix-free product.
+Eigen::MatrixXd dense_matrix(const MechanicalSystem<double>& system, const MatrixFactors<double>& factors) {
+  const auto n = static_cast<std::size_t>(system.size());
+  Eigen::MatrixXd a(3 * n, 3 * n);
+  Points e(n, Vec3<double>::Zero()), column(n);
+  for (std::size_t j = 0; j < 3 * n; ++j) {
+    e[j / 3][static_cast<Eigen::Index>(j % 3)] = 1;
+    system.multiply(factors, e, column);
+    a.col(static_cast<Eigen::Index>(j)) = flat(column);
+    e[j / 3].setZero();
+  }
+  // The product zeroes fixed rows; assembled, their diagonal is 1 (as SOFA's projection does).
+  for (Index i : system.fixed) a.block<3, 3>(3 * i, 3 * i).setIdentity();
+  return a;
+}
+
+Eigen::MatrixXd dense_preconditioner(const Eigen::MatrixXd& a, Preconditioner preconditioner) {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(a.rows(), a.cols());
+  for (Eigen::Index i = 0; i < a.rows(); i += 3) {
+    const Eigen::Matrix3d block = a.block<3, 3>(i, i);
+    if (preconditioner == Preconditioner::block_jacobi) p.block<3, 3>(i, i) = block.inverse();
+    if (preconditioner == Preconditioner::jacobi) p.block<3, 3>(i, i) = block.diagonal().cwiseInverse().asDiagonal();
+    if (preconditioner == Preconditioner::none) p.block<3, 3>(i, i).setIdentity();
+  }
+  return p;
+}
+
+// SOFA's PCGLinearSolver::solve, plainly: x is the start and the result; returns the iterations.
+int dense_pcg(const Eigen::MatrixXd& a, const Eigen::MatrixXd& p, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+              int iterations, double tolerance) {
+  Eigen::VectorXd r = b - a * x;
+  Eigen::VectorXd w = p * r;
+  double rho = r.dot(w);
+  const double tol = tolerance * b.dot(b);
+  int done = 0;
+  for (int it = 1; it <= iterations && rho > tol; ++it) {
+    const Eigen::VectorXd q = a * w;
+    const double alpha = rho / w.dot(q);
+    x += alpha * w;
+    r -= alpha * q;
+    const Eigen::VectorXd s = p * r;
+    const double rho_new = r.dot(s);
+    w = s + (rho_new / rho) * w;
+    rho = rho_new;
+    done = it;
+  }
+  return done;
+}
+
+Points projected_rhs(const MechanicalSystem<double>& system, unsigned seed) {
+  std::mt19937 rng(seed);
+  Points b = testing::perturbed(Points(static_cast<std::size_t>(system.size()), Vec3<double>::Zero()), 1.0, rng);
+  for (Index i : system.fixed) b[static_cast<std::size_t>(i)].setZero();
+  return b;
+}
+
+TEST(PreconditionedConjugateGradient, DefaultsAreSofas) {
+  // PCGLinearSolver: iterations 25, tolerance 1e-5, update_step 1.
+  const PCG::Parameters p;
+  EXPECT_EQ(p.iterations, 25);
+  EXPECT_EQ(p.tolerance, 1e-5);
+  EXPECT_EQ(p.update_step, 1);
+}
+
+TEST(PreconditionedConjugateGradient, ConstructorRejectsBadParameters) {
+  EXPECT_THROW(PCG(parameters(Preconditioner::none, 0, 1e-5), 3), Error);
+  EXPECT_THROW(PCG(parameters(Preconditioner::none, 5, -1.0), 3), Error);
+  EXPECT_THROW(PCG(parameters(Preconditioner::none, 5, std::nan("")), 3), Error);
+  EXPECT_THROW(PCG(parameters(Preconditioner::none, 5, 1e-5, 0), 3), Error);
+  EXPECT_THROW(PCG(parameters(Preconditioner::none, 5, 1e-5), -1), Error);
+  EXPECT_NO_THROW(PCG(parameters(Preconditioner::none, 1, 0.0), 0));
+}
+
+TEST(PreconditionedConjugateGradient, MatchesThePlainDenseIterationForEachPreconditioner) {
+  // Three solves in a row with a changing right-hand side and matrix: each starts from the
+  // previous solution, as SOFA's does.
+  for (const auto preconditioner : {Preconditioner::none, Preconditioner::jacobi, Preconditioner::block_jacobi}) {
+    auto system = small_beam(3);
+    PCG solver(parameters(preconditioner, 6, 0.0), system.size());
+    Eigen::VectorXd x_reference = Eigen::VectorXd::Zero(3 * system.size());
+    Points x(static_cast<std::size_t>(system.size()), Vec3<double>(7, 7, 7));  // not a start: overwritten
+    for (int solve = 0; solve < 3; ++solve) {
+      const MatrixFactors<double> factors{kEuler.m + 0.1 * solve, kEuler.b, kEuler.k * (1 + solve)};
+      const Points b = projected_rhs(system, 10 + static_cast<unsigned>(solve));
+      const auto report = solver.solve(system, factors, b, x);
+      const Eigen::MatrixXd a = dense_matrix(system, factors);
+      const int iterations = dense_pcg(a, dense_preconditioner(a, preconditioner), flat(b), x_reference, 6, 0.0);
+      EXPECT_EQ(report.iterations, iterations);
+      const double error = (flat(x) - x_reference).norm() / x_reference.norm();
+      EXPECT_LT(error, 1e-12) << preconditioner_name(preconditioner) << " solve " << solve;
+    }
+  }
+}
+
+TEST(PreconditionedConjugateGradient, ConvergesToTheSolutionAndFasterWithBlockJacobi) {
+  auto system = small_beam(4);
+  const Points b = projected_rhs(system, 5);
+  const Eigen::MatrixXd a = dense_matrix(system, kEuler);
+  const Eigen::VectorXd exact = a.partialPivLu().solve(flat(b));
+  int iterations[3] = {};
+  for (const auto preconditioner : {Preconditioner::none, Preconditioner::jacobi, Preconditioner::block_jacobi}) {
+    PCG solver(parameters(preconditioner, 500, 1e-24), system.size());
+    Points x(static_cast<std::size_t>(system.size()));
+    const auto report = solver.solve(system, kEuler, b, x);
+    EXPECT_LT((flat(x) - exact).norm() / exact.norm(), 1e-10) << preconditioner_name(preconditioner);
+    iterations[static_cast<int>(preconditioner)] = report.iterations;
+  }
+  EXPECT_LT(iterations[2], iterations[0]);
+  EXPECT_LT(iterations[1], iterations[0]);
+}
+
+TEST(PreconditionedConjugateGradient, BlockJacobiSolvesABlockDiagonalSystemInOneIteration) {
+  auto system = mass_system({1.0, 3.0});
+  const Points b = {Vec3<double>(1, 2, 3), Vec3<double>(3, 0, -3)};
+  Points x(2);
+  PCG solver(parameters(Preconditioner::block_jacobi, 25, 1e-20), 2);
+  const auto report = solver.solve(system, kMassOnly, b, x);
+  EXPECT_EQ(report.iterations, 1);
+  EXPECT_EQ(x[0], Vec3<double>(1, 2, 3));
+  EXPECT_EQ(x[1], Vec3<double>(1, 0, -1));
+}
+
+TEST(PreconditionedConjugateGradient, ToleranceIsOnRTimesPrAgainstTheSquaredNormOfB) {
+  // A = diag(1, 3) along x, b = (1, 1), no preconditioner: b . b = 2; after iteration 1
+  // x = (1/2, 1/2), r = (1/2, -1/2), r . r = 1/2, so r . r / b . b = 1/4 (CGLinearSolver's |r|/|b|
+  // would be 1/2). The loop goes on while r . P r > tolerance · b . b.
+  auto system = mass_system({1.0, 3.0});
+  const Points b = {Vec3<double>(1, 0, 0), Vec3<double>(1, 0, 0)};
+  for (const auto& [tolerance, expected] : std::vector<std::pair<double, int>>{{0.25, 1}, {0.3, 1}, {0.24, 2}}) {
+    PCG solver(parameters(Preconditioner::none, 25, tolerance), 2);
+    Points x(2);
+    const auto report = solver.solve(system, kMassOnly, b, x);
+    EXPECT_EQ(report.iterations, expected) << tolerance;
+    if (expected == 1) {
+      EXPECT_EQ(x[0], Vec3<double>(0.5, 0, 0));
+      EXPECT_EQ(report.relative_residual, 0.5);  // sqrt(r . P r / b . b)
+    }
+  }
+}
+
+TEST(PreconditionedConjugateGradient, StartsFromItsPreviousSolution) {
+  auto system = mass_system({1.0, 3.0});
+  const Points b = {Vec3<double>(1, 0, 0), Vec3<double>(1, 0, 0)};
+  PCG solver(parameters(Preconditioner::none, 25, 1e-20), 2);
+  Points x = {Vec3<double>(5, 5, 5), Vec3<double>(5, 5, 5)};  // ignored: the first start is zero
+  EXPECT_EQ(solver.solve(system, kMassOnly, b, x).iterations, 2);
+  EXPECT_LT((x[1] - Vec3<double>(1.0 / 3, 0, 0)).norm(), 1e-15);
+  // The same system again: r = b - A x is (nearly) zero at the start.
+  const Points solved = x;
+  EXPECT_LE(solver.solve(system, kMassOnly, b, x).iterations, 1);
+  EXPECT_LT((x[1] - solved[1]).norm(), 1e-15);
+  // A changed right-hand side starts from there too: b = A x_prev + (0, 0, 1) at point 0 along z.
+  const Points shifted = {Vec3<double>(1, 0, 1), Vec3<double>(1, 0, 0)};
+  EXPECT_EQ(solver.solve(system, kMassOnly, shifted, x).iterations, 1);
+  EXPECT_LT((x[0] - Vec3<double>(1, 0, 1)).norm(), 1e-15);
+}
+
+TEST(PreconditionedConjugateGradient, PreconditionerIsRebuiltEveryUpdateStepSolves) {
+  auto system = mass_system({2.0, 4.0});
+  const Points b = {Vec3<double>(1, 0, 0), Vec3<double>(0, 1, 0)};
+  Points x(2);
+  PCG solver(parameters(Preconditioner::jacobi, 25, 1e-20, 2), 2);
+  solver.solve(system, {1.0, 0.0, 0.0}, b, x);  // built: diag(1/2, 1/4)
+  EXPECT_EQ(solver.preconditioner_blocks()[1], Mat3<double>::Identity() / 4);
+  solver.solve(system, {2.0, 0.0, 0.0}, b, x);  // kept from the first matrix
+  EXPECT_EQ(solver.preconditioner_blocks()[1], Mat3<double>::Identity() / 4);
+  EXPECT_LT((x[1] - Vec3<double>(0, 0.125, 0)).norm(), 1e-15);  // still solves the new system
+  solver.solve(system, {2.0, 0.0, 0.0}, b, x);  // third solve: rebuilt
+  EXPECT_EQ(solver.preconditioner_blocks()[1], Mat3<double>::Identity() / 8);
+}
+
+TEST(PreconditionedConjugateGradient, CarriedStateResumesBitwise) {
+  for (const int update_step : {1, 3}) {
+    auto system = small_beam(6);
+    const auto p = parameters(Preconditioner::block_jacobi, 4, 1e-12, update_step);
+    PCG first(p, system.size());
+    Points x(static_cast<std::size_t>(system.size()));
+    first.solve(system, kEuler, projected_rhs(system, 1), x);
+    first.solve(system, {1.2, -0.05, -0.02}, projected_rhs(system, 2), x);
+    const auto state = first.carried_state();
+    EXPECT_EQ(state.size(), 1 + 3 * x.size() + (update_step > 1 ? 9 * x.size() : 0));
+    PCG resumed(p, system.size());
+    resumed.restore_carried_state(state);
+    Points y(x.size());
+    const MatrixFactors<double> later{0.9, -0.05, -0.01};
+    first.solve(system, later, projected_rhs(system, 3), x);
+    resumed.solve(system, later, projected_rhs(system, 3), y);
+    EXPECT_TRUE(x == y) << "update_step " << update_step;
+    // Without the state, the third solve starts elsewhere (and, with update_step 3, builds anew).
+    PCG fresh(p, system.size());
+    fresh.solve(system, later, projected_rhs(system, 3), y);
+    EXPECT_FALSE(x == y);
+    EXPECT_THROW(resumed.restore_carried_state({}), Error);
+    EXPECT_THROW(resumed.restore_carried_state(std::vector<std::int64_t>(state.size() + 1, 0)), Error);
+  }
+}
+
+TEST(PreconditionedConjugateGradient, SingularDiagonalIsNamedAndWrongSizesRejected) {
+  auto system = mass_system({1.0, 0.0, 2.0});
+  const Points b(3, Vec3<double>(1, 1, 1));
+  Points x(3);
+  PCG block(parameters(Preconditioner::block_jacobi, 5, 1e-10), 3);
+  try {
+    block.solve(system, kMassOnly, b, x);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("diagonal block of point 1"), std::string::npos) << error.what();
+  }
+  PCG jacobi(parameters(Preconditioner::jacobi, 5, 1e-10), 3);
+  try {
+    jacobi.solve(system, kMassOnly, b, x);
+    FAIL() << "no error";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("point 1, axis x"), std::string::npos) << error.what();
+  }
+  PCG other_size(parameters(Preconditioner::none, 5, 1e-10), 4);
+  EXPECT_THROW(other_size.solve(system, kMassOnly, b, x), Error);
+}
+
+TEST(PreconditionedConjugateGradient, FixedPointsStayZero) {
+  auto system = small_beam(8);
+  const Points b = projected_rhs(system, 9);
+  PCG solver(parameters(Preconditioner::block_jacobi, 10, 1e-14), system.size());
+  Points x(b.size());
+  solver.solve(system, kEuler, b, x);
+  for (Index i : system.fixed) EXPECT_EQ(x[static_cast<std::size_t>(i)], Vec3<double>::Zero());
+}
+
+TEST(PreconditionedConjugateGradient, FloatInstantiation) {
+  MechanicalSystem<float> system;
+  system.state.position.assign(2, Vec3<float>::Zero());
+  system.mass = Mass<float>::lumped({1.0f, 4.0f});
+  system.finalize();
+  PreconditionedConjugateGradientSolver<float> solver({}, 2);
+  const std::vector<Vec3<float>> b = {Vec3<float>(1, 2, 3), Vec3<float>(4, 8, 12)};
+  std::vector<Vec3<float>> x(2);
+  solver.solve(system, {1.0f, 0.0f, 0.0f}, b, x);
+  EXPECT_EQ(x[1], Vec3<float>(1, 2, 3));
+  PreconditionedConjugateGradientSolver<float> restored({}, 2);
+  restored.restore_carried_state(solver.carried_state());
+  EXPECT_EQ(restored.carried_state(), solver.carried_state());
+}
+
+}  // namespace
+}  // namespace fastcorot
