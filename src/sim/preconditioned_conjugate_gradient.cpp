@@ -99,8 +99,7 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   }
   const int threads = system.threads();
   double* vector_time = system.timer_slot(&PhaseTimes::solver_vectors);
-  const bool precondition = parameters_.preconditioner != Preconditioner::none;
-  if (precondition && solves_ % parameters_.update_step == 0) {
+  if (parameters_.preconditioner != Preconditioner::none && solves_ % parameters_.update_step == 0) {
     const PhaseTimer timer(vector_time);
     build_preconditioner(system, factors);
   }
@@ -112,32 +111,50 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   std::copy(previous_.begin(), previous_.end(), x.begin());
   system.multiply(factors, x, q_);  // A x0, even for x0 = 0, as SOFA does
 
-  const Vec3<Real>* b = rhs.data();
-  Vec3<Real>* r = r_.data();
-  Vec3<Real>* w = w_.data();
-  Vec3<Real>* s = s_.data();
-  const Vec3<Real>* q = q_.data();
-  Vec3<Real>* xs = x.data();
-  const Mat3<Real>* inverse = inverse_.data();
-  // z = P r for the points [begin, end), returning sum r . z over them in point order.
-  const auto precondition_range = [&](Vec3<Real>* z, std::size_t begin, std::size_t end) {
-    Real sum = 0;
+  // The vectors as flat arrays of coordinates; passes that apply P run over chunks of points.
+  const Real* b = rhs.data()->data();
+  Real* r = r_.data()->data();
+  Real* w = w_.data()->data();
+  Real* s = s_.data()->data();
+  const Real* q = q_.data()->data();
+  Real* xs = x.data()->data();
+  const Real* inverse = inverse_.data()->data();  // nine values per point, column-major
+  const Preconditioner kind = parameters_.preconditioner;
+  // z = P r for the points [begin, end), returning sum r . z over them: one partial sum per axis
+  // (three chains of additions instead of one), in point order, then x + y + z.
+  const auto precondition_points = [&](Real* z, std::size_t begin, std::size_t end) {
+    Real sum_x = 0, sum_y = 0, sum_z = 0;
     for (std::size_t i = begin; i < end; ++i) {
-      z[i] = precondition ? Vec3<Real>(inverse[i] * r[i]) : r[i];
-      sum += r[i].dot(z[i]);
+      const Real* m = inverse + 9 * i;
+      const Real r0 = r[3 * i], r1 = r[3 * i + 1], r2 = r[3 * i + 2];
+      Real z0 = r0, z1 = r1, z2 = r2;
+      if (kind == Preconditioner::jacobi) {
+        z0 = m[0] * r0;
+        z1 = m[4] * r1;
+        z2 = m[8] * r2;
+      } else if (kind == Preconditioner::block_jacobi) {
+        z0 = m[0] * r0 + m[3] * r1 + m[6] * r2;
+        z1 = m[1] * r0 + m[4] * r1 + m[7] * r2;
+        z2 = m[2] * r0 + m[5] * r1 + m[8] * r2;
+      }
+      z[3 * i] = z0;
+      z[3 * i + 1] = z1;
+      z[3 * i + 2] = z2;
+      sum_x += r0 * z0;
+      sum_y += r1 * z1;
+      sum_z += r2 * z2;
     }
-    return sum;
+    return (sum_x + sum_y) + sum_z;
   };
   Real b_norm = 0, rho = 0;
   {
     const PhaseTimer timer(vector_time);
-    const Real* flat_b = b->data();
     b_norm = parallel_sum<Real>(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
-      return dot_range(flat_b, flat_b, begin, end);
+      return dot_range(b, b, begin, end);
     });
     rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) r[i] = b[i] - q[i];
-      return precondition_range(w, begin, end);
+      for (std::size_t i = 3 * begin; i < 3 * end; ++i) r[i] = b[i] - q[i];
+      return precondition_points(w, begin, end);
     });
   }
   const Real tolerance = parameters_.tolerance * b_norm;
@@ -145,24 +162,22 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   for (int iteration = 1; iteration <= parameters_.iterations && rho > tolerance; ++iteration) {
     system.multiply(factors, w_, q_);
     const PhaseTimer timer(vector_time);
-    const Real* flat_w = w->data();
-    const Real* flat_q = q->data();
     const Real den = parallel_sum<Real>(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
-      return dot_range(flat_w, flat_q, begin, end);
+      return dot_range(w, q, begin, end);
     });
     // SOFA divides regardless; a zero or non-finite curvature would only spread NaN, so stop here.
     if (den == 0 || !std::isfinite(den)) break;
     const Real alpha = rho / den;
     const Real rho_previous = rho;
     rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = begin; i < end; ++i) {
+      for (std::size_t i = 3 * begin; i < 3 * end; ++i) {
         xs[i] += alpha * w[i];
         r[i] -= alpha * q[i];
       }
-      return precondition_range(s, begin, end);
+      return precondition_points(s, begin, end);
     });
     const Real beta = rho / rho_previous;
-    parallel_ranges(threads, n, [&](std::size_t begin, std::size_t end) {
+    parallel_ranges(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) w[i] = s[i] + beta * w[i];
     });
     report.iterations = iteration;
