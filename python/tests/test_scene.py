@@ -182,3 +182,36 @@ def test_the_example_measures_the_tip_as_the_program_moves_it(tmp_path):
     assert displacements[10] < -1e-3  # it fell
     example.plot(times, displacements, tmp_path / "tip.png")
     assert (tmp_path / "tip.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def small_beam(solver):
+    """A 10 × 3 × 3-point beam under its own weight, clamped at x = 0; `solver(node)` adds the
+    linear solver."""
+    root = fastcorot.Node("root", dt=0.02, gravity=[0, -9.81, 0])
+    beam = root.add_child("beam")
+    beam.add_object("EulerImplicitSolver", rayleighStiffness=0.1, rayleighMass=0.1)
+    solver(beam)
+    beam.add_object("RegularGridTopology", name="grid", n=[10, 3, 3], min=[0, 0, 0], max=[9, 1, 1])
+    beam.add_object("MechanicalObject", name="state")
+    beam.add_object("TetrahedronSetTopologyContainer", name="tets")
+    beam.add_object("Hexa2TetraTopologicalMapping", input="@grid", output="@tets", swapping=True)
+    beam.add_object("DiagonalMass", massDensity=1)
+    beam.add_object("FastTetrahedralCorotationalForceField", youngModulus=1e4, poissonRatio=0.3)
+    beam.add_object("BoxROI", name="box", box=[-0.1, -0.1, -0.1, 0.1, 1.1, 1.1])
+    beam.add_object("FixedProjectiveConstraint", indices="@box.indices")
+    return root
+
+
+def test_a_block_jacobi_preconditioned_cg_scene_converges_to_the_direct_solution():
+    def pcg(node):
+        node.add_object("PCGLinearSolver", iterations=300, tolerance=1e-28, preconditioner="@P")
+        node.add_object("BlockJacobiPreconditioner", name="P")
+
+    roots = [small_beam(pcg), small_beam(lambda node: node.add_object("EigenSimplicialLDLT"))]
+    for root in roots:
+        fastcorot.Simulation(root).step(10)
+    pcg_positions, direct_positions = (root.beam.state.position for root in roots)
+    rest = roots[1].beam.state.rest_position
+    moved = np.abs(direct_positions - rest).max()
+    assert moved > 1e-2
+    np.testing.assert_allclose(pcg_positions, direct_positions, rtol=0, atol=1e-9 * moved)
