@@ -3,12 +3,15 @@
 // iterations, DiagonalMass of 50 in all, the x = 0 end clamped, gravity -9 along y, dt 0.01), for
 // every method, float and double, 1 and 2 threads. The steps start from rest and the beam keeps
 // bending as they run, so each iteration is a different step: the counter is steps per second.
+// step_pcg: the same steps with examples/cantilever_beam_40x10x10_pcg.scn's solver instead (SOFA's
+// PCGLinearSolver, 30 iterations, block-Jacobi), method qr.
 //   build-release/bench/fastcorot_bench_step --benchmark_filter='76x16x16/qr/double'
 #include "beams.h"
 
 #include "fastcorot/sim/conjugate_gradient.h"
 #include "fastcorot/sim/mechanical_system.h"
 #include "fastcorot/sim/ode_solver.h"
+#include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 
 #include <benchmark/benchmark.h>
 
@@ -19,11 +22,11 @@ template <class Real>
 struct BeamStep {
   MechanicalSystem<Real> system;
   ImplicitEulerSolver<Real> ode{{Real(0.1), Real(0.1), Real(0), false, false}};
-  ConjugateGradientSolver<Real> cg{{20, Real(1e-6), Real(1e-6)}};
+  std::unique_ptr<LinearSolver<Real>> solver;
 };
 
 template <class Real>
-std::unique_ptr<BeamStep<Real>> make_step(const Beam& beam, RotationMethod method, int threads) {
+std::unique_ptr<BeamStep<Real>> make_step(const Beam& beam, RotationMethod method, int threads, bool pcg) {
   BeamField<Real> b = make_beam_field<Real>(beam, method, threads);
   auto step = std::make_unique<BeamStep<Real>>();
   auto& system = step->system;
@@ -41,15 +44,23 @@ std::unique_ptr<BeamStep<Real>> make_step(const Beam& beam, RotationMethod metho
   system.gravity = Vec3<Real>(0, -9, 0);
   system.finalize();
   system.set_threads(threads);
+  if (pcg) {
+    step->solver = std::make_unique<PreconditionedConjugateGradientSolver<Real>>(
+        typename PreconditionedConjugateGradientSolver<Real>::Parameters{30, Real(1e-12), Preconditioner::block_jacobi, 1},
+        system.size());
+  } else {
+    step->solver = std::make_unique<ConjugateGradientSolver<Real>>(
+        typename ConjugateGradientSolver<Real>::Parameters{20, Real(1e-6), Real(1e-6)});
+  }
   return step;
 }
 
 template <class Real>
-void run_steps(benchmark::State& state, const Beam& beam, RotationMethod method, int threads) {
-  auto step = make_step<Real>(beam, method, threads);
-  for (int warmup = 0; warmup < 3; ++warmup) step->ode.step(step->system, step->cg, Real(0.01));
+void run_steps(benchmark::State& state, const Beam& beam, RotationMethod method, int threads, bool pcg) {
+  auto step = make_step<Real>(beam, method, threads, pcg);
+  for (int warmup = 0; warmup < 3; ++warmup) step->ode.step(step->system, *step->solver, Real(0.01));
   for (auto _ : state) {
-    step->ode.step(step->system, step->cg, Real(0.01));
+    step->ode.step(step->system, *step->solver, Real(0.01));
     benchmark::DoNotOptimize(step->system.state.position.data());
   }
   state.counters["steps_per_s"] = benchmark::Counter(1, benchmark::Counter::kIsIterationInvariantRate);
@@ -59,11 +70,14 @@ template <class Real>
 void register_all(const char* real_name) {
   for (const Beam& beam : beams()) {
     for (const RotationMethod method : kMethods) {
-      for (const int threads : {1, 2}) {
-        const std::string name = benchmark_name("step", beam, method, real_name, threads);
-        benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
-          run_steps<Real>(state, beam, method, threads);
-        })->Unit(benchmark::kMillisecond)->UseRealTime();
+      for (const bool pcg : {false, true}) {
+        if (pcg && method != RotationMethod::qr) continue;
+        for (const int threads : {1, 2}) {
+          const std::string name = benchmark_name(pcg ? "step_pcg" : "step", beam, method, real_name, threads);
+          benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+            run_steps<Real>(state, beam, method, threads, pcg);
+          })->Unit(benchmark::kMillisecond)->UseRealTime();
+        }
       }
     }
   }
