@@ -5,6 +5,7 @@
 
 #include "fastcorot/core/error.h"
 #include "support/deformations.h"
+#include "support/mass_system.h"
 #include "support/finite_difference.h"
 
 #include <gtest/gtest.h>
@@ -22,14 +23,7 @@ using Points = std::vector<Vec3<double>>;
 using CG = ConjugateGradientSolver<double>;
 using testing::flatten;
 
-// A system of unconnected points with lumped masses: with factors (m = 1, 0, 0), A = diag(masses) ⊗ I3.
-MechanicalSystem<double> mass_system(std::vector<double> masses) {
-  MechanicalSystem<double> system;
-  system.state.position.assign(masses.size(), Vec3<double>::Zero());
-  system.mass = Mass<double>::lumped(std::move(masses));
-  system.finalize();
-  return system;
-}
+using testing::mass_system;
 
 constexpr MatrixFactors<double> kMassOnly{1.0, 0.0, 0.0};
 

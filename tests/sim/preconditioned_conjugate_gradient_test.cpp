@@ -6,6 +6,7 @@
 
 #include "fastcorot/core/error.h"
 #include "support/deformations.h"
+#include "support/mass_system.h"
 
 #include <gtest/gtest.h>
 
@@ -29,13 +30,7 @@ PCG::Parameters parameters(Preconditioner preconditioner, int iterations, double
   return p;
 }
 
-MechanicalSystem<double> mass_system(std::vector<double> masses) {
-  MechanicalSystem<double> system;
-  system.state.position.assign(masses.size(), Vec3<double>::Zero());
-  system.mass = Mass<double>::lumped(std::move(masses));
-  system.finalize();
-  return system;
-}
+using testing::mass_system;
 
 constexpr MatrixFactors<double> kMassOnly{1.0, 0.0, 0.0};
 
