@@ -417,12 +417,16 @@ void CorotationalForceField<Real>::add_diagonal_blocks(std::span<Mat3<Real>> dia
   }
   ensure_linearisation();
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
-  for (const Index slot : edge_slot_) {
-    const Index a = edge_vertices_[static_cast<std::size_t>(slot)][0], b = edge_vertices_[static_cast<std::size_t>(slot)][1];
-    const Mat3<Real> block = k * this->block(slot);
-    diagonal[static_cast<std::size_t>(a)] += block.transpose();
-    diagonal[static_cast<std::size_t>(b)] += block;
-  }
+  // In add_dforce's schedule (slots of removed edges hold zero blocks and add nothing): a point
+  // receives its blocks in the same order on any thread count.
+  run_schedule(edge_schedule_, threads_, [&](Index begin, Index end) {
+    for (Index slot = begin; slot < end; ++slot) {
+      const Edge& edge = edge_vertices_[static_cast<std::size_t>(slot)];
+      const Mat3<Real> block = k * this->block(slot);
+      diagonal[static_cast<std::size_t>(edge[0])] += block.transpose();
+      diagonal[static_cast<std::size_t>(edge[1])] += block;
+    }
+  });
 }
 
 template <class Real>
