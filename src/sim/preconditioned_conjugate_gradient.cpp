@@ -67,6 +67,12 @@ void PreconditionedConjugateGradientSolver<Real>::build_preconditioner(const Mec
   system.diagonal_blocks(factors, inverse_);
   for (std::size_t i = 0; i < inverse_.size(); ++i) {
     Mat3<Real>& block = inverse_[i];
+    if (block.isZero(0)) {
+      // A point without mass and without elements (a mesh file's unused vertex): its row of the
+      // matrix is zero, so is its residual; P leaves it alone, as CG would.
+      block.setIdentity();
+      continue;
+    }
     if (parameters_.preconditioner == Preconditioner::jacobi) {
       const Vec3<Real> d = block.diagonal();
       for (int axis = 0; axis < 3; ++axis) {

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -286,23 +287,40 @@ TEST(PreconditionedConjugateGradient, CarriedStateResumesBitwise) {
   }
 }
 
-TEST(PreconditionedConjugateGradient, SingularDiagonalIsNamedAndWrongSizesRejected) {
+TEST(PreconditionedConjugateGradient, PointsWithoutMassOrElementsAreLeftAlone) {
+  // Point 1 has no mass (a mesh file's unused vertex): its row of A is zero and so is its
+  // right-hand side; P is the identity there and the others solve as usual.
   auto system = mass_system({1.0, 0.0, 2.0});
+  const Points b = {Vec3<double>(1, 2, 3), Vec3<double>::Zero(), Vec3<double>(2, 2, 2)};
+  for (const auto preconditioner : {Preconditioner::jacobi, Preconditioner::block_jacobi}) {
+    PCG solver(parameters(preconditioner, 5, 1e-20), 3);
+    Points x(3);
+    EXPECT_EQ(solver.solve(system, kMassOnly, b, x).iterations, 1) << preconditioner_name(preconditioner);
+    EXPECT_EQ(solver.preconditioner_blocks()[1], Mat3<double>::Identity());
+    EXPECT_EQ(x[0], b[0]);
+    EXPECT_EQ(x[1], Vec3<double>::Zero());
+    EXPECT_EQ(x[2], Vec3<double>(1, 1, 1));
+  }
+}
+
+TEST(PreconditionedConjugateGradient, NonFiniteDiagonalIsNamedAndWrongSizesRejected) {
+  auto system = mass_system({1.0, 2.0, 3.0});
   const Points b(3, Vec3<double>(1, 1, 1));
   Points x(3);
+  const MatrixFactors<double> infinite{std::numeric_limits<double>::infinity(), 0.0, 0.0};
   PCG block(parameters(Preconditioner::block_jacobi, 5, 1e-10), 3);
   try {
-    block.solve(system, kMassOnly, b, x);
+    block.solve(system, infinite, b, x);
     FAIL() << "no error";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("diagonal block of point 1"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("diagonal block of point 0"), std::string::npos) << error.what();
   }
   PCG jacobi(parameters(Preconditioner::jacobi, 5, 1e-10), 3);
   try {
-    jacobi.solve(system, kMassOnly, b, x);
+    jacobi.solve(system, infinite, b, x);
     FAIL() << "no error";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("point 1, axis x"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("point 0, axis x is inf"), std::string::npos) << error.what();
   }
   PCG other_size(parameters(Preconditioner::none, 5, 1e-10), 4);
   EXPECT_THROW(other_size.solve(system, kMassOnly, b, x), Error);

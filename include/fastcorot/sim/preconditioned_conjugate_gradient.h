@@ -39,7 +39,8 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
 
   // Throws fastcorot::Error when the system does not have the solver's point count, or when a
   // diagonal block (block_jacobi) or entry (jacobi) of the system matrix is singular or not finite,
-  // naming the point.
+  // naming the point. A point whose diagonal block is all zero (no mass, no element: its row of the
+  // matrix is zero) gets the identity.
   LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
                           std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
 
