@@ -413,8 +413,8 @@ class Builder {
         }
       }
       if (newton) {
-        p.max_iterations = static_cast<int>(data_.real(*newton, "maxNbIterationsNewton", 1));
-        p.max_line_search_iterations = static_cast<int>(data_.real(*newton, "maxNbIterationsLineSearch", 5));
+        p.max_iterations = data_.whole_number(*newton, "maxNbIterationsNewton", 1);
+        p.max_line_search_iterations = data_.whole_number(*newton, "maxNbIterationsLineSearch", 5);
         p.line_search_coefficient = data_.real(*newton, "lineSearchCoefficient", 0.5);
         p.relative_successive_threshold = data_.real(*newton, "relativeSuccessiveStoppingThreshold", 1e-5);
         p.relative_initial_threshold = data_.real(*newton, "relativeInitialStoppingThreshold", 1e-5);
@@ -424,7 +424,7 @@ class Builder {
       } else {
         // SOFA creates a NewtonRaphsonSolver and copies the older StaticSolver attributes onto it,
         // including its mapping of the relative residual threshold onto the estimate difference.
-        p.max_iterations = static_cast<int>(data_.real(c, "newton_iterations", 1));
+        p.max_iterations = data_.whole_number(c, "newton_iterations", 1);
         p.absolute_estimate_difference_threshold = data_.real(c, "absolute_correction_tolerance_threshold", 0);
         p.relative_estimate_difference_threshold = data_.real(c, "relative_correction_tolerance_threshold", 0);
         p.absolute_residual_threshold = data_.real(c, "absolute_residual_tolerance_threshold", 1e-5);
@@ -445,7 +445,7 @@ class Builder {
       throw make_error(c.where(), ": warmStart=\"true\" is not supported (the solve starts from zero)");
     }
     ConjugateGradientSolver<double>::Parameters p;
-    p.iterations = static_cast<int>(data_.real(c, "iterations", 25));
+    p.iterations = data_.whole_number(c, "iterations", 25);
     p.tolerance = data_.real(c, "tolerance", 1e-5);
     p.threshold = data_.real(c, "threshold", 1e-5);
     try {
@@ -457,9 +457,9 @@ class Builder {
 
   std::unique_ptr<LinearSolver<double>> build_pcg(Component& c, Index points) {
     PreconditionedConjugateGradientSolver<double>::Parameters p;
-    p.iterations = static_cast<int>(data_.real(c, "iterations", 25));
+    p.iterations = data_.whole_number(c, "iterations", 25);
     p.tolerance = data_.real(c, "tolerance", 1e-5);
-    p.update_step = static_cast<int>(data_.real(c, "update_step", 1));
+    p.update_step = data_.whole_number(c, "update_step", 1);
     if (!data_.boolean(c, "build_precond", true)) p.update_step = std::numeric_limits<int>::max();
     p.preconditioner = Preconditioner::none;
     Component* preconditioner = nullptr;

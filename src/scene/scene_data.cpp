@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -372,6 +373,16 @@ double SceneData::real(Component& c, const std::string& name, double fallback) {
   const Numbers& values = data(c, name);
   if (values.size() != 1) throw make_error(c.where(), ": ", name, " needs one number, got ", values.size());
   return values[0];
+}
+
+int SceneData::whole_number(Component& c, const std::string& name, int fallback) {
+  if (!c.has(name)) return fallback;
+  const double value = real(c, name, fallback);
+  if (!(value >= std::numeric_limits<int>::min() && value <= std::numeric_limits<int>::max()) ||
+      value != std::floor(value)) {
+    throw make_error(c.where(), ": ", name, " = ", value, ": expected a whole number");
+  }
+  return static_cast<int>(value);
 }
 
 bool SceneData::boolean(Component& c, const std::string& name, bool fallback) {

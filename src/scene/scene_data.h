@@ -62,6 +62,8 @@ class SceneData {
 
   // Scalar and typed reads of a component's attribute with its default from the table.
   double real(Component& c, const std::string& name, double fallback);
+  // A count: throws fastcorot::Error naming the attribute unless it is a whole number that fits an int.
+  int whole_number(Component& c, const std::string& name, int fallback);
   bool boolean(Component& c, const std::string& name, bool fallback);
   std::string text(Component& c, const std::string& name, const std::string& fallback);
   Vec3<double> vec3(Component& c, const std::string& name, const Vec3<double>& fallback);

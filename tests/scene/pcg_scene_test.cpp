@@ -83,6 +83,11 @@ TEST(PcgScene, UnsupportedOrMissingPreconditionersAreNamed) {
   EXPECT_NE(missing.find("broken link '@nothing'"), std::string::npos) << missing;
   const std::string bad = error_of(R"(<PCGLinearSolver iterations="0"/>)");
   EXPECT_NE(bad.find("iterations = 0"), std::string::npos) << bad;
+  // Counts are whole numbers that fit (no silent truncation or overflow).
+  const std::string huge = error_of(R"(<PCGLinearSolver iterations="1e20"/>)");
+  EXPECT_NE(huge.find("pcg.scn:2: PCGLinearSolver: iterations = 1e+20: expected a whole number"), std::string::npos) << huge;
+  const std::string fraction = error_of(R"(<PCGLinearSolver update_step="2.5"/>)");
+  EXPECT_NE(fraction.find("update_step = 2.5: expected a whole number"), std::string::npos) << fraction;
 }
 
 TEST(PcgScene, ConvergedStepsMatchTheDirectSolver) {
