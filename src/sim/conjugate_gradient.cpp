@@ -8,7 +8,9 @@
 
 namespace fastcorot {
 
-using namespace solver_vectors;
+using solver_vectors::dot_range;
+using solver_vectors::flat;
+using solver_vectors::update_range;
 
 template <class Real>
 ConjugateGradientSolver<Real>::ConjugateGradientSolver(Parameters parameters) : parameters_(parameters) {

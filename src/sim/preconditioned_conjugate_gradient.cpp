@@ -99,6 +99,7 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
                                                                      std::span<const Vec3<Real>> rhs,
                                                                      std::span<Vec3<Real>> x) {
   using solver_vectors::dot_range;
+  using solver_vectors::flat;
   const std::size_t n = previous_.size();
   if (rhs.size() != n || x.size() != n || static_cast<std::size_t>(system.size()) != n) {
     throw make_error("PCGLinearSolver: a system of ", system.size(), " points; this solver was made for ", n);
@@ -118,12 +119,12 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   system.multiply(factors, x, q_);  // A x0, even for x0 = 0, as SOFA does
 
   // The vectors as flat arrays of coordinates; passes that apply P run over chunks of points.
-  const Real* b = rhs.data()->data();
-  Real* r = r_.data()->data();
-  Real* w = w_.data()->data();
-  Real* s = s_.data()->data();
-  const Real* q = q_.data()->data();
-  Real* xs = x.data()->data();
+  const Real* b = flat<Real>(rhs);
+  Real* r = flat<Real>(std::span<Vec3<Real>>(r_));
+  Real* w = flat<Real>(std::span<Vec3<Real>>(w_));
+  Real* s = flat<Real>(std::span<Vec3<Real>>(s_));
+  const Real* q = flat<Real>(std::span<const Vec3<Real>>(q_));
+  Real* xs = flat<Real>(x);
   const Real* inverse = inverse_.data()->data();  // nine values per point, column-major
   const Preconditioner kind = parameters_.preconditioner;
   // z = P r for the points [begin, end), returning sum r . z over them: one partial sum per axis

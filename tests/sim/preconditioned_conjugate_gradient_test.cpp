@@ -21,6 +21,7 @@ namespace {
 
 using Points = std::vector<Vec3<double>>;
 using PCG = PreconditionedConjugateGradientSolver<double>;
+using testing::flatten;
 
 PCG::Parameters parameters(Preconditioner preconditioner, int iterations, double tolerance, int update_step = 1) {
   PCG::Parameters p;
@@ -84,12 +85,6 @@ MechanicalSystem<double> small_beam(unsigned seed) {
 // Implicit Euler's factors for h = 0.05, rm = 0.1, rs = 0.1 (docs/sofa-solvers.md §1.2).
 constexpr MatrixFactors<double> kEuler{1.005, -0.05, -0.05 * 0.15};
 
-Eigen::VectorXd flat(const Points& p) {
-  Eigen::VectorXd v(3 * static_cast<Eigen::Index>(p.size()));
-  for (std::size_t i = 0; i < p.size(); ++i) v.segment<3>(3 * static_cast<Eigen::Index>(i)) = p[i];
-  return v;
-}
-
 // The system matrix, column by column from the matrix-free product.
 Eigen::MatrixXd dense_matrix(const MechanicalSystem<double>& system, const MatrixFactors<double>& factors) {
   const auto n = static_cast<std::size_t>(system.size());
@@ -98,7 +93,7 @@ Eigen::MatrixXd dense_matrix(const MechanicalSystem<double>& system, const Matri
   for (std::size_t j = 0; j < 3 * n; ++j) {
     e[j / 3][static_cast<Eigen::Index>(j % 3)] = 1;
     system.multiply(factors, e, column);
-    a.col(static_cast<Eigen::Index>(j)) = flat(column);
+    a.col(static_cast<Eigen::Index>(j)) = flatten(column);
     e[j / 3].setZero();
   }
   // The product zeroes fixed rows; assembled, their diagonal is 1 (as SOFA's projection does).
@@ -176,9 +171,9 @@ TEST(PreconditionedConjugateGradient, MatchesThePlainDenseIterationForEachPrecon
       const Points b = projected_rhs(system, 10 + static_cast<unsigned>(solve));
       const auto report = solver.solve(system, factors, b, x);
       const Eigen::MatrixXd a = dense_matrix(system, factors);
-      const int iterations = dense_pcg(a, dense_preconditioner(a, preconditioner), flat(b), x_reference, 6, 0.0);
+      const int iterations = dense_pcg(a, dense_preconditioner(a, preconditioner), flatten(b), x_reference, 6, 0.0);
       EXPECT_EQ(report.iterations, iterations);
-      const double error = (flat(x) - x_reference).norm() / x_reference.norm();
+      const double error = (flatten(x) - x_reference).norm() / x_reference.norm();
       EXPECT_LT(error, 1e-12) << preconditioner_name(preconditioner) << " solve " << solve;
     }
   }
@@ -188,13 +183,13 @@ TEST(PreconditionedConjugateGradient, ConvergesToTheSolutionAndFasterWithBlockJa
   auto system = small_beam(4);
   const Points b = projected_rhs(system, 5);
   const Eigen::MatrixXd a = dense_matrix(system, kEuler);
-  const Eigen::VectorXd exact = a.partialPivLu().solve(flat(b));
+  const Eigen::VectorXd exact = a.partialPivLu().solve(flatten(b));
   int iterations[3] = {};
   for (const auto preconditioner : {Preconditioner::none, Preconditioner::jacobi, Preconditioner::block_jacobi}) {
     PCG solver(parameters(preconditioner, 500, 1e-24), system.size());
     Points x(static_cast<std::size_t>(system.size()));
     const auto report = solver.solve(system, kEuler, b, x);
-    EXPECT_LT((flat(x) - exact).norm() / exact.norm(), 1e-10) << preconditioner_name(preconditioner);
+    EXPECT_LT((flatten(x) - exact).norm() / exact.norm(), 1e-10) << preconditioner_name(preconditioner);
     iterations[static_cast<int>(preconditioner)] = report.iterations;
   }
   EXPECT_LT(iterations[2], iterations[0]);
