@@ -1,19 +1,17 @@
 #include "fastcorot/scene/scene_builder.h"
 
 #include "fastcorot/core/error.h"
-#include "fastcorot/sim/conjugate_gradient.h"
-#include "fastcorot/sim/preconditioned_conjugate_gradient.h"
-#include "fastcorot/sim/sparse_direct_solver.h"
 #include "scene_data.h"
+#include "solver_builder.h"
 #include "topology_change_processor.h"
 
 #include <cmath>
-#include <limits>
 #include <map>
 #include <sstream>
 
 namespace fastcorot {
 
+using scene_detail::build_solvers;
 using scene_detail::Component;
 using scene_detail::GraphNode;
 using scene_detail::Numbers;
@@ -163,10 +161,9 @@ class Builder {
   void build_object(GraphNode& solver_node, Component& integrator) {
     std::vector<GraphNode*> nodes;
     collect(solver_node, nodes);
-    std::vector<Component*> states, linear_solvers;
+    std::vector<Component*> states;
     for (GraphNode* node : nodes) {
       for (Component* c : node->of_category("state")) states.push_back(c);
-      for (Component* c : node->of_category("linearsolver")) linear_solvers.push_back(c);
     }
     if (states.empty()) {
       throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
@@ -217,12 +214,9 @@ class Builder {
     } catch (const Error& error) {
       throw make_error(state.where(), ": ", error.what());
     }
-    object.ode_solver = build_integrator(integrator, nodes);
-    if (linear_solvers.empty()) {
-      throw make_error(integrator.where(), ": no linear solver in node ", solver_node.path,
-                       " or below (add CGLinearSolver or EigenSimplicialLDLT)");
-    }
-    object.linear_solver = build_linear_solver(*linear_solvers.front(), n);
+    auto solvers = build_solvers(data_, info_, integrator, nodes, n);
+    object.ode_solver = std::move(solvers.ode);
+    object.linear_solver = std::move(solvers.linear);
     simulation_.objects.push_back(std::move(object));
     states_.push_back(state.object);
   }
@@ -385,106 +379,6 @@ class Builder {
       constant.forces.assign(count, Vec3<double>::Zero());
     }
     system.constant_forces.push_back(std::move(constant));
-  }
-
-  std::unique_ptr<OdeSolver<double>> build_integrator(Component& c, const std::vector<GraphNode*>& nodes) {
-    try {
-      if (c.type() == "EulerImplicitSolver") {
-        ImplicitEulerSolver<double>::Parameters p;
-        p.rayleigh_stiffness = data_.real(c, "rayleighStiffness", 0);
-        p.rayleigh_mass = data_.real(c, "rayleighMass", 0);
-        p.velocity_damping = data_.real(c, "vdamping", 0);
-        p.first_order = data_.boolean(c, "firstOrder", false);
-        p.trapezoidal = data_.boolean(c, "trapezoidalScheme", false);
-        return std::make_unique<ImplicitEulerSolver<double>>(p);
-      }
-      StaticSolver<double>::NewtonParameters p;
-      Component* newton = nullptr;
-      if (c.has("newtonSolver")) {
-        newton = &data_.resolve_object(*c.node, c.object->attributes.at("newtonSolver"), c);
-        if (newton->type() != "NewtonRaphsonSolver") {
-          throw make_error("newtonSolver must link a NewtonRaphsonSolver, not ", newton->type());
-        }
-      } else {
-        for (GraphNode* node : nodes) {
-          for (auto& other : node->components) {
-            if (!newton && other->type() == "NewtonRaphsonSolver") newton = other.get();
-          }
-        }
-      }
-      if (newton) {
-        p.max_iterations = data_.whole_number(*newton, "maxNbIterationsNewton", 1);
-        p.max_line_search_iterations = data_.whole_number(*newton, "maxNbIterationsLineSearch", 5);
-        p.line_search_coefficient = data_.real(*newton, "lineSearchCoefficient", 0.5);
-        p.relative_successive_threshold = data_.real(*newton, "relativeSuccessiveStoppingThreshold", 1e-5);
-        p.relative_initial_threshold = data_.real(*newton, "relativeInitialStoppingThreshold", 1e-5);
-        p.absolute_residual_threshold = data_.real(*newton, "absoluteResidualStoppingThreshold", 1e-5);
-        p.relative_estimate_difference_threshold = data_.real(*newton, "relativeEstimateDifferenceThreshold", 0);
-        p.absolute_estimate_difference_threshold = data_.real(*newton, "absoluteEstimateDifferenceThreshold", 0);
-      } else {
-        // SOFA creates a NewtonRaphsonSolver and copies the older StaticSolver attributes onto it,
-        // including its mapping of the relative residual threshold onto the estimate difference.
-        p.max_iterations = data_.whole_number(c, "newton_iterations", 1);
-        p.absolute_estimate_difference_threshold = data_.real(c, "absolute_correction_tolerance_threshold", 0);
-        p.relative_estimate_difference_threshold = data_.real(c, "relative_correction_tolerance_threshold", 0);
-        p.absolute_residual_threshold = data_.real(c, "absolute_residual_tolerance_threshold", 1e-5);
-        if (c.has("relative_residual_tolerance_threshold")) {
-          p.relative_estimate_difference_threshold = data_.real(c, "relative_residual_tolerance_threshold", 0);
-        }
-      }
-      return std::make_unique<StaticSolver<double>>(p);
-    } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
-    }
-  }
-
-  std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c, Index points) {
-    if (c.type() == "PCGLinearSolver") return build_pcg(c, points);
-    if (c.type() != "CGLinearSolver") return std::make_unique<SparseDirectSolver<double>>();
-    if (data_.boolean(c, "warmStart", false)) {
-      throw make_error(c.where(), ": warmStart=\"true\" is not supported (the solve starts from zero)");
-    }
-    ConjugateGradientSolver<double>::Parameters p;
-    p.iterations = data_.whole_number(c, "iterations", 25);
-    p.tolerance = data_.real(c, "tolerance", 1e-5);
-    p.threshold = data_.real(c, "threshold", 1e-5);
-    try {
-      return std::make_unique<ConjugateGradientSolver<double>>(p);
-    } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
-    }
-  }
-
-  std::unique_ptr<LinearSolver<double>> build_pcg(Component& c, Index points) {
-    PreconditionedConjugateGradientSolver<double>::Parameters p;
-    p.iterations = data_.whole_number(c, "iterations", 25);
-    p.tolerance = data_.real(c, "tolerance", 1e-5);
-    p.update_step = data_.whole_number(c, "update_step", 1);
-    if (!data_.boolean(c, "build_precond", true)) p.update_step = std::numeric_limits<int>::max();
-    p.preconditioner = Preconditioner::none;
-    Component* preconditioner = nullptr;
-    if (c.has("preconditioner")) {
-      preconditioner = &data_.resolve_object(*c.node, c.object->attributes.at("preconditioner"), c);
-    } else if (c.has("preconditioners")) {
-      const std::string name = data_.text(c, "preconditioners", "");
-      preconditioner = &data_.resolve_object(*c.node, "@" + name, c, name);
-    }
-    if (preconditioner && data_.boolean(c, "use_precond", true)) {
-      if (preconditioner->type() == "BlockJacobiPreconditioner") {
-        p.preconditioner = Preconditioner::block_jacobi;
-      } else if (preconditioner->type() == "JacobiPreconditioner") {
-        p.preconditioner = Preconditioner::jacobi;
-      } else {
-        throw make_error(c.where(), ": preconditioner ", preconditioner->where(),
-                         " is not supported; supported: BlockJacobiPreconditioner, JacobiPreconditioner");
-      }
-    }
-    if (!preconditioner) info_.push_back(c.where() + ": no preconditioner: plain conjugate gradient iterations");
-    try {
-      return std::make_unique<PreconditionedConjugateGradientSolver<double>>(p, points);
-    } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
-    }
   }
 
   std::vector<std::string> info_;

@@ -1,8 +1,11 @@
-// Scenes with SOFA's PCGLinearSolver and its Jacobi / block-Jacobi preconditioners, through the real
-// parser and builder.
+// Scenes with SOFA's PCGLinearSolver, its Jacobi / block-Jacobi preconditioners and SOFA master's
+// linear systems around them, and how an ODE solver picks its linear solver, through the real parser
+// and builder.
 #include "fastcorot/core/error.h"
 #include "fastcorot/scene/scene_builder.h"
+#include "fastcorot/sim/conjugate_gradient.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
+#include "fastcorot/sim/sparse_direct_solver.h"
 
 #include <gtest/gtest.h>
 
@@ -14,12 +17,13 @@ namespace {
 
 using PCG = PreconditionedConjugateGradientSolver<double>;
 
+const std::string kEuler = R"(<EulerImplicitSolver rayleighStiffness="0.1" rayleighMass="0.1"/>)";
+
 // Two hexahedral cells along x split into 12 tetrahedra, fixed at x = 0; `solvers` in place of
 // the linear solver.
-std::string beam(const std::string& solvers) {
+std::string beam(const std::string& solvers, const std::string& integrator = kEuler) {
   return R"(<Node name="root" dt="0.02" gravity="0 0 -5"><Node name="beam">
-    <EulerImplicitSolver rayleighStiffness="0.1" rayleighMass="0.1"/>)" +
-         solvers + R"(
+    )" + integrator + solvers + R"(
     <RegularGridTopology name="grid" n="3 2 2" min="0 0 0" max="2 1 1"/>
     <MechanicalObject name="state"/>
     <TetrahedronSetTopologyContainer name="tets"/>
@@ -31,7 +35,9 @@ std::string beam(const std::string& solvers) {
   </Node></Node>)";
 }
 
-LoadedScene build(const std::string& solvers) { return build_scene(parse_scene_text(beam(solvers), "pcg.scn")); }
+LoadedScene build(const std::string& solvers, const std::string& integrator = kEuler) {
+  return build_scene(parse_scene_text(beam(solvers, integrator), "pcg.scn"));
+}
 
 const PCG& pcg_of(const LoadedScene& scene) {
   const auto* solver = dynamic_cast<const PCG*>(scene.simulation.objects.at(0).linear_solver.get());
@@ -39,9 +45,9 @@ const PCG& pcg_of(const LoadedScene& scene) {
   return *solver;
 }
 
-std::string error_of(const std::string& solvers) {
+std::string error_of(const std::string& solvers, const std::string& integrator = kEuler) {
   try {
-    build(solvers);
+    build(solvers, integrator);
   } catch (const Error& error) {
     return error.what();
   }
@@ -107,6 +113,99 @@ TEST(PcgScene, ConvergedStepsMatchTheDirectSolver) {
   }
   EXPECT_GT(moved, 1e-4);
   EXPECT_LT(difference, 1e-9 * moved);
+}
+
+// SOFA master moves the rebuild period to the PCG's linear system, a PreconditionedMatrixFreeSystem
+// (assemblingRate, alias update_step), and gives the preconditioner a MatrixLinearSystem.
+TEST(PcgScene, MasterLinearSystemsGiveTheRebuildPeriod) {
+  const std::string preconditioner = R"(<MatrixLinearSystem name="PS" template="CompressedRowSparseMatrixMat3x3d"/>
+    <BlockJacobiPreconditioner name="P" linearSystem="@PS"/>)";
+  auto p = pcg_of(build(preconditioner + R"(<PreconditionedMatrixFreeSystem name="S" template="GraphScattered"
+      preconditionerSystem="@PS" assemblingRate="3"/>
+    <PCGLinearSolver iterations="4" linearSystem="@S" preconditioner="@P"/>)")).parameters();
+  EXPECT_EQ(p.preconditioner, Preconditioner::block_jacobi);
+  EXPECT_EQ(p.iterations, 4);
+  EXPECT_EQ(p.update_step, 3);
+  // Found without a link; the older attribute name on the system.
+  p = pcg_of(build(preconditioner + R"(<PreconditionedMatrixFreeSystem update_step="5"/>
+    <PCGLinearSolver preconditioner="@P"/>)")).parameters();
+  EXPECT_EQ(p.update_step, 5);
+  // A system without a rate keeps the PCG's own (older scenes), or SOFA's default of 1.
+  EXPECT_EQ(pcg_of(build(R"(<PreconditionedMatrixFreeSystem/><PCGLinearSolver update_step="4"/>)")).parameters().update_step, 4);
+  EXPECT_EQ(pcg_of(build(R"(<PreconditionedMatrixFreeSystem/><PCGLinearSolver/>)")).parameters().update_step, 1);
+  // The same period given twice, consistently.
+  EXPECT_EQ(pcg_of(build(R"(<PreconditionedMatrixFreeSystem assemblingRate="2"/><PCGLinearSolver update_step="2"/>)"))
+                .parameters()
+                .update_step,
+            2);
+}
+
+TEST(PcgScene, MisplacedLinearSystemsAreNamed) {
+  const std::string not_preconditioned =
+      error_of(R"(<MatrixLinearSystem name="M"/><PCGLinearSolver linearSystem="@M"/>)");
+  EXPECT_NE(not_preconditioned.find("pcg.scn:2: PCGLinearSolver: linearSystem must link a PreconditionedMatrixFreeSystem, "
+                                    "not pcg.scn:2: MatrixLinearSystem 'M'"),
+            std::string::npos)
+      << not_preconditioned;
+  const std::string wrong_system = error_of(
+      R"(<PreconditionedMatrixFreeSystem name="S"/><JacobiPreconditioner name="J" linearSystem="@S"/><PCGLinearSolver preconditioner="@J"/>)");
+  EXPECT_NE(wrong_system.find("JacobiPreconditioner 'J': linearSystem must link a MatrixLinearSystem, not "
+                              "pcg.scn:2: PreconditionedMatrixFreeSystem 'S'"),
+            std::string::npos)
+      << wrong_system;
+  const std::string wrong_preconditioner_system =
+      error_of(R"(<PreconditionedMatrixFreeSystem name="S" preconditionerSystem="@S"/><PCGLinearSolver/>)");
+  EXPECT_NE(wrong_preconditioner_system.find("preconditionerSystem must link a MatrixLinearSystem"), std::string::npos)
+      << wrong_preconditioner_system;
+  const std::string disagree =
+      error_of(R"(<PreconditionedMatrixFreeSystem name="S" assemblingRate="3"/><PCGLinearSolver update_step="2"/>)");
+  EXPECT_NE(disagree.find("PCGLinearSolver: update_step = 2 disagrees with pcg.scn:2: PreconditionedMatrixFreeSystem 'S''s "
+                          "assemblingRate = 3"),
+            std::string::npos)
+      << disagree;
+  const std::string twice =
+      error_of(R"(<PreconditionedMatrixFreeSystem assemblingRate="3" update_step="3"/><PCGLinearSolver/>)");
+  EXPECT_NE(twice.find("assemblingRate and update_step name the same value"), std::string::npos) << twice;
+  const std::string rate = error_of(R"(<PreconditionedMatrixFreeSystem assemblingRate="0"/><PCGLinearSolver/>)");
+  EXPECT_NE(rate.find("pcg.scn:2: PreconditionedMatrixFreeSystem: assemblingRate = 0: must be >= 1"), std::string::npos)
+      << rate;
+}
+
+// SOFA's LinearSolverAccessor: the linearSolver link, else the first linear solver found.
+TEST(LinearSolverChoice, TheLinkOtherwiseTheFirstWithAnInfoLine) {
+  const std::string two = R"(<EigenSimplicialLDLT name="L"/><CGLinearSolver name="C" iterations="7"/>)";
+  const LoadedScene first = build(two);
+  EXPECT_NE(dynamic_cast<const SparseDirectSolver<double>*>(first.simulation.objects.at(0).linear_solver.get()), nullptr);
+  bool told = false;
+  for (const auto& line : first.info) {
+    told = told || line.find("EulerImplicitSolver: uses the first linear solver, pcg.scn:2: EigenSimplicialLDLT 'L'; "
+                             "not used: pcg.scn:2: CGLinearSolver 'C'") != std::string::npos;
+  }
+  EXPECT_TRUE(told);
+  const LoadedScene linked =
+      build(two, R"(<EulerImplicitSolver rayleighStiffness="0.1" rayleighMass="0.1" linearSolver="@C"/>)");
+  const auto* cg = dynamic_cast<const ConjugateGradientSolver<double>*>(linked.simulation.objects.at(0).linear_solver.get());
+  ASSERT_NE(cg, nullptr);
+  EXPECT_EQ(cg->parameters().iterations, 7);
+  // A StaticSolver takes the link from itself or from the NewtonRaphsonSolver it drives (SOFA master).
+  const auto takes_cg = [&](const std::string& integrator) {
+    const LoadedScene scene = build(two, integrator);
+    return dynamic_cast<const ConjugateGradientSolver<double>*>(scene.simulation.objects.at(0).linear_solver.get()) != nullptr;
+  };
+  EXPECT_TRUE(takes_cg(R"(<StaticSolver linearSolver="@C"/>)"));
+  EXPECT_TRUE(takes_cg(R"(<StaticSolver newtonSolver="@N"/><NewtonRaphsonSolver name="N" linearSolver="@C"/>)"));
+  EXPECT_FALSE(takes_cg(R"(<StaticSolver/><NewtonRaphsonSolver name="N"/>)"));
+}
+
+TEST(LinearSolverChoice, ALinkToSomethingElseIsNamed) {
+  const std::string not_a_solver = error_of(R"(<BlockJacobiPreconditioner name="P"/><CGLinearSolver/>)",
+                                            R"(<EulerImplicitSolver linearSolver="@P"/>)");
+  EXPECT_NE(not_a_solver.find("pcg.scn:2: EulerImplicitSolver: linearSolver must link a linear solver (CGLinearSolver, "
+                              "PCGLinearSolver, EigenSimplicialLDLT, ...), not pcg.scn:2: BlockJacobiPreconditioner 'P'"),
+            std::string::npos)
+      << not_a_solver;
+  const std::string broken = error_of("<CGLinearSolver/>", R"(<EulerImplicitSolver linearSolver="@nothing"/>)");
+  EXPECT_NE(broken.find("broken link '@nothing'"), std::string::npos) << broken;
 }
 
 }  // namespace

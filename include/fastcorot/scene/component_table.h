@@ -23,7 +23,7 @@ struct AttributeSpec {
 
 struct ComponentSpec {
   std::string_view name;
-  std::string_view category;  // "state", "topology", "loader", "mapping", "forcefield", "mass", "constraint", "engine", "odesolver", "linearsolver", "preconditioner"
+  std::string_view category;  // "state", "topology", "loader", "mapping", "forcefield", "mass", "constraint", "engine", "odesolver", "linearsolver", "preconditioner", "linearsystem"
   std::string_view doc;
   std::vector<AttributeSpec> attributes;
   std::vector<std::string_view> aliases = {};  // other component names SOFA accepts for it

@@ -1,0 +1,244 @@
+#include "solver_builder.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/sim/conjugate_gradient.h"
+#include "fastcorot/sim/ode_solver.h"
+#include "fastcorot/sim/preconditioned_conjugate_gradient.h"
+#include "fastcorot/sim/sparse_direct_solver.h"
+
+#include <limits>
+
+namespace fastcorot::scene_detail {
+
+namespace {
+
+class SolverBuilder {
+ public:
+  SolverBuilder(SceneData& data, std::vector<std::string>& info) : data(data), info(info) {}
+
+  std::unique_ptr<OdeSolver<double>> build_integrator(Component& c,
+                                                      const std::vector<GraphNode*>& nodes) {
+    try {
+      if (c.type() == "EulerImplicitSolver") {
+        ImplicitEulerSolver<double>::Parameters p;
+        p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
+        p.rayleigh_mass = data.real(c, "rayleighMass", 0);
+        p.velocity_damping = data.real(c, "vdamping", 0);
+        p.first_order = data.boolean(c, "firstOrder", false);
+        p.trapezoidal = data.boolean(c, "trapezoidalScheme", false);
+        return std::make_unique<ImplicitEulerSolver<double>>(p);
+      }
+      StaticSolver<double>::NewtonParameters p;
+      Component* newton = newton_of(c, nodes);
+      if (newton) {
+        p.max_iterations = data.whole_number(*newton, "maxNbIterationsNewton", 1);
+        p.max_line_search_iterations = data.whole_number(*newton, "maxNbIterationsLineSearch", 5);
+        p.line_search_coefficient = data.real(*newton, "lineSearchCoefficient", 0.5);
+        p.relative_successive_threshold =
+            data.real(*newton, "relativeSuccessiveStoppingThreshold", 1e-5);
+        p.relative_initial_threshold = data.real(*newton, "relativeInitialStoppingThreshold", 1e-5);
+        p.absolute_residual_threshold =
+            data.real(*newton, "absoluteResidualStoppingThreshold", 1e-5);
+        p.relative_estimate_difference_threshold =
+            data.real(*newton, "relativeEstimateDifferenceThreshold", 0);
+        p.absolute_estimate_difference_threshold =
+            data.real(*newton, "absoluteEstimateDifferenceThreshold", 0);
+      } else {
+        // SOFA creates a NewtonRaphsonSolver and copies the older StaticSolver attributes onto it,
+        // including its mapping of the relative residual threshold onto the estimate difference.
+        p.max_iterations = data.whole_number(c, "newton_iterations", 1);
+        p.absolute_estimate_difference_threshold =
+            data.real(c, "absolute_correction_tolerance_threshold", 0);
+        p.relative_estimate_difference_threshold =
+            data.real(c, "relative_correction_tolerance_threshold", 0);
+        p.absolute_residual_threshold = data.real(c, "absolute_residual_tolerance_threshold", 1e-5);
+        if (c.has("relative_residual_tolerance_threshold")) {
+          p.relative_estimate_difference_threshold =
+              data.real(c, "relative_residual_tolerance_threshold", 0);
+        }
+      }
+      return std::make_unique<StaticSolver<double>>(p);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  // A StaticSolver's NewtonRaphsonSolver: the linked one, else the first in its nodes; nullptr when
+  // there is none (SOFA then makes one with default settings). Called first by build_integrator,
+  // whose errors name the StaticSolver.
+  Component* newton_of(Component& static_solver, const std::vector<GraphNode*>& nodes) {
+    if (static_solver.has("newtonSolver")) {
+      Component& newton = data.resolve_object(
+          *static_solver.node, static_solver.object->attributes.at("newtonSolver"), static_solver);
+      if (newton.type() != "NewtonRaphsonSolver") {
+        throw make_error("newtonSolver must link a NewtonRaphsonSolver, not ", newton.type());
+      }
+      return &newton;
+    }
+    for (GraphNode* node : nodes) {
+      for (auto& other : node->components) {
+        if (other->type() == "NewtonRaphsonSolver") return other.get();
+      }
+    }
+    return nullptr;
+  }
+
+  // The linear solver of an ODE solver, as SOFA's LinearSolverAccessor finds it: its linearSolver
+  // link (on a StaticSolver, or on the NewtonRaphsonSolver it drives), else the first linear solver
+  // of its nodes.
+  Component& linear_solver_of(Component& integrator, const std::vector<GraphNode*>& nodes,
+                              const std::vector<Component*>& linear_solvers) {
+    Component* holder = &integrator;
+    if (!integrator.has("linearSolver") && integrator.type() == "StaticSolver") {
+      if (Component* newton = newton_of(integrator, nodes); newton && newton->has("linearSolver"))
+        holder = newton;
+    }
+    if (holder->has("linearSolver")) {
+      Component& linked = data.resolve_object(
+          *holder->node, holder->object->attributes.at("linearSolver"), *holder);
+      if (!linked.spec || linked.spec->category != "linearsolver") {
+        throw make_error(
+            holder->where(),
+            ": linearSolver must link a linear solver (CGLinearSolver, PCGLinearSolver, "
+            "EigenSimplicialLDLT, ...), not ",
+            linked.where());
+      }
+      return linked;
+    }
+    if (linear_solvers.empty()) {
+      throw make_error(integrator.where(), ": no linear solver in node ", integrator.node->path,
+                       " or below (add CGLinearSolver or EigenSimplicialLDLT)");
+    }
+    if (linear_solvers.size() > 1) {
+      std::string unused;
+      for (std::size_t i = 1; i < linear_solvers.size(); ++i)
+        unused += (i > 1 ? ", " : "") + linear_solvers[i]->where();
+      info.push_back(integrator.where() + ": uses the first linear solver, " +
+                     linear_solvers.front()->where() + "; not used: " + unused +
+                     " (choose one with linearSolver=\"@name\")");
+    }
+    return *linear_solvers.front();
+  }
+
+  std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c, Index points,
+                                                            const std::vector<GraphNode*>& nodes) {
+    if (c.type() == "PCGLinearSolver") return build_pcg(c, points, nodes);
+    if (c.type() != "CGLinearSolver") return std::make_unique<SparseDirectSolver<double>>();
+    if (data.boolean(c, "warmStart", false)) {
+      throw make_error(c.where(),
+                       ": warmStart=\"true\" is not supported (the solve starts from zero)");
+    }
+    ConjugateGradientSolver<double>::Parameters p;
+    p.iterations = data.whole_number(c, "iterations", 25);
+    p.tolerance = data.real(c, "tolerance", 1e-5);
+    p.threshold = data.real(c, "threshold", 1e-5);
+    try {
+      return std::make_unique<ConjugateGradientSolver<double>>(p);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  std::unique_ptr<LinearSolver<double>> build_pcg(Component& c, Index points,
+                                                  const std::vector<GraphNode*>& nodes) {
+    PreconditionedConjugateGradientSolver<double>::Parameters p;
+    p.iterations = data.whole_number(c, "iterations", 25);
+    p.tolerance = data.real(c, "tolerance", 1e-5);
+    p.update_step = data.whole_number(c, "update_step", 1);
+    // SOFA master keeps the rebuild period on the PCG's linear system, a
+    // PreconditionedMatrixFreeSystem (assemblingRate, alias update_step): the linked one, else the
+    // first in the solver's nodes.
+    Component* system = nullptr;
+    if (c.has("linearSystem")) {
+      system = &data.resolve_object(*c.node, c.object->attributes.at("linearSystem"), c);
+      if (system->type() != "PreconditionedMatrixFreeSystem") {
+        throw make_error(c.where(),
+                         ": linearSystem must link a PreconditionedMatrixFreeSystem, not ",
+                         system->where());
+      }
+    } else {
+      for (GraphNode* node : nodes) {
+        for (Component* other : node->of_category("linearsystem")) {
+          if (!system && other->type() == "PreconditionedMatrixFreeSystem") system = other;
+        }
+      }
+    }
+    if (system) {
+      link_to_matrix_system(*system, "preconditionerSystem");
+      const char* rate = system->has("assemblingRate") ? "assemblingRate" : "update_step";
+      if (system->has("assemblingRate") && system->has("update_step")) {
+        throw make_error(system->where(),
+                         ": assemblingRate and update_step name the same value: give one");
+      }
+      const int system_rate = data.whole_number(*system, rate, 1);
+      if (system_rate < 1)
+        throw make_error(system->where(), ": ", rate, " = ", system_rate, ": must be >= 1");
+      if (c.has("update_step") && system->has(rate) && system_rate != p.update_step) {
+        throw make_error(c.where(), ": update_step = ", p.update_step, " disagrees with ",
+                         system->where(), "'s ", rate, " = ", system_rate,
+                         ": give the rebuild period once");
+      }
+      if (system->has(rate)) p.update_step = system_rate;
+    }
+    if (!data.boolean(c, "build_precond", true)) p.update_step = std::numeric_limits<int>::max();
+    p.preconditioner = Preconditioner::none;
+    Component* preconditioner = nullptr;
+    if (c.has("preconditioner")) {
+      preconditioner = &data.resolve_object(*c.node, c.object->attributes.at("preconditioner"), c);
+    } else if (c.has("preconditioners")) {
+      const std::string name = data.text(c, "preconditioners", "");
+      preconditioner = &data.resolve_object(*c.node, "@" + name, c, name);
+    }
+    if (preconditioner) link_to_matrix_system(*preconditioner, "linearSystem");
+    if (preconditioner && data.boolean(c, "use_precond", true)) {
+      if (preconditioner->type() == "BlockJacobiPreconditioner") {
+        p.preconditioner = Preconditioner::block_jacobi;
+      } else if (preconditioner->type() == "JacobiPreconditioner") {
+        p.preconditioner = Preconditioner::jacobi;
+      } else {
+        throw make_error(
+            c.where(), ": preconditioner ", preconditioner->where(),
+            " is not supported; supported: BlockJacobiPreconditioner, JacobiPreconditioner");
+      }
+    }
+    if (!preconditioner)
+      info.push_back(c.where() + ": no preconditioner: plain conjugate gradient iterations");
+    try {
+      return std::make_unique<PreconditionedConjugateGradientSolver<double>>(p, points);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  // A link to the MatrixLinearSystem a preconditioner assembles into in SOFA: checked, nothing more
+  // (the preconditioners here take their blocks from the force fields and the mass directly).
+  void link_to_matrix_system(Component& c, const std::string& attribute) {
+    if (!c.has(attribute)) return;
+    Component& target = data.resolve_object(*c.node, c.object->attributes.at(attribute), c);
+    if (target.type() != "MatrixLinearSystem") {
+      throw make_error(c.where(), ": ", attribute, " must link a MatrixLinearSystem, not ",
+                       target.where());
+    }
+  }
+
+  SceneData& data;
+  std::vector<std::string>& info;
+};
+
+}  // namespace
+
+BuiltSolvers build_solvers(SceneData& data, std::vector<std::string>& info, Component& integrator,
+                           const std::vector<GraphNode*>& nodes, Index points) {
+  std::vector<Component*> linear_solvers;
+  for (GraphNode* node : nodes) {
+    for (Component* c : node->of_category("linearsolver")) linear_solvers.push_back(c);
+  }
+  SolverBuilder builder(data, info);
+  BuiltSolvers solvers;
+  solvers.ode = builder.build_integrator(integrator, nodes);
+  solvers.linear = builder.build_linear_solver(
+      builder.linear_solver_of(integrator, nodes, linear_solvers), points, nodes);
+  return solvers;
+}
+
+}  // namespace fastcorot::scene_detail
