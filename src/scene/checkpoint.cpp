@@ -344,12 +344,19 @@ void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& s
                        "force-field parameters or kinds of solver differ)");
     }
     const std::size_t ode_size = object.ode_solver ? object.ode_solver->carried_state().size() : 0;
-    const std::size_t linear_size =
-        object.linear_solver ? object.linear_solver->carried_state().size() : 0;
-    if (s.ode_state.size() != ode_size || s.linear_state.size() != linear_size) {
-      throw make_error(where, s.path, ": its solver state has ", s.ode_state.size(), " + ",
-                       s.linear_state.size(), " values; this scene's solvers carry ", ode_size,
-                       " + ", linear_size);
+    if (s.ode_state.size() != ode_size) {
+      throw make_error(where, s.path, ": its ODE solver state has ", s.ode_state.size(),
+                       " values; this scene's ODE solver carries ", ode_size);
+    }
+    try {
+      if (object.linear_solver) {
+        object.linear_solver->check_carried_state(s.linear_state);
+      } else if (!s.linear_state.empty()) {
+        throw make_error("this scene's object has no linear solver");
+      }
+    } catch (const Error& error) {
+      throw make_error(where, s.path, ": its linear solver state does not fit this scene's: ",
+                       error.what());
     }
   }
 

@@ -123,7 +123,10 @@ class SolverBuilder {
   std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c, Index points,
                                                             const std::vector<GraphNode*>& nodes) {
     if (c.type() == "PCGLinearSolver") return build_pcg(c, points, nodes);
-    if (c.type() != "CGLinearSolver") return std::make_unique<SparseDirectSolver<double>>();
+    if (c.type() == "EigenSimplicialLDLT") {
+      link_to_matrix_system(c, "linearSystem");
+      return std::make_unique<SparseDirectSolver<double>>();
+    }
     if (data.boolean(c, "warmStart", false)) {
       throw make_error(c.where(),
                        ": warmStart=\"true\" is not supported (the solve starts from zero)");
@@ -195,10 +198,13 @@ class SolverBuilder {
         p.preconditioner = Preconditioner::block_jacobi;
       } else if (preconditioner->type() == "JacobiPreconditioner") {
         p.preconditioner = Preconditioner::jacobi;
+      } else if (preconditioner->type() == "EigenSimplicialLDLT") {
+        // SparseLDLSolver, SparseCholeskySolver, ...: the factorisation of the assembled matrix.
+        p.preconditioner = Preconditioner::sparse_ldlt;
       } else {
-        throw make_error(
-            c.where(), ": preconditioner ", preconditioner->where(),
-            " is not supported; supported: BlockJacobiPreconditioner, JacobiPreconditioner");
+        throw make_error(c.where(), ": preconditioner ", preconditioner->where(),
+                         " is not supported; supported: BlockJacobiPreconditioner, JacobiPreconditioner, "
+                         "a sparse direct solver (SparseLDLSolver, EigenSimplicialLDLT, ...)");
       }
     }
     if (!preconditioner)

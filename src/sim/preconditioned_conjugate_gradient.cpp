@@ -16,6 +16,7 @@ std::string_view preconditioner_name(Preconditioner preconditioner) {
     case Preconditioner::none: return "none";
     case Preconditioner::jacobi: return "jacobi";
     case Preconditioner::block_jacobi: return "block_jacobi";
+    case Preconditioner::sparse_ldlt: return "sparse_ldlt";
   }
   return "?";
 }
@@ -58,12 +59,33 @@ PreconditionedConjugateGradientSolver<Real>::PreconditionedConjugateGradientSolv
   }
   if (points < 0) throw make_error("PCGLinearSolver: ", points, " points");
   previous_.assign(static_cast<std::size_t>(points), Vec3<Real>::Zero());
-  inverse_.assign(static_cast<std::size_t>(points), Mat3<Real>::Zero());
+  if (parameters_.preconditioner != Preconditioner::sparse_ldlt) {
+    inverse_.assign(static_cast<std::size_t>(points), Mat3<Real>::Zero());
+  }
 }
+
+namespace {
+
+template <class Real>
+void factorise_or_throw(SparseFactorisation<Real>& factorisation, const Eigen::SparseMatrix<Real>& matrix) {
+  if (!factorisation.factorise(matrix)) {
+    throw make_error("PCGLinearSolver: sparse direct preconditioner: the system matrix could not be factorised "
+                     "(singular: is every point held by a mass or an element?)");
+  }
+}
+
+}  // namespace
 
 template <class Real>
 void PreconditionedConjugateGradientSolver<Real>::build_preconditioner(const MechanicalSystem<Real>& system,
                                                                        const MatrixFactors<Real>& factors) {
+  if (parameters_.preconditioner == Preconditioner::sparse_ldlt) {
+    Eigen::SparseMatrix<Real> matrix = system.assemble(factors);
+    matrix.makeCompressed();
+    factorise_or_throw(factorisation_, matrix);
+    if (parameters_.update_step > 1) factorised_ = std::move(matrix);
+    return;
+  }
   system.diagonal_blocks(factors, inverse_);
   for (std::size_t i = 0; i < inverse_.size(); ++i) {
     Mat3<Real>& block = inverse_[i];
@@ -125,17 +147,28 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   Real* s = flat<Real>(std::span<Vec3<Real>>(s_));
   const Real* q = flat<Real>(std::span<const Vec3<Real>>(q_));
   Real* xs = flat<Real>(x);
-  const Real* inverse = inverse_.data()->data();  // nine values per point, column-major
+  const Real* inverse = inverse_.empty() ? nullptr : inverse_.data()->data();  // nine values per point, column-major
   const Preconditioner kind = parameters_.preconditioner;
-  // z = P r for the points [begin, end), returning sum r . z over them: one partial sum per axis
-  // (three chains of additions instead of one), in point order, then x + y + z.
+  // The direct preconditioner solves for the whole vector at once, between the pass that updates r
+  // and the one that sums r . z; the others apply P point by point within that pass.
+  const bool direct = kind == Preconditioner::sparse_ldlt;
+  const auto solve_direct = [&](Real* z) {
+    if (direct) factorisation_.solve(r, z, static_cast<Index>(3 * n));
+  };
+  // z = P r for the points [begin, end) (already done for the direct preconditioner), returning
+  // sum r . z over them: one partial sum per axis (three chains of additions instead of one), in
+  // point order, then x + y + z.
   const auto precondition_points = [&](Real* z, std::size_t begin, std::size_t end) {
     Real sum_x = 0, sum_y = 0, sum_z = 0;
     for (std::size_t i = begin; i < end; ++i) {
       const Real* m = inverse + 9 * i;
       const Real r0 = r[3 * i], r1 = r[3 * i + 1], r2 = r[3 * i + 2];
       Real z0 = r0, z1 = r1, z2 = r2;
-      if (kind == Preconditioner::jacobi) {
+      if (direct) {
+        z0 = z[3 * i];
+        z1 = z[3 * i + 1];
+        z2 = z[3 * i + 2];
+      } else if (kind == Preconditioner::jacobi) {
         z0 = m[0] * r0;
         z1 = m[4] * r1;
         z2 = m[8] * r2;
@@ -159,8 +192,15 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
     b_norm = parallel_sum<Real>(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
       return dot_range(b, b, begin, end);
     });
-    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+    const auto residual = [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = 3 * begin; i < 3 * end; ++i) r[i] = b[i] - q[i];
+    };
+    if (direct) {
+      parallel_ranges(threads, n, residual);
+      solve_direct(w);
+    }
+    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+      if (!direct) residual(begin, end);
       return precondition_points(w, begin, end);
     });
   }
@@ -176,11 +216,18 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
     if (den == 0 || !std::isfinite(den)) break;
     const Real alpha = rho / den;
     const Real rho_previous = rho;
-    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+    const auto update = [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = 3 * begin; i < 3 * end; ++i) {
         xs[i] += alpha * w[i];
         r[i] -= alpha * q[i];
       }
+    };
+    if (direct) {
+      parallel_ranges(threads, n, update);
+      solve_direct(s);
+    }
+    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+      if (!direct) update(begin, end);
       return precondition_points(s, begin, end);
     });
     const Real beta = rho / rho_previous;
@@ -200,7 +247,17 @@ std::vector<std::int64_t> PreconditionedConjugateGradientSolver<Real>::carried_s
   for (const auto& v : previous_) {
     for (int c = 0; c < 3; ++c) state.push_back(to_bits(v[c]));
   }
-  if (parameters_.update_step > 1) {
+  if (parameters_.update_step > 1 && parameters_.preconditioner == Preconditioner::sparse_ldlt) {
+    // The factorised matrix (compressed columns: nonzero count, column starts, row indices, values);
+    // none before the first solve.
+    const Eigen::SparseMatrix<Real>& m = factorised_;
+    state.push_back(m.nonZeros());
+    if (m.nonZeros() > 0) {
+      state.insert(state.end(), m.outerIndexPtr(), m.outerIndexPtr() + m.outerSize() + 1);
+      state.insert(state.end(), m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros());
+      for (Eigen::Index k = 0; k < m.nonZeros(); ++k) state.push_back(to_bits(m.valuePtr()[k]));
+    }
+  } else if (parameters_.update_step > 1) {
     for (const auto& block : inverse_) {
       for (int c = 0; c < 9; ++c) state.push_back(to_bits(block.data()[c]));
     }
@@ -209,24 +266,76 @@ std::vector<std::int64_t> PreconditionedConjugateGradientSolver<Real>::carried_s
 }
 
 template <class Real>
-void PreconditionedConjugateGradientSolver<Real>::restore_carried_state(const std::vector<std::int64_t>& state) {
+void PreconditionedConjugateGradientSolver<Real>::check_carried_state(const std::vector<std::int64_t>& state) const {
   const std::size_t n = previous_.size();
-  const std::size_t expected = 1 + 3 * n + (parameters_.update_step > 1 ? 9 * n : 0);
-  if (state.size() != expected || state[0] < 0) {
-    throw make_error("PCGLinearSolver: expected ", expected, " values to restore (solve count, ", n,
-                     " points' previous solution", parameters_.update_step > 1 ? ", preconditioner blocks" : "",
-                     "), got ", state.size());
+  const bool blocks = parameters_.update_step > 1 && parameters_.preconditioner != Preconditioner::sparse_ldlt;
+  const bool matrix = parameters_.update_step > 1 && parameters_.preconditioner == Preconditioner::sparse_ldlt;
+  const std::size_t expected = 1 + 3 * n + (blocks ? 9 * n : 0);
+  if ((matrix ? state.size() <= expected : state.size() != expected) || state[0] < 0) {
+    throw make_error("PCGLinearSolver: expected ", matrix ? "more than " : "", expected,
+                     " values to restore (solve count, ", n, " points' previous solution",
+                     blocks ? ", preconditioner blocks" : matrix ? ", factorised matrix" : "", "), got ",
+                     state.size());
   }
-  solves_ = state[0];
+  if (matrix) carried_matrix(std::span<const std::int64_t>(state).subspan(expected));
+}
+
+template <class Real>
+void PreconditionedConjugateGradientSolver<Real>::restore_carried_state(const std::vector<std::int64_t>& state) {
+  check_carried_state(state);
+  const std::size_t n = previous_.size();
   std::size_t k = 1;
   for (auto& v : previous_) {
     for (int c = 0; c < 3; ++c) v[c] = from_bits<Real>(state[k++]);
   }
-  if (parameters_.update_step > 1) {
+  if (parameters_.update_step > 1 && parameters_.preconditioner == Preconditioner::sparse_ldlt) {
+    factorised_ = carried_matrix(std::span<const std::int64_t>(state).subspan(1 + 3 * n));
+    if (factorised_.nonZeros() > 0) factorise_or_throw(factorisation_, factorised_);
+  } else if (parameters_.update_step > 1) {
     for (auto& block : inverse_) {
       for (int c = 0; c < 9; ++c) block.data()[c] = from_bits<Real>(state[k++]);
     }
   }
+  solves_ = state[0];
+}
+
+template <class Real>
+Eigen::SparseMatrix<Real> PreconditionedConjugateGradientSolver<Real>::carried_matrix(
+    std::span<const std::int64_t> state) const {
+  const auto size = static_cast<std::int64_t>(3 * previous_.size());
+  const std::int64_t nonzeros = state[0];
+  const auto fail = [&](const char* why) {
+    return make_error("PCGLinearSolver: the carried factorised matrix is inconsistent (", why, ")");
+  };
+  if (nonzeros < 0 || nonzeros > size * size) throw fail("nonzero count");
+  if (nonzeros == 0) {
+    if (state.size() != 1) throw fail("values after an empty matrix");
+    return {};
+  }
+  if (static_cast<std::int64_t>(state.size()) != 1 + (size + 1) + 2 * nonzeros) throw fail("length");
+  const auto outer = state.subspan(1, static_cast<std::size_t>(size + 1));
+  const auto inner = state.subspan(static_cast<std::size_t>(size + 2), static_cast<std::size_t>(nonzeros));
+  const auto values = state.subspan(static_cast<std::size_t>(size + 2 + nonzeros));
+  if (outer.front() != 0 || outer.back() != nonzeros) throw fail("column starts");
+  std::vector<Eigen::Triplet<Real>> entries;
+  entries.reserve(static_cast<std::size_t>(nonzeros));
+  for (std::int64_t column = 0; column < size; ++column) {
+    const std::int64_t begin = outer[static_cast<std::size_t>(column)];
+    const std::int64_t end = outer[static_cast<std::size_t>(column + 1)];
+    if (begin > end || end > nonzeros) throw fail("column starts");
+    for (std::int64_t k = begin; k < end; ++k) {
+      const std::int64_t row = inner[static_cast<std::size_t>(k)];
+      if (row < 0 || row >= size || (k > begin && row <= inner[static_cast<std::size_t>(k - 1)])) {
+        throw fail("row indices");
+      }
+      entries.emplace_back(static_cast<Index>(row), static_cast<Index>(column),
+                           from_bits<Real>(values[static_cast<std::size_t>(k)]));
+    }
+  }
+  Eigen::SparseMatrix<Real> m(static_cast<Index>(size), static_cast<Index>(size));
+  m.setFromTriplets(entries.begin(), entries.end());
+  m.makeCompressed();
+  return m;
 }
 
 template class PreconditionedConjugateGradientSolver<float>;

@@ -179,6 +179,29 @@ TEST(Checkpoint, APreconditionedSolverResumesFromItsPreviousSolutionAndBlocks) {
             flatten(uninterrupted.objects[0].system.state.position));
 }
 
+TEST(Checkpoint, ASparseDirectPreconditionerResumesFromTheMatrixItFactorised) {
+  // With update_step 3 the factorisation of step 3's matrix serves steps 4 and 5: the checkpoint
+  // after step 4 carries that matrix, and the resumed run factorises it again, to the same bits.
+  SceneText s;
+  s.solver = R"(<PCGLinearSolver iterations="3" tolerance="1e-30" preconditioner="@L" update_step="3"/>
+    <SparseLDLSolver name="L"/>)";
+  Simulation<double> uninterrupted = build(s);
+  run_to(uninterrupted, 7);
+  const fs::path path = checkpoint_at(4, "pcg_ldl.ckpt", s);
+  Simulation<double> resumed = build(s);
+  restore_checkpoint(path, resumed);
+  run_to(resumed, 7);
+  expect_same_state(resumed, uninterrupted);
+  // A solver that starts afresh at step 4 (factorising step 4's matrix, from a zero start) differs.
+  Simulation<double> forgetful = build(s);
+  restore_checkpoint(path, forgetful);
+  Simulation<double> fresh = build(s);
+  forgetful.objects[0].linear_solver = std::move(fresh.objects[0].linear_solver);
+  run_to(forgetful, 7);
+  EXPECT_NE(flatten(forgetful.objects[0].system.state.position),
+            flatten(uninterrupted.objects[0].system.state.position));
+}
+
 TEST(Checkpoint, EveryFlippedByteIsRefused) {
   const std::string good = testing::read_file_bytes(checkpoint_at(4, "flip_source.ckpt"));
   const fs::path path = folder() / "flipped.ckpt";

@@ -65,6 +65,27 @@ TEST(PcgScene, AttributesAndTheLinkedPreconditioner) {
   EXPECT_EQ(p.update_step, 3);
 }
 
+TEST(PcgScene, SparseDirectSolversPreconditionWithTheirFactorisation) {
+  // SOFA's common form: the direct solver first would be the ODE solver's linear solver (the first
+  // one found), so scenes link the PCG or list it first.
+  for (const std::string direct : {"SparseLDLSolver", "EigenSimplicialLDLT", "SparseCholeskySolver"}) {
+    const auto p = pcg_of(build(R"(<PCGLinearSolver iterations="5" preconditioner="@L" update_step="10"/>
+      <)" + direct + R"( name="L" template="CompressedRowSparseMatrixMat3x3d"/>)"))
+                       .parameters();
+    EXPECT_EQ(p.preconditioner, Preconditioner::sparse_ldlt) << direct;
+    EXPECT_EQ(p.update_step, 10);
+  }
+  // SOFA master's form, as in its examples: the PCG linked by the ODE solver, a MatrixLinearSystem
+  // for the direct solver, the rate on the PreconditionedMatrixFreeSystem.
+  const LoadedScene master = build(R"(<MatrixLinearSystem name="PS" template="CompressedRowSparseMatrixMat3x3d"/>
+    <SparseLDLSolver name="L" linearSystem="@PS"/>
+    <PreconditionedMatrixFreeSystem name="S" preconditionerSystem="@PS" assemblingRate="4"/>
+    <PCGLinearSolver name="pcg" linearSystem="@S" preconditioner="@L"/>)",
+                                   R"(<EulerImplicitSolver linearSolver="@pcg"/>)");
+  EXPECT_EQ(pcg_of(master).parameters().preconditioner, Preconditioner::sparse_ldlt);
+  EXPECT_EQ(pcg_of(master).parameters().update_step, 4);
+}
+
 TEST(PcgScene, DefaultsOlderLinkFormAndSwitches) {
   auto p = pcg_of(build("<PCGLinearSolver/>")).parameters();
   EXPECT_EQ(p.preconditioner, Preconditioner::none);
@@ -81,10 +102,12 @@ TEST(PcgScene, DefaultsOlderLinkFormAndSwitches) {
 
 TEST(PcgScene, UnsupportedOrMissingPreconditionersAreNamed) {
   const std::string unsupported =
-      error_of(R"(<PCGLinearSolver preconditioner="@L"/><EigenSimplicialLDLT name="L"/>)");
-  EXPECT_NE(unsupported.find("pcg.scn:2: PCGLinearSolver: preconditioner pcg.scn:2: EigenSimplicialLDLT 'L' is not supported"),
+      error_of(R"(<PCGLinearSolver preconditioner="@C"/><CGLinearSolver name="C"/>)");
+  EXPECT_NE(unsupported.find("pcg.scn:2: PCGLinearSolver: preconditioner pcg.scn:2: CGLinearSolver 'C' is not supported"),
             std::string::npos) << unsupported;
-  EXPECT_NE(unsupported.find("supported: BlockJacobiPreconditioner, JacobiPreconditioner"), std::string::npos) << unsupported;
+  EXPECT_NE(unsupported.find("supported: BlockJacobiPreconditioner, JacobiPreconditioner, a sparse direct solver"),
+            std::string::npos)
+      << unsupported;
   const std::string missing = error_of(R"(<PCGLinearSolver preconditioner="@nothing"/>)");
   EXPECT_NE(missing.find("broken link '@nothing'"), std::string::npos) << missing;
   const std::string bad = error_of(R"(<PCGLinearSolver iterations="0"/>)");

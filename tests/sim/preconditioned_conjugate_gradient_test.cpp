@@ -1,7 +1,7 @@
-// PreconditionedConjugateGradientSolver: SOFA's PCGLinearSolver with Jacobi and block-Jacobi
-// preconditioners (docs/sofa-solvers.md §2.4). The reference is a plain dense implementation of
-// the same iteration written here, on the matrix obtained column by column from the matrix-free
-// product, with P inverted from that matrix's own diagonal.
+// PreconditionedConjugateGradientSolver: SOFA's PCGLinearSolver with Jacobi, block-Jacobi and sparse
+// direct preconditioners (docs/sofa-solvers.md §2.4). The reference is a plain dense implementation
+// of the same iteration written here, on the matrix obtained column by column from the matrix-free
+// product, with P inverted from that matrix's own diagonal (or the whole matrix, densely).
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 
 #include "fastcorot/core/error.h"
@@ -256,29 +256,77 @@ TEST(PreconditionedConjugateGradient, PreconditionerIsRebuiltEveryUpdateStepSolv
   EXPECT_EQ(solver.preconditioner_blocks()[1], Mat3<double>::Identity() / 8);
 }
 
+TEST(PreconditionedConjugateGradient, SparseDirectPreconditionerIsTheInverseOfTheMatrixItWasBuiltFrom) {
+  auto system = small_beam(8);
+  const Points b = projected_rhs(system, 4);
+  const Eigen::MatrixXd a = dense_matrix(system, kEuler);
+  const Eigen::VectorXd exact = a.partialPivLu().solve(flatten(b));
+  // Built from this step's matrix: P = A^-1, one iteration solves it.
+  PCG solver(parameters(Preconditioner::sparse_ldlt, 25, 1e-20, 2), system.size());
+  EXPECT_TRUE(solver.preconditioner_blocks().empty());
+  Points x(static_cast<std::size_t>(system.size()));
+  EXPECT_EQ(solver.solve(system, kEuler, b, x).iterations, 1);
+  EXPECT_LT((flatten(x) - exact).norm() / exact.norm(), 1e-12);
+  // The next solve keeps the factorisation of that matrix for a different one (update_step 2): the
+  // plain dense iteration with P = the first matrix's inverse, from the previous solution.
+  const MatrixFactors<double> later{1.3, -0.05, -0.03};
+  const Points b2 = projected_rhs(system, 5);
+  const Eigen::MatrixXd a2 = dense_matrix(system, later);
+  Eigen::VectorXd x_reference = flatten(x);
+  PCG two_iterations(parameters(Preconditioner::sparse_ldlt, 2, 0.0, 2), system.size());
+  Points y(x.size());
+  two_iterations.solve(system, kEuler, b, y);
+  x_reference = flatten(y);
+  const auto report = two_iterations.solve(system, later, b2, y);
+  EXPECT_EQ(dense_pcg(a2, a.inverse(), flatten(b2), x_reference, 2, 0.0), 2);
+  EXPECT_EQ(report.iterations, 2);
+  EXPECT_LT((flatten(y) - x_reference).norm() / x_reference.norm(), 1e-11);
+  // The second solve with the first factorisation needs several iterations; the third, rebuilt
+  // from the new matrix, one again (a new right-hand side, so that it has something to do).
+  EXPECT_GT(solver.solve(system, later, b2, x).iterations, 2);
+  const Points b3 = projected_rhs(system, 6);
+  EXPECT_EQ(solver.solve(system, later, b3, x).iterations, 1);
+  const Eigen::VectorXd exact3 = a2.partialPivLu().solve(flatten(b3));
+  EXPECT_LT((flatten(x) - exact3).norm() / exact3.norm(), 1e-12);
+}
+
 TEST(PreconditionedConjugateGradient, CarriedStateResumesBitwise) {
-  for (const int update_step : {1, 3}) {
+  for (const auto& [preconditioner, update_step] : std::vector<std::pair<Preconditioner, int>>{
+           {Preconditioner::block_jacobi, 1}, {Preconditioner::block_jacobi, 3}, {Preconditioner::sparse_ldlt, 1},
+           {Preconditioner::sparse_ldlt, 3}}) {
     auto system = small_beam(6);
-    const auto p = parameters(Preconditioner::block_jacobi, 4, 1e-12, update_step);
+    const auto p = parameters(preconditioner, 4, 1e-12, update_step);
     PCG first(p, system.size());
     Points x(static_cast<std::size_t>(system.size()));
     first.solve(system, kEuler, projected_rhs(system, 1), x);
     first.solve(system, {1.2, -0.05, -0.02}, projected_rhs(system, 2), x);
     const auto state = first.carried_state();
-    EXPECT_EQ(state.size(), 1 + 3 * x.size() + (update_step > 1 ? 9 * x.size() : 0));
+    const std::size_t matrix_values =
+        1 + (3 * x.size() + 1) + 2 * static_cast<std::size_t>(system.assemble(kEuler).nonZeros());
+    const std::size_t kept = preconditioner == Preconditioner::sparse_ldlt ? matrix_values : 9 * x.size();
+    EXPECT_EQ(state.size(), 1 + 3 * x.size() + (update_step > 1 ? kept : 0));
     PCG resumed(p, system.size());
     resumed.restore_carried_state(state);
     Points y(x.size());
     const MatrixFactors<double> later{0.9, -0.05, -0.01};
     first.solve(system, later, projected_rhs(system, 3), x);
     resumed.solve(system, later, projected_rhs(system, 3), y);
-    EXPECT_TRUE(x == y) << "update_step " << update_step;
+    EXPECT_TRUE(x == y) << preconditioner_name(preconditioner) << " update_step " << update_step;
     // Without the state, the third solve starts elsewhere (and, with update_step 3, builds anew).
     PCG fresh(p, system.size());
     fresh.solve(system, later, projected_rhs(system, 3), y);
     EXPECT_FALSE(x == y);
     EXPECT_THROW(resumed.restore_carried_state({}), Error);
     EXPECT_THROW(resumed.restore_carried_state(std::vector<std::int64_t>(state.size() + 1, 0)), Error);
+    if (preconditioner == Preconditioner::sparse_ldlt && update_step > 1) {
+      // A damaged matrix is named, not factorised: a row index out of range, a truncated list.
+      auto damaged = state;
+      damaged[1 + 3 * x.size() + 1 + (3 * x.size() + 1)] = -5;
+      EXPECT_THROW(resumed.restore_carried_state(damaged), Error);
+      damaged = state;
+      damaged.pop_back();
+      EXPECT_THROW(resumed.restore_carried_state(damaged), Error);
+    }
   }
 }
 

@@ -48,7 +48,7 @@ TEST(SimulationThreads, OneObjectSameBitsOnOneTwoAndThreeThreads) {
 
 TEST(SimulationThreads, PreconditionedSolversSameBitsOnOneAndTwoThreads) {
   // 1,664 points: the preconditioned passes over points run in two chunks, the sums in five.
-  for (const std::string preconditioner : {"BlockJacobiPreconditioner", "JacobiPreconditioner"}) {
+  for (const std::string preconditioner : {"BlockJacobiPreconditioner", "JacobiPreconditioner", "SparseLDLSolver"}) {
     const std::string solver = "<PCGLinearSolver iterations=\"15\" tolerance=\"1e-12\" preconditioner=\"@P\"/><" +
                                preconditioner + " name=\"P\"/>";
     const auto one = run(beam("beam", "large", solver), 1, 3);

@@ -35,6 +35,13 @@ class LinearSolver {
     if (!state.empty())
       throw make_error("this linear solver carries no state; got ", state.size(), " values");
   }
+  // Throws fastcorot::Error, saying what does not fit, where restore_carried_state(state) would for
+  // its shape; changes nothing (checkpoints check every object before restoring any). By default
+  // the state must have the length carried_state() has now.
+  virtual void check_carried_state(const std::vector<std::int64_t>& state) const {
+    const std::size_t expected = carried_state().size();
+    if (state.size() != expected) throw make_error("expected ", expected, " values, got ", state.size());
+  }
 };
 
 }  // namespace fastcorot

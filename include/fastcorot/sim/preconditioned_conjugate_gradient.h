@@ -1,7 +1,9 @@
 // Preconditioned conjugate gradient as SOFA's PCGLinearSolver computes it (docs/sofa-solvers.md §2.4),
 // with the preconditioners of SOFA's JacobiPreconditioner (the inverse of the system matrix's
 // diagonal) and BlockJacobiPreconditioner (the inverses of its 3×3 diagonal blocks), built from the
-// matrix of the current step without assembling it:
+// matrix of the current step without assembling it, or a sparse direct solver (SparseLDLSolver and
+// the others as preconditioner: the LDL^T factorisation of the assembled matrix, P = A^-1 at the
+// step it was built, reused for update_step solves):
 //   r = b - A x0, z = P r, rho = r . z; while iteration <= iterations and rho > tolerance · b . b:
 //   q = A w, alpha = rho / w . q, x += alpha w, r -= alpha q, z = P r, beta = (r . z) / rho, w = z + beta w
 // with w = z first. Unlike CGLinearSolver it starts from its previous solution x0 (zero before the
@@ -10,15 +12,16 @@
 #pragma once
 
 #include "fastcorot/sim/linear_solver.h"
+#include "fastcorot/sim/sparse_factorisation.h"
 
 #include <string_view>
 #include <vector>
 
 namespace fastcorot {
 
-enum class Preconditioner { none, jacobi, block_jacobi };
+enum class Preconditioner { none, jacobi, block_jacobi, sparse_ldlt };
 
-// "none", "jacobi", "block_jacobi".
+// "none", "jacobi", "block_jacobi", "sparse_ldlt".
 std::string_view preconditioner_name(Preconditioner preconditioner);
 
 template <class Real>
@@ -37,10 +40,11 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
   // negative or non-finite tolerance, or points < 0.
   PreconditionedConjugateGradientSolver(Parameters parameters, Index points);
 
-  // Throws fastcorot::Error when the system does not have the solver's point count, or when a
+  // Throws fastcorot::Error when the system does not have the solver's point count, when a
   // diagonal block (block_jacobi) or entry (jacobi) of the system matrix is singular or not finite,
-  // naming the point. A point whose diagonal block is all zero (no mass, no element: its row of the
-  // matrix is zero) gets the identity.
+  // naming the point, or when the assembled matrix cannot be factorised (sparse_ldlt). A point whose
+  // diagonal block is all zero (no mass, no element: its row of the matrix is zero) gets the
+  // identity.
   LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
                           std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
 
@@ -49,17 +53,25 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
   std::span<const Mat3<Real>> preconditioner_blocks() const { return inverse_; }
 
   // The solve count, the previous solution and, when the preconditioner outlives a solve
-  // (update_step > 1), its blocks, all as bit patterns: a resumed run continues bitwise.
+  // (update_step > 1), its blocks or the assembled matrix it factorised, all as bit patterns: a
+  // resumed run continues bitwise (the factorisation of the same matrix is the same).
   std::vector<std::int64_t> carried_state() const override;
   void restore_carried_state(const std::vector<std::int64_t>& state) override;
+  // Its length depends on whether a matrix has been factorised yet (sparse_ldlt, update_step > 1).
+  void check_carried_state(const std::vector<std::int64_t>& state) const override;
 
  private:
   void build_preconditioner(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors);
+  // The factorised matrix in carried state (what follows the previous solution), checked; an empty
+  // matrix when none had been factorised.
+  Eigen::SparseMatrix<Real> carried_matrix(std::span<const std::int64_t> state) const;
 
   Parameters parameters_;
   std::int64_t solves_ = 0;
   std::vector<Vec3<Real>> previous_;  // the last solution: the next solve's start
-  std::vector<Mat3<Real>> inverse_;   // P, one block per point
+  std::vector<Mat3<Real>> inverse_;   // P, one block per point (Jacobi, block-Jacobi)
+  SparseFactorisation<Real> factorisation_;  // P = A^-1 (sparse_ldlt)
+  Eigen::SparseMatrix<Real> factorised_;     // its A, kept for checkpoints when update_step > 1
   std::vector<Vec3<Real>> r_, w_, q_, s_;
 };
 

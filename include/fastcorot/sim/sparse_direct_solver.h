@@ -4,10 +4,7 @@
 #pragma once
 
 #include "fastcorot/sim/linear_solver.h"
-
-#include <Eigen/SparseCholesky>
-
-#include <vector>
+#include "fastcorot/sim/sparse_factorisation.h"
 
 namespace fastcorot {
 
@@ -19,8 +16,7 @@ class SparseDirectSolver final : public LinearSolver<Real> {
                           std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
 
  private:
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<Real>> ldlt_;
-  std::vector<typename Eigen::SparseMatrix<Real>::StorageIndex> analysed_outer_, analysed_inner_;
+  SparseFactorisation<Real> factorisation_;
 };
 
 }  // namespace fastcorot
