@@ -45,6 +45,7 @@ double peak_memory_bytes() {
 
 struct SceneSize {
   long points = 0, tetrahedra = 0, edges = 0;
+  long renumbered_force_fields = 0;  // force fields keeping their own point order (scattered meshes)
   double force_field_bytes = 0;
 };
 
@@ -56,6 +57,7 @@ SceneSize measure(const Simulation<double>& simulation) {
       size.tetrahedra += field->mesh().num_tetrahedra();
       size.edges += field->mesh().num_edges();
       size.force_field_bytes += static_cast<double>(field->memory_bytes());
+      if (field->renumbers_points()) ++size.renumbered_force_fields;
     }
   }
   return size;
@@ -148,6 +150,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
                    {"force_field_bytes", size.force_field_bytes},
                    {"force_field_bytes_per_tetrahedron",
                     size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0},
+                   {"renumbered_force_fields", size.renumbered_force_fields},
                    {"peak_memory_bytes", peak_memory_bytes()}};
     out << result.dump(2) << '\n';
     return;
@@ -172,6 +175,10 @@ void bench(const BenchOptions& options, std::ostream& out) {
   out << std::setprecision(0) << "force field memory " << size.force_field_bytes / 1024 << " KiB ("
       << (size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0)
       << " bytes per tetrahedron); peak process memory " << peak_memory_bytes() / (1024 * 1024) << " MiB\n";
+  if (size.renumbered_force_fields > 0) {
+    out << size.renumbered_force_fields
+        << " force field(s) keep the points in an order of their own (the mesh's numbering is scattered)\n";
+  }
 }
 
 }  // namespace fastcorot::cli

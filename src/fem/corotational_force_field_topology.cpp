@@ -74,7 +74,8 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
   // Added edges, then added tetrahedra (new tetrahedra take entry 0 of per-tetrahedron lists).
   for (Index e = change.first_added_edge; e < change.first_added_edge + change.num_added_edges; ++e) {
     const Edge& edge = mesh_->edges()[static_cast<std::size_t>(e)];
-    edge_slot_.push_back(place_edge({std::min(edge[0], edge[1]), std::max(edge[0], edge[1])}));
+    const Index a = internal(edge[0]), b = internal(edge[1]);
+    edge_slot_.push_back(place_edge({std::min(a, b), std::max(a, b)}));
   }
   const Index first = change.first_added_tetrahedron;
   for (Index t = first; t < first + change.num_added_tetrahedra; ++t) {
@@ -115,7 +116,7 @@ Index CorotationalForceField<Real>::place_edge(const Edge& edge) {
 template <class Real>
 void CorotationalForceField<Real>::place_tetrahedron(Index t) {
   ScatterSchedule& tets = tetrahedron_schedule_;
-  auto g = static_cast<std::size_t>(tets.group_for(mesh_->tetrahedron(t)));
+  auto g = static_cast<std::size_t>(tets.group_for(internal(mesh_->tetrahedron(t))));
   if (tets.group_end[g] == tets.group_begin[g + 1]) g = static_cast<std::size_t>(tets.num_groups() - 1);
   if (tets.group_end[g] == tets.group_begin[g + 1]) {
     // The serial group is the last one: it grows at the end.

@@ -230,6 +230,28 @@ inline void add_padded_points(const Real* padded, Real* to, std::size_t begin, s
   }
 }
 
+// pad_points and add_padded_points for a force field with its own point order: point i of `from`
+// and `to` is padded point internal[i].
+template <class Real>
+inline void pad_points_renumbered(const Real* from, Real scale, const Index* internal, Real* to, Real* zeroed,
+                                  std::size_t begin, std::size_t end) {
+  using P = Packed<Real>;
+  for (std::size_t i = begin; i < end; ++i) {
+    const auto j = static_cast<std::size_t>(internal[i]);
+    store_packed(to + 4 * j, P{scale * from[3 * i], scale * from[3 * i + 1], scale * from[3 * i + 2], Real(0)});
+    store_packed(zeroed + 4 * j, P{});
+  }
+}
+
+template <class Real>
+inline void add_padded_points_renumbered(const Real* padded, const Index* internal, Real* to, std::size_t begin,
+                                         std::size_t end) {
+  for (std::size_t i = begin; i < end; ++i) {
+    const Real* from = padded + 4 * static_cast<std::size_t>(internal[i]);
+    for (std::size_t c = 0; c < 3; ++c) to[3 * i + c] += from[c];
+  }
+}
+
 // add_dforce over the edge slots [begin, end) (sorted by lower vertex u), on points padded to four
 // values: `in` holds k dx, `out` receives the sums. For the edge (u, v) with block K and
 // w = in[v] - in[u]: out[v] += K w at once, and u's share -K^T w summed along u's run, K^T w being

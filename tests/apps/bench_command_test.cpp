@@ -36,6 +36,7 @@ TEST(Bench, JsonFiguresAddUpAndDescribeTheBeam) {
   EXPECT_NEAR(figures["steps_per_second"].get<double>() * figures["seconds"].get<double>(), 4.0, 1e-9);
   EXPECT_GT(figures["force_field_bytes_per_tetrahedron"].get<double>(), 0.0);
   EXPECT_GT(figures["peak_memory_bytes"].get<double>(), figures["force_field_bytes"].get<double>());
+  EXPECT_EQ(figures["renumbered_force_fields"], 0);  // a grid's numbering is local
 }
 
 TEST(Bench, VtuFramesAreTimedAsOutput) {

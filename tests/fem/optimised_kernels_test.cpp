@@ -3,7 +3,8 @@
 // in float and double, on 1 and 2 threads; and bitwise equality of everything across thread counts.
 // The mesh is large enough (3 parts in its scatter schedule, several SIMD batches with a ragged
 // tail) for every parallel path to be taken, and its rest points are jittered so that no two
-// tetrahedra share their rest data.
+// tetrahedra share their rest data. Each check runs on the grid's own numbering and on the same mesh
+// with its points and tetrahedra shuffled, which the force field renumbers internally.
 #include "fastcorot/fem/corotational_force_field.h"
 
 #include "fastcorot/topology/regular_grid.h"
@@ -12,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numeric>
 #include <random>
 #include <tuple>
 #include <vector>
@@ -29,8 +32,8 @@ struct Case {
   Points<double> dx;  // random
 };
 
-const Case& test_case() {
-  static const Case c = [] {
+Case make_case() {
+  {
     RegularGrid grid;
     grid.n = {24, 8, 8};
     grid.min = Vec3<double>(0.0, -0.5, 0.1);
@@ -45,8 +48,38 @@ const Case& test_case() {
         testing::affine_map(out.rest, testing::random_rotation(rng), stretch, Vec3<double>(0.2, 0.1, -0.4)), 0.03, rng);
     out.dx = testing::perturbed(Points<double>(out.rest.size(), Vec3<double>::Zero()), 1.0, rng);
     return out;
-  }();
-  return c;
+  }
+}
+
+// The same mesh and configurations with the points and the tetrahedra in a random order.
+Case shuffled(const Case& c) {
+  std::mt19937 rng(11);
+  std::vector<Index> point(c.rest.size()), order(static_cast<std::size_t>(c.mesh->num_tetrahedra()));
+  std::iota(point.begin(), point.end(), Index(0));
+  std::iota(order.begin(), order.end(), Index(0));
+  std::shuffle(point.begin(), point.end(), rng);
+  std::shuffle(order.begin(), order.end(), rng);
+  Case out;
+  for (auto [from, to] : {std::pair{&c.rest, &out.rest}, std::pair{&c.x, &out.x}, std::pair{&c.dx, &out.dx}}) {
+    to->resize(from->size());
+    for (std::size_t i = 0; i < from->size(); ++i) (*to)[static_cast<std::size_t>(point[i])] = (*from)[i];
+  }
+  std::vector<Tetrahedron> tets;
+  for (const Index t : order) {
+    Tetrahedron tet = c.mesh->tetrahedron(t);
+    for (Index& v : tet) v = point[static_cast<std::size_t>(v)];
+    tets.push_back(tet);
+  }
+  out.mesh = std::make_shared<TetMesh>(c.mesh->num_points(), tets);
+  return out;
+}
+
+bool g_shuffled = false;  // which case the current test uses (set by the test fixtures)
+
+const Case& test_case() {
+  static const Case grid = make_case();
+  static const Case scattered = shuffled(grid);
+  return g_shuffled ? scattered : grid;
 }
 
 template <class Real>
@@ -142,7 +175,10 @@ Results<Real> evaluate(RotationMethod method, int threads) {
   return out;
 }
 
-class OptimisedKernels : public ::testing::TestWithParam<std::tuple<RotationMethod, int>> {};
+class OptimisedKernels : public ::testing::TestWithParam<std::tuple<RotationMethod, int, bool>> {
+ protected:
+  void SetUp() override { g_shuffled = std::get<2>(GetParam()); }
+};
 
 template <class Real>
 void check_against_reference(RotationMethod method, int threads, double tolerance) {
@@ -161,12 +197,12 @@ void check_against_reference(RotationMethod method, int threads, double toleranc
 }
 
 TEST_P(OptimisedKernels, DoubleMatchesTheReference) {
-  const auto [method, threads] = GetParam();
+  const auto [method, threads, shuffled] = GetParam();
   check_against_reference<double>(method, threads, 1e-12);
 }
 
 TEST_P(OptimisedKernels, FloatMatchesTheFloatReference) {
-  const auto [method, threads] = GetParam();
+  const auto [method, threads, shuffled] = GetParam();
   check_against_reference<float>(method, threads, 2e-5);
 }
 
@@ -188,9 +224,13 @@ void check_bitwise_across_threads(RotationMethod method, int threads) {
 class OptimisedKernelsThreads : public ::testing::TestWithParam<RotationMethod> {};
 
 TEST_P(OptimisedKernelsThreads, BitwiseTheSameOnAnyThreadCount) {
-  for (int threads : {2, 3}) {
-    check_bitwise_across_threads<double>(GetParam(), threads);
-    check_bitwise_across_threads<float>(GetParam(), threads);
+  for (const bool shuffled : {false, true}) {
+    g_shuffled = shuffled;
+    SCOPED_TRACE(shuffled ? "shuffled" : "grid order");
+    for (int threads : {2, 3}) {
+      check_bitwise_across_threads<double>(GetParam(), threads);
+      check_bitwise_across_threads<float>(GetParam(), threads);
+    }
   }
 }
 
@@ -202,14 +242,22 @@ INSTANTIATE_TEST_SUITE_P(AllMethods, OptimisedKernelsThreads,
 INSTANTIATE_TEST_SUITE_P(MethodsAndThreads, OptimisedKernels,
                          ::testing::Combine(::testing::Values(RotationMethod::qr, RotationMethod::polar,
                                                               RotationMethod::polar2, RotationMethod::none),
-                                            ::testing::Values(1, 2)),
+                                            ::testing::Values(1, 2), ::testing::Bool()),
                          [](const auto& info) {
                            return to_string(std::get<0>(info.param)) + "_" + std::to_string(std::get<1>(info.param)) +
-                                  "threads";
+                                  "threads" + (std::get<2>(info.param) ? "_shuffled" : "");
                          });
 
-// The case exercises what it is meant to: several schedule parts and groups.
-TEST(OptimisedKernels, TheTestMeshIsCutIntoSeveralParts) {
+// The cases exercise what they are meant to: several schedule parts and groups; the force field's
+// own point order for the shuffled mesh only.
+TEST(OptimisedKernels, TheTestMeshIsCutIntoSeveralPartsAndRenumberedWhenShuffled) {
+  for (const bool shuffled : {false, true}) {
+    g_shuffled = shuffled;
+    const Case& c = test_case();
+    const CorotationalForceField<double> field(c.mesh, c.rest, parameters<double>(RotationMethod::qr));
+    EXPECT_EQ(field.renumbers_points(), shuffled);
+  }
+  g_shuffled = false;
   const Case& c = test_case();
   const ScatterSchedule schedule = make_scatter_schedule<4>(c.mesh->num_points(), c.mesh->tetrahedra());
   EXPECT_GE(schedule.parts, 4);

@@ -125,6 +125,10 @@ class CorotationalForceField {
   // padded points once it has run), not counting the shared mesh.
   std::size_t memory_bytes() const;
 
+  // Whether the force field keeps the points in an order of its own, because the mesh's numbering
+  // is scattered (docs/performance.md); results are the same up to rounding either way.
+  bool renumbers_points() const { return !internal_point_.empty(); }
+
  private:
   void rebuild();
   template <bool kRefresh>
@@ -137,6 +141,8 @@ class CorotationalForceField {
   Index place_edge(const Edge& edge);
   bool schedules_degraded() const;
   void check_size(std::span<const Vec3<Real>> v, const char* what) const;
+  void pad(const Real* from, Real scale, Real* to, Real* zeroed) const;
+  void unpad(const Real* padded, Real* to, std::size_t n) const;
   TetrahedronRest<Real> element_rest(Index t) const;
 
   std::shared_ptr<TetMesh> mesh_;
@@ -182,6 +188,24 @@ class CorotationalForceField {
   mutable std::vector<PaddedPoint> packed_in_, packed_out_;
   Mat3<Real> block(Index slot) const;
   std::vector<Vec3<Real>> last_positions_;  // x of the last add_force (empty before the first)
+
+  // The force field's own point numbering: when the mesh's numbering is scattered (its edges'
+  // points 8 times as far apart on average as in a reverse Cuthill–McKee order), the padded points,
+  // the edge slots and the schedules follow that order instead, so that an element's points sit
+  // close together in memory; empty when the mesh's own numbering serves. Chosen at construction.
+  std::vector<Index> internal_point_;  // internal index of each mesh point
+  std::vector<Index> mesh_point_;      // mesh point of each internal index
+  void choose_point_order();
+  Index internal(Index point) const {
+    return internal_point_.empty() ? point : internal_point_[static_cast<std::size_t>(point)];
+  }
+  Index mesh_point(Index point) const {
+    return mesh_point_.empty() ? point : mesh_point_[static_cast<std::size_t>(point)];
+  }
+  Tetrahedron internal(const Tetrahedron& tet) const {
+    return {internal(tet[0]), internal(tet[1]), internal(tet[2]), internal(tet[3])};
+  }
+
 };
 
 }  // namespace fastcorot
