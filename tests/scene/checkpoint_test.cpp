@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -135,24 +136,34 @@ TEST(Checkpoint, AResumedRunIsBitwiseTheUninterruptedOne) {
   }
 }
 
+// Runs the scene to step `last` uninterrupted and, from a checkpoint after step `at`, resumed: the
+// same bits. Then again from the checkpoint with the linear solver's carried state spoilt by
+// `forget`, which must leave the uninterrupted trajectory (so the carried state is what matters).
+void expect_carried_state_matters(const SceneText& s, long at, long last, const std::string& name,
+                                  const std::function<void(Simulation<double>&)>& forget) {
+  Simulation<double> uninterrupted = build(s);
+  run_to(uninterrupted, last);
+  const fs::path path = checkpoint_at(at, name, s);
+  Simulation<double> resumed = build(s);
+  restore_checkpoint(path, resumed);
+  run_to(resumed, last);
+  expect_same_state(resumed, uninterrupted);
+  Simulation<double> forgetful = build(s);
+  restore_checkpoint(path, forgetful);
+  forget(forgetful);
+  run_to(forgetful, last);
+  EXPECT_NE(flatten(forgetful.objects[0].system.state.position),
+            flatten(uninterrupted.objects[0].system.state.position));
+}
+
 TEST(Checkpoint, TheCarriedSolverStateIsWhatMakesItBitwise) {
   // With tolerance 1, the CG iterates only on the first solve of its instance; a resumed run that
   // forgot the solve count would iterate once more and leave the uninterrupted trajectory.
   SceneText s;
   s.cg_tolerance = "1";
-  Simulation<double> uninterrupted = build(s);
-  run_to(uninterrupted, 6);
-  const fs::path path = checkpoint_at(3, "carried.ckpt", s);
-  Simulation<double> resumed = build(s);
-  restore_checkpoint(path, resumed);
-  Simulation<double> forgetful = build(s);
-  restore_checkpoint(path, forgetful);
-  forgetful.objects[0].linear_solver->restore_carried_state({0});
-  run_to(resumed, 6);
-  run_to(forgetful, 6);
-  expect_same_state(resumed, uninterrupted);
-  EXPECT_NE(flatten(forgetful.objects[0].system.state.position),
-            flatten(uninterrupted.objects[0].system.state.position));
+  expect_carried_state_matters(s, 3, 6, "carried.ckpt", [](Simulation<double>& forgetful) {
+    forgetful.objects[0].linear_solver->restore_carried_state({0});
+  });
 }
 
 TEST(Checkpoint, APreconditionedSolverResumesFromItsPreviousSolutionAndBlocks) {
@@ -161,22 +172,12 @@ TEST(Checkpoint, APreconditionedSolverResumesFromItsPreviousSolutionAndBlocks) {
   SceneText s;
   s.solver = R"(<PCGLinearSolver iterations="4" tolerance="1e-30" preconditioner="@P" update_step="2"/>
     <BlockJacobiPreconditioner name="P"/>)";
-  Simulation<double> uninterrupted = build(s);
-  run_to(uninterrupted, 6);
-  const fs::path path = checkpoint_at(3, "pcg.ckpt", s);
-  Simulation<double> resumed = build(s);
-  restore_checkpoint(path, resumed);
-  run_to(resumed, 6);
-  expect_same_state(resumed, uninterrupted);
-  // Forgetting the previous solution (and the blocks) changes the trajectory.
-  Simulation<double> forgetful = build(s);
-  restore_checkpoint(path, forgetful);
-  auto state = forgetful.objects[0].linear_solver->carried_state();
-  std::fill(state.begin() + 1, state.end(), 0);
-  forgetful.objects[0].linear_solver->restore_carried_state(state);
-  run_to(forgetful, 6);
-  EXPECT_NE(flatten(forgetful.objects[0].system.state.position),
-            flatten(uninterrupted.objects[0].system.state.position));
+  expect_carried_state_matters(s, 3, 6, "pcg.ckpt", [](Simulation<double>& forgetful) {
+    // The previous solution and the blocks zeroed.
+    auto state = forgetful.objects[0].linear_solver->carried_state();
+    std::fill(state.begin() + 1, state.end(), 0);
+    forgetful.objects[0].linear_solver->restore_carried_state(state);
+  });
 }
 
 TEST(Checkpoint, ASparseDirectPreconditionerResumesFromTheMatrixItFactorised) {
@@ -185,21 +186,11 @@ TEST(Checkpoint, ASparseDirectPreconditionerResumesFromTheMatrixItFactorised) {
   SceneText s;
   s.solver = R"(<PCGLinearSolver iterations="3" tolerance="1e-30" preconditioner="@L" update_step="3"/>
     <SparseLDLSolver name="L"/>)";
-  Simulation<double> uninterrupted = build(s);
-  run_to(uninterrupted, 7);
-  const fs::path path = checkpoint_at(4, "pcg_ldl.ckpt", s);
-  Simulation<double> resumed = build(s);
-  restore_checkpoint(path, resumed);
-  run_to(resumed, 7);
-  expect_same_state(resumed, uninterrupted);
-  // A solver that starts afresh at step 4 (factorising step 4's matrix, from a zero start) differs.
-  Simulation<double> forgetful = build(s);
-  restore_checkpoint(path, forgetful);
-  Simulation<double> fresh = build(s);
-  forgetful.objects[0].linear_solver = std::move(fresh.objects[0].linear_solver);
-  run_to(forgetful, 7);
-  EXPECT_NE(flatten(forgetful.objects[0].system.state.position),
-            flatten(uninterrupted.objects[0].system.state.position));
+  expect_carried_state_matters(s, 4, 7, "pcg_ldl.ckpt", [&](Simulation<double>& forgetful) {
+    // A solver starting afresh at step 4 (factorising step 4's matrix, from a zero start).
+    Simulation<double> fresh = build(s);
+    forgetful.objects[0].linear_solver = std::move(fresh.objects[0].linear_solver);
+  });
 }
 
 TEST(Checkpoint, EveryFlippedByteIsRefused) {
