@@ -168,11 +168,7 @@ void CorotationalForceField<Real>::rebuild() {
   const auto edges = mesh_->edges();
   std::vector<Index> by_vertex(edges.size());
   std::iota(by_vertex.begin(), by_vertex.end(), Index(0));
-  const auto ordered = [&](Index e) {
-    const Edge& edge = edges[static_cast<std::size_t>(e)];
-    const Index a = internal(edge[0]), b = internal(edge[1]);
-    return Edge{std::min(a, b), std::max(a, b)};
-  };
+  const auto ordered = [&](Index e) { return slot_edge(edges[static_cast<std::size_t>(e)]); };
   std::sort(by_vertex.begin(), by_vertex.end(), [&](Index a, Index b) { return ordered(a) < ordered(b); });
   std::vector<Edge> sorted(edges.size());
   for (std::size_t i = 0; i < sorted.size(); ++i) sorted[i] = ordered(by_vertex[i]);
@@ -240,7 +236,8 @@ void CorotationalForceField<Real>::pad(const Real* from, Real scale, Real* to, R
 }
 
 template <class Real>
-void CorotationalForceField<Real>::unpad(const Real* padded, Real* to, std::size_t n) const {
+void CorotationalForceField<Real>::unpad(const Real* padded, Real* to) const {
+  const std::size_t n = static_cast<std::size_t>(mesh_->num_points());
   const Index* order = internal_point_.data();
   parallel_ranges(threads_, n, [=](std::size_t begin, std::size_t end) {
     if (order) {
@@ -413,7 +410,7 @@ void CorotationalForceField<Real>::accumulate_force(std::span<const Vec3<Real>> 
       }
     }
   });
-  unpad(padded_f, fs, n);
+  unpad(padded_f, fs);
 }
 
 template <class Real>
@@ -436,7 +433,7 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
                             static_cast<std::size_t>(end));
   });
   Real* df_values = df.data()->data();
-  unpad(out, df_values, n);
+  unpad(out, df_values);
 }
 
 template <class Real>

@@ -73,9 +73,7 @@ void CorotationalForceField<Real>::apply(const TopologyChange& change) {
 
   // Added edges, then added tetrahedra (new tetrahedra take entry 0 of per-tetrahedron lists).
   for (Index e = change.first_added_edge; e < change.first_added_edge + change.num_added_edges; ++e) {
-    const Edge& edge = mesh_->edges()[static_cast<std::size_t>(e)];
-    const Index a = internal(edge[0]), b = internal(edge[1]);
-    edge_slot_.push_back(place_edge({std::min(a, b), std::max(a, b)}));
+    edge_slot_.push_back(place_edge(slot_edge(mesh_->edges()[static_cast<std::size_t>(e)])));
   }
   const Index first = change.first_added_tetrahedron;
   for (Index t = first; t < first + change.num_added_tetrahedra; ++t) {

@@ -149,12 +149,7 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   Real* xs = flat<Real>(x);
   const Real* inverse = inverse_.empty() ? nullptr : inverse_.data()->data();  // nine values per point, column-major
   const Preconditioner kind = parameters_.preconditioner;
-  // The direct preconditioner solves for the whole vector at once, between the pass that updates r
-  // and the one that sums r . z; the others apply P point by point within that pass.
   const bool direct = kind == Preconditioner::sparse_ldlt;
-  const auto solve_direct = [&](Real* z) {
-    if (direct) factorisation_.solve(r, z, static_cast<Index>(3 * n));
-  };
   // z = P r for the points [begin, end) (already done for the direct preconditioner), returning
   // sum r . z over them: one partial sum per axis (three chains of additions instead of one), in
   // point order, then x + y + z.
@@ -186,23 +181,30 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
     }
     return (sum_x + sum_y) + sum_z;
   };
+  // Runs `pass` (which sets r) over the points, then z = P r, returning r . z: one pass per chunk of
+  // points for the point-wise preconditioners; the direct one solves for the whole vector between
+  // the pass and the sum.
+  const auto update_and_precondition = [&](const auto& pass, Real* z) {
+    if (direct) {
+      parallel_ranges(threads, n, pass);
+      factorisation_.solve(r, z, static_cast<Index>(3 * n));
+    }
+    return parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
+      if (!direct) pass(begin, end);
+      return precondition_points(z, begin, end);
+    });
+  };
   Real b_norm = 0, rho = 0;
   {
     const PhaseTimer timer(vector_time);
     b_norm = parallel_sum<Real>(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
       return dot_range(b, b, begin, end);
     });
-    const auto residual = [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = 3 * begin; i < 3 * end; ++i) r[i] = b[i] - q[i];
-    };
-    if (direct) {
-      parallel_ranges(threads, n, residual);
-      solve_direct(w);
-    }
-    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
-      if (!direct) residual(begin, end);
-      return precondition_points(w, begin, end);
-    });
+    rho = update_and_precondition(
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t i = 3 * begin; i < 3 * end; ++i) r[i] = b[i] - q[i];
+        },
+        w);
   }
   const Real tolerance = parameters_.tolerance * b_norm;
   LinearSolveReport report;
@@ -216,20 +218,14 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
     if (den == 0 || !std::isfinite(den)) break;
     const Real alpha = rho / den;
     const Real rho_previous = rho;
-    const auto update = [&](std::size_t begin, std::size_t end) {
-      for (std::size_t i = 3 * begin; i < 3 * end; ++i) {
-        xs[i] += alpha * w[i];
-        r[i] -= alpha * q[i];
-      }
-    };
-    if (direct) {
-      parallel_ranges(threads, n, update);
-      solve_direct(s);
-    }
-    rho = parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
-      if (!direct) update(begin, end);
-      return precondition_points(s, begin, end);
-    });
+    rho = update_and_precondition(
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t i = 3 * begin; i < 3 * end; ++i) {
+            xs[i] += alpha * w[i];
+            r[i] -= alpha * q[i];
+          }
+        },
+        s);
     const Real beta = rho / rho_previous;
     parallel_ranges(threads, 3 * n, [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i) w[i] = s[i] + beta * w[i];

@@ -27,6 +27,7 @@
 
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -142,7 +143,7 @@ class CorotationalForceField {
   bool schedules_degraded() const;
   void check_size(std::span<const Vec3<Real>> v, const char* what) const;
   void pad(const Real* from, Real scale, Real* to, Real* zeroed) const;
-  void unpad(const Real* padded, Real* to, std::size_t n) const;
+  void unpad(const Real* padded, Real* to) const;
   TetrahedronRest<Real> element_rest(Index t) const;
 
   std::shared_ptr<TetMesh> mesh_;
@@ -205,7 +206,11 @@ class CorotationalForceField {
   Tetrahedron internal(const Tetrahedron& tet) const {
     return {internal(tet[0]), internal(tet[1]), internal(tet[2]), internal(tet[3])};
   }
-
+  // A mesh edge as its slot holds it: internal numbers, the lower first.
+  Edge slot_edge(const Edge& edge) const {
+    const Index a = internal(edge[0]), b = internal(edge[1]);
+    return {std::min(a, b), std::max(a, b)};
+  }
 };
 
 }  // namespace fastcorot
