@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 namespace fastcorot::kernels {
 
@@ -169,35 +170,35 @@ inline void edge_diagonals(ElementBatch<Real>& b) {
 
 // Adds lane l's six edge blocks into the block array: the block of local edge e, oriented from its
 // lower vertex u to its higher one v (from k to m unless swap[e]), at entry[e] (nine values,
-// column-major): lambda r_v r_u^T + mu r_u r_v^T + mu (s~_k . s~_m) I. The first eight values are
-// two Packed sums of permuted rotated shape vectors, the ninth is the batch's corner.
+// column-major): lambda r_v r_u^T + mu r_u r_v^T + mu (s~_k . s~_m) I. Entries 0..7 are one sum of
+// eight-value products of permuted rotated shape vectors (an AVX-512 register in double, AVX in
+// float), entry 8 is the batch's corner.
 template <class Real>
 inline void add_edge_blocks(const ElementBatch<Real>& b, int l, Real* const (&entry)[6], const bool (&swap)[6]) {
-  using P = Packed<Real>;
-  // With r = (x, y, z): entries 0..3 are lambda (v_x, v_y, v_z, v_x) * (u_x, u_x, u_x, u_y) +
-  // mu (u_x, u_y, u_z, u_x) * (v_x, v_x, v_x, v_y), and entries 4..7 the same with (y, z, x, y)
-  // and (y, y, z, z).
-  P lambda_a[4], mu_a[4], col_a[4], lambda_b[4], mu_b[4], col_b[4];
-  const P lambda = broadcast(b.lambda[l]), mu = broadcast(b.mu[l]);
+  typedef Real Eight __attribute__((vector_size(8 * sizeof(Real))));
+  // With r = (x, y, z), entry i + 3 j (i, j < 3) is lambda v_i u_j + mu u_i v_j: the eight first
+  // are lambda (v_x, v_y, v_z, v_x, v_y, v_z, v_x, v_y) * (u_x, u_x, u_x, u_y, u_y, u_y, u_z, u_z)
+  // + mu (u_x, u_y, ...) * (v_x, v_x, ...).
+  Eight lambda_rows[4], mu_rows[4], columns[4];
   for (int j = 0; j < 4; ++j) {
-    const P r = {b.r[j][0][l], b.r[j][1][l], b.r[j][2][l], Real(0)};
-    const P a = permute<0, 1, 2, 0>(r), c = permute<1, 2, 0, 1>(r);
-    lambda_a[j] = lambda * a;
-    mu_a[j] = mu * a;
-    col_a[j] = permute<0, 0, 0, 1>(r);
-    lambda_b[j] = lambda * c;
-    mu_b[j] = mu * c;
-    col_b[j] = permute<1, 1, 2, 2>(r);
+    const Real x = b.r[j][0][l], y = b.r[j][1][l], z = b.r[j][2][l];
+    const Eight rows = {x, y, z, x, y, z, x, y};
+    lambda_rows[j] = b.lambda[l] * rows;
+    mu_rows[j] = b.mu[l] * rows;
+    columns[j] = Eight{x, x, x, y, y, y, z, z};
   }
   for (int e = 0; e < 6; ++e) {
     const int k = kTetrahedronEdges[static_cast<std::size_t>(e)][0];
     const int m = kTetrahedronEdges[static_cast<std::size_t>(e)][1];
     const int u = swap[e] ? m : k, v = swap[e] ? k : m;
-    const P diagonal = {b.diagonal[e][l], Real(0), Real(0), Real(0)};
+    const Real d = b.diagonal[e][l];
+    const Eight diagonal = {d, 0, 0, 0, d, 0, 0, 0};
     Real* to = entry[e];
+    Eight sum;
+    std::memcpy(&sum, to, sizeof sum);
     // (Grouped so that both products fuse into multiply-adds.)
-    store_packed(to, load_packed(to) + (lambda_a[v] * col_a[u] + (mu_a[u] * col_a[v] + diagonal)));
-    store_packed(to + 4, load_packed(to + 4) + (lambda_b[v] * col_b[u] + (mu_b[u] * col_b[v] + diagonal)));
+    sum += lambda_rows[v] * columns[u] + (mu_rows[u] * columns[v] + diagonal);
+    std::memcpy(to, &sum, sizeof sum);
     to[8] += b.corner[e][l];
   }
 }
