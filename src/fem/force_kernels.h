@@ -171,8 +171,8 @@ inline void edge_diagonals(ElementBatch<Real>& b) {
 // Adds lane l's six edge blocks into the block array: the block of local edge e, oriented from its
 // lower vertex u to its higher one v (from k to m unless swap[e]), at entry[e] (nine values,
 // column-major): lambda r_v r_u^T + mu r_u r_v^T + mu (s~_k . s~_m) I. Entries 0..7 are one sum of
-// eight-value products of permuted rotated shape vectors (an AVX-512 register in double, AVX in
-// float), entry 8 is the batch's corner.
+// eight-value products of permuted rotated shape vectors (in double one AVX-512 register, or two
+// AVX2 halves on CPUs without it; in float one AVX register), entry 8 is the batch's corner.
 template <class Real>
 inline void add_edge_blocks(const ElementBatch<Real>& b, int l, Real* const (&entry)[6], const bool (&swap)[6]) {
   typedef Real Eight __attribute__((vector_size(8 * sizeof(Real))));
