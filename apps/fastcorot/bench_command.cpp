@@ -5,6 +5,7 @@
 #include "run_command.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/machine.h"
 #include "fastcorot/core/phase_times.h"
 #include "fastcorot/scene/mesh_file.h"
 #include "fastcorot/scene/scene_builder.h"
@@ -151,7 +152,10 @@ void bench(const BenchOptions& options, std::ostream& out) {
                    {"force_field_bytes_per_tetrahedron",
                     size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0},
                    {"renumbered_force_fields", size.renumbered_force_fields},
-                   {"peak_memory_bytes", peak_memory_bytes()}};
+                   {"peak_memory_bytes", peak_memory_bytes()},
+                   {"cpu", cpu_model()},
+                   {"cpu_vector_instructions", cpu_vector_instructions()},
+                   {"build_vector_instructions", build_vector_instructions()}};
     out << result.dump(2) << '\n';
     return;
   }
@@ -175,6 +179,9 @@ void bench(const BenchOptions& options, std::ostream& out) {
   out << std::setprecision(0) << "force field memory " << size.force_field_bytes / 1024 << " KiB ("
       << (size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0)
       << " bytes per tetrahedron); peak process memory " << peak_memory_bytes() / (1024 * 1024) << " MiB\n";
+  const std::string cpu = cpu_model();
+  out << "machine: " << (cpu.empty() ? "CPU model unknown" : cpu) << ", vector instructions "
+      << cpu_vector_instructions() << "; the build uses " << build_vector_instructions() << '\n';
   if (size.renumbered_force_fields > 0) {
     out << size.renumbered_force_fields
         << " force field(s) keep the points in an order of their own (the mesh's numbering is scattered)\n";

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace fastcorot {
 namespace {
@@ -37,6 +40,19 @@ TEST(Bench, JsonFiguresAddUpAndDescribeTheBeam) {
   EXPECT_GT(figures["force_field_bytes_per_tetrahedron"].get<double>(), 0.0);
   EXPECT_GT(figures["peak_memory_bytes"].get<double>(), figures["force_field_bytes"].get<double>());
   EXPECT_EQ(figures["renumbered_force_fields"], 0);  // a grid's numbering is local
+  // The machine beside the figures: the build's vector instructions run on this CPU, so they are
+  // among the CPU's (the sets are ordered by width).
+  const std::vector<std::string> widths = {"none", "SSE2", "AVX2", "AVX-512"};
+  const auto rank = [&](const json& name) {
+    return std::find(widths.begin(), widths.end(), name.get<std::string>()) - widths.begin();
+  };
+  ASSERT_LT(rank(figures["build_vector_instructions"]), 4) << figures["build_vector_instructions"];
+  ASSERT_LT(rank(figures["cpu_vector_instructions"]), 4) << figures["cpu_vector_instructions"];
+  EXPECT_LE(rank(figures["build_vector_instructions"]), rank(figures["cpu_vector_instructions"]));
+#if defined(__x86_64__)
+  EXPECT_NE(figures["build_vector_instructions"], "none");  // x86-64 has SSE2 at least
+#endif
+  EXPECT_TRUE(figures["cpu"].is_string());
 }
 
 TEST(Bench, VtuFramesAreTimedAsOutput) {
@@ -52,7 +68,7 @@ TEST(Bench, TextReportNamesEveryPhase) {
   const auto result = run_fastcorot("bench --beam 5x2x2 --steps 2");
   ASSERT_EQ(result.status, 0) << result.output;
   for (const char* phase : {"steps/s", "add_force", "stiffness refresh", "matrix-vector", "solver vectors",
-                            "mass/constraints", "output", "bytes per tetrahedron"}) {
+                            "mass/constraints", "output", "bytes per tetrahedron", "vector instructions"}) {
     EXPECT_NE(result.output.find(phase), std::string::npos) << phase << " in\n" << result.output;
   }
 }
