@@ -429,8 +429,13 @@ void CorotationalForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, st
   const Real* dx_values = dx.data()->data();
   pad(dx_values, k, in, out);
   run_schedule(edge_schedule_, threads_, [&](Index begin, Index end) {
-    kernels::add_edge_terms(in, out, blocks_.data(), edge_vertices_.data(), static_cast<std::size_t>(begin),
-                            static_cast<std::size_t>(end));
+    if constexpr (kernels::kEdgesInPairs) {
+      kernels::add_edge_terms_in_pairs(in, out, blocks_.data(), edge_vertices_.data(), static_cast<std::size_t>(begin),
+                                       static_cast<std::size_t>(end));
+    } else {
+      kernels::add_edge_terms(in, out, blocks_.data(), edge_vertices_.data(), static_cast<std::size_t>(begin),
+                              static_cast<std::size_t>(end));
+    }
   });
   Real* df_values = df.data()->data();
   unpad(out, df_values);
