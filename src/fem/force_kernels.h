@@ -253,6 +253,24 @@ inline void add_padded_points_renumbered(const Real* padded, const Index* intern
   }
 }
 
+// One edge (u, v) in slot `slot` of add_dforce's loops: out[v] += K w with w = in[v] - x_u, and the
+// lane-wise products of K's columns with w added to u's running sums t0..t2.
+template <class Real>
+[[gnu::always_inline]] inline void add_edge_term(const Real* __restrict in, Real* __restrict out,
+                                                 const Real* __restrict blocks, std::size_t v, std::size_t slot,
+                                                 const Packed<Real>& x_u, Packed<Real>& t0, Packed<Real>& t1,
+                                                 Packed<Real>& t2) {
+  using P = Packed<Real>;
+  const P w = load_packed(in + 4 * v) - x_u;
+  const Real* block = blocks + 9 * slot;
+  const P c0 = load_packed(block), c1 = load_packed(block + 3), c2 = load_packed(block + 6);
+  store_packed(out + 4 * v,
+               load_packed(out + 4 * v) + (c0 * broadcast(w[0]) + c1 * broadcast(w[1]) + c2 * broadcast(w[2])));
+  t0 += c0 * w;
+  t1 += c1 * w;
+  t2 += c2 * w;
+}
+
 // add_dforce over the edge slots [begin, end) (sorted by lower vertex u), on points padded to four
 // values: `in` holds k dx, `out` receives the sums. For the edge (u, v) with block K and
 // w = in[v] - in[u]: out[v] += K w at once, and u's share -K^T w summed along u's run, K^T w being
@@ -268,15 +286,7 @@ template <class Real, class Pair>
     const P x_u = load_packed(in + 4 * u);
     P t0{}, t1{}, t2{};
     do {
-      const auto v = static_cast<std::size_t>(vertices[slot][1]);
-      const P w = load_packed(in + 4 * v) - x_u;
-      const Real* block = blocks + 9 * slot;
-      const P c0 = load_packed(block), c1 = load_packed(block + 3), c2 = load_packed(block + 6);
-      const P sum = load_packed(out + 4 * v) + (c0 * broadcast(w[0]) + c1 * broadcast(w[1]) + c2 * broadcast(w[2]));
-      store_packed(out + 4 * v, sum);
-      t0 += c0 * w;
-      t1 += c1 * w;
-      t2 += c2 * w;
+      add_edge_term(in, out, blocks, static_cast<std::size_t>(vertices[slot][1]), slot, x_u, t0, t1, t2);
       ++slot;
     } while (slot < end && static_cast<std::size_t>(vertices[slot][0]) == u);
     const P share = {t0[0] + t0[1] + t0[2], t1[0] + t1[1] + t1[2], t2[0] + t2[1] + t2[2], Real(0)};
@@ -334,15 +344,7 @@ template <class Real, class Pair>
     P s1 = __builtin_shufflevector(t1, t1, 0, 1, 2, 3) + __builtin_shufflevector(t1, t1, 4, 5, 6, 7);
     P s2 = __builtin_shufflevector(t2, t2, 0, 1, 2, 3) + __builtin_shufflevector(t2, t2, 4, 5, 6, 7);
     if (slot < end && static_cast<std::size_t>(vertices[slot][0]) == u) {  // a run's last, odd edge
-      const auto v = static_cast<std::size_t>(vertices[slot][1]);
-      const P w = load_packed(in + 4 * v) - x_u;
-      const Real* block = blocks + 9 * slot;
-      const P c0 = load_packed(block), c1 = load_packed(block + 3), c2 = load_packed(block + 6);
-      store_packed(out + 4 * v,
-                   load_packed(out + 4 * v) + (c0 * broadcast(w[0]) + c1 * broadcast(w[1]) + c2 * broadcast(w[2])));
-      s0 += c0 * w;
-      s1 += c1 * w;
-      s2 += c2 * w;
+      add_edge_term(in, out, blocks, static_cast<std::size_t>(vertices[slot][1]), slot, x_u, s0, s1, s2);
       ++slot;
     }
     const P share = {s0[0] + s0[1] + s0[2], s1[0] + s1[1] + s1[2], s2[0] + s2[1] + s2[2], Real(0)};
