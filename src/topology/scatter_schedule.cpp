@@ -59,6 +59,24 @@ ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::arr
   return schedule;
 }
 
+bool ScatterSchedule::has_first_and_last_points() const {
+  const auto serial = static_cast<std::size_t>(phase_begin[2]);
+  return parts >= 2 && parts % 2 == 0 && group_end[serial] == group_begin[serial];
+}
+
+// Groups of phase 0 are those of parts 0, 2, 4, ..., then phase 1's of parts 1, 3, 5, ...
+std::array<Index, 2> ScatterSchedule::first_points(Index group) const {
+  if (group < phase_begin[0] || group >= phase_begin[1]) return {0, 0};
+  const Index p = 2 * (group - phase_begin[0]);
+  return {part_begin[static_cast<std::size_t>(p)], part_begin[static_cast<std::size_t>(p + 2)]};
+}
+
+std::array<Index, 2> ScatterSchedule::last_points(Index group) const {
+  if (group < phase_begin[1] || group >= phase_begin[2]) return {0, 0};
+  const Index p = 2 * (group - phase_begin[1]) + 1;
+  return {part_begin[static_cast<std::size_t>(p == 1 ? 0 : p)], part_begin[static_cast<std::size_t>(std::min(p + 2, parts))]};
+}
+
 Index ScatterSchedule::group_at(Index position) const {
   const auto it = std::upper_bound(group_begin.begin(), group_begin.end() - 1, position);
   return static_cast<Index>(it - group_begin.begin()) - 1;

@@ -53,6 +53,62 @@ void check_schedule(Index num_points, std::span<const std::array<Index, K>> item
   }
 }
 
+// first_points / last_points: every point in one group's first range and one group's last range;
+// the group whose first range holds a point runs before every other group that touches the point
+// (in an earlier phase), the group whose last range holds it after every other (a later phase).
+template <std::size_t K>
+void check_first_and_last_points(Index num_points, std::span<const std::array<Index, K>> items,
+                                 const ScatterSchedule& s) {
+  ASSERT_TRUE(s.has_first_and_last_points());
+  const auto phase_of = [&](Index g) { return g < s.phase_begin[1] ? 0 : g < s.phase_begin[2] ? 1 : 2; };
+  std::vector<Index> first(static_cast<std::size_t>(num_points), -1), last = first;
+  for (Index g = 0; g < s.num_groups(); ++g) {
+    for (auto [ranges, owner] : {std::pair{s.first_points(g), &first}, std::pair{s.last_points(g), &last}}) {
+      for (Index v = ranges[0]; v < ranges[1]; ++v) {
+        auto& o = (*owner)[static_cast<std::size_t>(v)];
+        EXPECT_EQ(o, -1) << "point " << v << " in the ranges of groups " << o << " and " << g;
+        o = g;
+      }
+    }
+  }
+  for (Index v = 0; v < num_points; ++v) {
+    ASSERT_NE(first[static_cast<std::size_t>(v)], -1) << "point " << v << " in no first range";
+    ASSERT_NE(last[static_cast<std::size_t>(v)], -1) << "point " << v << " in no last range";
+  }
+  for (Index g = 0; g < s.num_groups(); ++g) {
+    for (Index i = s.group_begin[g]; i < s.group_end[g]; ++i) {
+      for (Index v : items[static_cast<std::size_t>(s.order[i])]) {
+        const Index f = first[static_cast<std::size_t>(v)], l = last[static_cast<std::size_t>(v)];
+        if (f != g) EXPECT_LT(phase_of(f), phase_of(g)) << "point " << v << ", group " << g << ", first " << f;
+        if (l != g) EXPECT_GT(phase_of(l), phase_of(g)) << "point " << v << ", group " << g << ", last " << l;
+      }
+    }
+  }
+}
+
+TEST(ScatterSchedule, FirstAndLastPointsComeBeforeAndAfterEveryOtherGroup) {
+  RegularGrid grid;
+  grid.n = {40, 10, 10};
+  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const auto tets = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
+  EXPECT_EQ(tets.parts, 8);
+  check_first_and_last_points<4>(mesh.num_points(), mesh.tetrahedra(), tets);
+  const auto edges = make_scatter_schedule<2>(mesh.num_points(), mesh.edges());
+  check_first_and_last_points<2>(mesh.num_points(), mesh.edges(), edges);
+  // Two parts: part 1's group is the last to touch both.
+  std::vector<std::array<Index, 2>> chain;
+  for (Index i = 0; i + 5 < 600; ++i) chain.push_back({i, i + 5});
+  const auto two = make_scatter_schedule<2>(600, std::span<const std::array<Index, 2>>(chain));
+  ASSERT_EQ(two.parts, 2);
+  check_first_and_last_points<2>(600, std::span<const std::array<Index, 2>>(chain), two);
+  // Not for one part, nor once the serial group holds an item.
+  const std::vector<std::array<Index, 2>> few = {{0, 1}, {1, 2}, {0, 2}};
+  EXPECT_FALSE(make_scatter_schedule<2>(3, std::span<const std::array<Index, 2>>(few)).has_first_and_last_points());
+  ScatterSchedule grown = edges;
+  grown.group_end.back() += 1;
+  EXPECT_FALSE(grown.has_first_and_last_points());
+}
+
 TEST(ScatterSchedule, GridTetrahedraAndEdges) {
   RegularGrid grid;
   grid.n = {10, 6, 40};  // z slowest

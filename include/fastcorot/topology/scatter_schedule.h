@@ -46,6 +46,16 @@ struct ScatterSchedule {
   // The group an item over these points belongs to.
   template <std::size_t K>
   Index group_for(const std::array<Index, K>& item) const;
+
+  // With an even number of parts and nothing in the serial group, a loop over the schedule can do
+  // work per point just before a point's first item and just after its last: the group of even
+  // part p runs before any other group touches parts p and p + 1 (first_points), and the group of
+  // odd part p after every other group that touches parts p and p + 1, and part 0 for p = 1
+  // (last_points). Each point is in one group's first_points and one group's last_points; the
+  // ranges [begin, end) of points are empty for the other groups.
+  bool has_first_and_last_points() const;
+  std::array<Index, 2> first_points(Index group) const;
+  std::array<Index, 2> last_points(Index group) const;
 };
 
 // The least number of points of a part, unless asked otherwise.
@@ -63,6 +73,10 @@ ScatterSchedule make_scatter_schedule(Index num_points, std::span<const std::arr
 // schedule.order: phases in order, the groups of a phase on up to `threads` threads.
 template <class Body>
 void run_schedule(const ScatterSchedule& schedule, int threads, const Body& body);
+
+// The same with body(group) for every group.
+template <class Body>
+void run_schedule_groups(const ScatterSchedule& schedule, int threads, const Body& body);
 
 }  // namespace fastcorot
 
@@ -83,15 +97,20 @@ Index ScatterSchedule::group_for(const std::array<Index, K>& item) const {
 }
 
 template <class Body>
-void run_schedule(const ScatterSchedule& schedule, int threads, const Body& body) {
+void run_schedule_groups(const ScatterSchedule& schedule, int threads, const Body& body) {
   for (int phase = 0; phase < ScatterSchedule::kPhases; ++phase) {
     const Index first = schedule.phase_begin[static_cast<std::size_t>(phase)];
     const Index last = schedule.phase_begin[static_cast<std::size_t>(phase) + 1];
-    run_tasks(threads, static_cast<int>(last - first), [&](int task) {
-      const auto g = static_cast<std::size_t>(first + task);
-      body(schedule.group_begin[g], schedule.group_end[g]);
-    });
+    run_tasks(threads, static_cast<int>(last - first), [&](int task) { body(first + task); });
   }
+}
+
+template <class Body>
+void run_schedule(const ScatterSchedule& schedule, int threads, const Body& body) {
+  run_schedule_groups(schedule, threads, [&](Index group) {
+    const auto g = static_cast<std::size_t>(group);
+    body(schedule.group_begin[g], schedule.group_end[g]);
+  });
 }
 
 }  // namespace fastcorot
