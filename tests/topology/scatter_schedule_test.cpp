@@ -53,6 +53,16 @@ void check_schedule(Index num_points, std::span<const std::array<Index, K>> item
   }
 }
 
+// The 40 × 10 × 10 benchmark beam's mesh.
+const TetMesh& benchmark_beam() {
+  static const TetMesh mesh = [] {
+    RegularGrid grid;
+    grid.n = {40, 10, 10};
+    return TetMesh(grid.num_points(), grid_tetrahedra(grid, true));
+  }();
+  return mesh;
+}
+
 // first_points / last_points: every point in one group's first range and one group's last range;
 // the group whose first range holds a point runs before every other group that touches the point
 // (in an earlier phase), the group whose last range holds it after every other (a later phase).
@@ -87,9 +97,7 @@ void check_first_and_last_points(Index num_points, std::span<const std::array<In
 }
 
 TEST(ScatterSchedule, FirstAndLastPointsComeBeforeAndAfterEveryOtherGroup) {
-  RegularGrid grid;
-  grid.n = {40, 10, 10};
-  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const TetMesh& mesh = benchmark_beam();
   const auto tets = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
   EXPECT_EQ(tets.parts, 8);
   check_first_and_last_points<4>(mesh.num_points(), mesh.tetrahedra(), tets);
@@ -123,9 +131,7 @@ TEST(ScatterSchedule, GridTetrahedraAndEdges) {
 TEST(ScatterSchedule, PartsAreLongerThanTheBandwidthAndComeInFours) {
   // 4,000 points, items of index span 441 (the 40 x 10 x 10 benchmark beam's): at most 9 parts of
   // 442 points, so 8; each phase then has four groups of about the same size.
-  RegularGrid grid;
-  grid.n = {40, 10, 10};
-  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const TetMesh& mesh = benchmark_beam();
   const auto tets = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
   ASSERT_EQ(tets.parts, 8);
   EXPECT_EQ(tets.phase_begin[1] - tets.phase_begin[0], 4);
@@ -159,9 +165,7 @@ TEST(ScatterSchedule, PartsAreCutFromTheBandwidth) {
 }
 
 TEST(ScatterSchedule, GroupsStartAtMultiplesOfTheAlignment) {
-  RegularGrid grid;
-  grid.n = {40, 10, 10};
-  const TetMesh mesh(grid.num_points(), grid_tetrahedra(grid, true));
+  const TetMesh& mesh = benchmark_beam();
   const auto plain = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra());
   const auto aligned = make_scatter_schedule<4>(mesh.num_points(), mesh.tetrahedra(), kDefaultMinPart, 8);
   check_schedule<4>(mesh.num_points(), mesh.tetrahedra(), aligned);
