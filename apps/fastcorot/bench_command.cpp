@@ -13,8 +13,10 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <limits>
 #include <ostream>
 #include <regex>
 
@@ -91,6 +93,9 @@ void bench(const BenchOptions& options, std::ostream& out) {
                            : options.scene.empty() ? "built-in beam 40x10x10" : options.scene;
 
   for (long step = 0; step < options.warmup; ++step) simulation.step();
+  // With threads, how far apart the system has put them just now (NaN: not measured).
+  const double round_trip_ns = options.threads > 1 ? thread_round_trip_ns(20000, std::chrono::milliseconds(100))
+                                                   : std::numeric_limits<double>::quiet_NaN();
   // Each object adds to its own phase times (objects may run concurrently).
   std::vector<PhaseTimes> times(simulation.objects.size());
   for (std::size_t o = 0; o < times.size(); ++o) simulation.objects[o].system.set_phase_times(&times[o]);
@@ -155,7 +160,8 @@ void bench(const BenchOptions& options, std::ostream& out) {
                    {"peak_memory_bytes", peak_memory_bytes()},
                    {"cpu", cpu_model()},
                    {"cpu_vector_instructions", cpu_vector_instructions()},
-                   {"build_vector_instructions", build_vector_instructions()}};
+                   {"build_vector_instructions", build_vector_instructions()},
+                   {"thread_round_trip_ns", std::isfinite(round_trip_ns) ? json(round_trip_ns) : json(nullptr)}};
     out << result.dump(2) << '\n';
     return;
   }
@@ -182,6 +188,10 @@ void bench(const BenchOptions& options, std::ostream& out) {
   const std::string cpu = cpu_model();
   out << "machine: " << (cpu.empty() ? "CPU model unknown" : cpu) << ", vector instructions "
       << cpu_vector_instructions() << "; the build uses " << build_vector_instructions() << '\n';
+  if (std::isfinite(round_trip_ns)) {
+    out << "threads: a value written by one reaches another and comes back in " << round_trip_ns
+        << " ns (measured before the steps; two-thread figures depend on it)\n";
+  }
   if (size.renumbered_force_fields > 0) {
     out << size.renumbered_force_fields
         << " force field(s) keep the points in an order of their own (the mesh's numbering is scattered)\n";

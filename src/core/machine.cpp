@@ -1,6 +1,11 @@
 #include "fastcorot/core/machine.h"
 
+#include <algorithm>
+#include <atomic>
 #include <fstream>
+#include <limits>
+#include <system_error>
+#include <thread>
 
 namespace fastcorot {
 
@@ -37,6 +42,56 @@ std::string cpu_model() {
     return start == std::string::npos ? std::string() : line.substr(start);
   }
   return {};
+}
+
+double thread_round_trip_ns(int rounds, std::chrono::nanoseconds budget) {
+  using Clock = std::chrono::steady_clock;
+  // The initiator writes odd values, the partner answers each with the next even one.
+  struct alignas(64) Line {
+    std::atomic<long> value{0};
+  };
+  Line line;
+  alignas(64) std::atomic<bool> stop{false};
+  std::thread partner;
+  try {
+    partner = std::thread([&] {
+      while (!stop.load(std::memory_order_relaxed)) {
+        const long v = line.value.load(std::memory_order_acquire);
+        if (v % 2 == 1) line.value.store(v + 1, std::memory_order_release);
+      }
+    });
+  } catch (const std::system_error&) {
+    return std::numeric_limits<double>::quiet_NaN();  // no second thread to be had
+  }
+  const Clock::time_point deadline = Clock::now() + budget;
+  // Waits for the partner's answer to round r; false once the budget is spent (the clock is read
+  // every 1024 polls and between batches only, so that reading it does not add to the round trip).
+  const auto round_trip = [&](long r) {
+    line.value.store(2 * r + 1, std::memory_order_release);
+    for (unsigned polls = 1;; ++polls) {
+      if (line.value.load(std::memory_order_acquire) == 2 * r + 2) return true;
+      if (polls % 1024 == 0 && Clock::now() > deadline) return false;
+    }
+  };
+  // A few untimed rounds first (the partner has to start and the line to settle), then batches of
+  // timed ones; a batch the budget cut short does not count.
+  constexpr long kWarmup = 64, kBatch = 256;
+  bool in_time = true;
+  for (long w = 0; w < kWarmup && in_time; ++w) in_time = round_trip(w);
+  long done = 0, next = kWarmup;
+  double seconds = 0;
+  while (in_time && done < rounds) {
+    const long batch = std::min<long>(kBatch, rounds - done);
+    const Clock::time_point start = Clock::now();
+    if (start > deadline) break;
+    for (long i = 0; i < batch && in_time; ++i) in_time = round_trip(next++);
+    if (!in_time) break;
+    seconds += std::chrono::duration<double>(Clock::now() - start).count();
+    done += batch;
+  }
+  stop.store(true, std::memory_order_relaxed);
+  partner.join();
+  return done > 0 ? 1e9 * seconds / static_cast<double>(done) : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace fastcorot

@@ -3,6 +3,7 @@
 // above all on the width of the vector instructions they were compiled for (-march=native).
 #pragma once
 
+#include <chrono>
 #include <string>
 
 namespace fastcorot {
@@ -16,5 +17,14 @@ const char* cpu_vector_instructions();
 
 // The CPU's model name as the system gives it (Linux: /proc/cpuinfo), or "" where it does not.
 std::string cpu_model();
+
+// How long a value written by one thread takes to reach a second thread and come back, in
+// nanoseconds: the mean over up to `rounds` round trips of one cache line between two new threads
+// (placed by the system, as a parallel loop's are), stopped after `budget`; NaN if no round trip
+// was completed in time. Parallel loops start and end with such a handshake, so this bounds how
+// short a loop can pay off, and it depends on where the system puts the threads: on the 2-core VM
+// of 2026-12-02 it was about 120 ns in some spells and 500 ns in others (two cores in one core
+// complex or not), and two-thread steps ran about 880 and 500-630 steps/s accordingly (README).
+double thread_round_trip_ns(int rounds, std::chrono::nanoseconds budget);
 
 }  // namespace fastcorot
