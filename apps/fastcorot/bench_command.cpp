@@ -92,10 +92,12 @@ void bench(const BenchOptions& options, std::ostream& out) {
   const std::string name = !options.beam.empty() ? "beam " + options.beam
                            : options.scene.empty() ? "built-in beam 40x10x10" : options.scene;
 
-  for (long step = 0; step < options.warmup; ++step) simulation.step();
-  // With threads, how far apart the system has put them just now (NaN: not measured).
+  // With threads, how far apart the system puts two of them just now (NaN: not measured, or no
+  // round trip within 100 ms on a busy machine). Before the warm-up, while no worker of the
+  // simulation's own spins beside the two.
   const double round_trip_ns = options.threads > 1 ? thread_round_trip_ns(20000, std::chrono::milliseconds(100))
                                                    : std::numeric_limits<double>::quiet_NaN();
+  for (long step = 0; step < options.warmup; ++step) simulation.step();
   // Each object adds to its own phase times (objects may run concurrently).
   std::vector<PhaseTimes> times(simulation.objects.size());
   for (std::size_t o = 0; o < times.size(); ++o) simulation.objects[o].system.set_phase_times(&times[o]);
@@ -191,6 +193,8 @@ void bench(const BenchOptions& options, std::ostream& out) {
   if (std::isfinite(round_trip_ns)) {
     out << "threads: a value written by one reaches another and comes back in " << round_trip_ns
         << " ns (measured before the steps; two-thread figures depend on it)\n";
+  } else if (options.threads > 1) {
+    out << "threads: no round trip between two of them within 100 ms (a busy machine)\n";
   }
   if (size.renumbered_force_fields > 0) {
     out << size.renumbered_force_fields

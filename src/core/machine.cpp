@@ -52,25 +52,35 @@ double thread_round_trip_ns(int rounds, std::chrono::nanoseconds budget) {
   };
   Line line;
   alignas(64) std::atomic<bool> stop{false};
+  constexpr unsigned kPollsBeforeYield = 1u << 16;
   std::thread partner;
   try {
     partner = std::thread([&] {
-      while (!stop.load(std::memory_order_relaxed)) {
+      for (unsigned idle = 1; !stop.load(std::memory_order_relaxed); ++idle) {
         const long v = line.value.load(std::memory_order_acquire);
-        if (v % 2 == 1) line.value.store(v + 1, std::memory_order_release);
+        if (v % 2 == 1) {
+          line.value.store(v + 1, std::memory_order_release);
+          idle = 0;
+        } else if (idle % kPollsBeforeYield == 0) {
+          std::this_thread::yield();  // (a core shared with the initiator: let it run)
+        }
       }
     });
   } catch (const std::system_error&) {
     return std::numeric_limits<double>::quiet_NaN();  // no second thread to be had
   }
   const Clock::time_point deadline = Clock::now() + budget;
-  // Waits for the partner's answer to round r; false once the budget is spent (the clock is read
-  // every 1024 polls and between batches only, so that reading it does not add to the round trip).
+  // Waits for the partner's answer to round r; false once the budget is spent. The clock is read
+  // every 1024 polls and between batches only, so that reading it does not add to the round trip.
+  // Both threads yield after kPollsBeforeYield polls in vain (tens of microseconds, far beyond a
+  // round trip between two cores): on a busy machine, where they may share a core, a round then
+  // costs that and a switch between them rather than a whole time slice.
   const auto round_trip = [&](long r) {
     line.value.store(2 * r + 1, std::memory_order_release);
     for (unsigned polls = 1;; ++polls) {
       if (line.value.load(std::memory_order_acquire) == 2 * r + 2) return true;
       if (polls % 1024 == 0 && Clock::now() > deadline) return false;
+      if (polls % kPollsBeforeYield == 0) std::this_thread::yield();
     }
   };
   // A few untimed rounds first (the partner has to start and the line to settle), then batches of

@@ -53,19 +53,26 @@ TEST(Bench, JsonFiguresAddUpAndDescribeTheBeam) {
   EXPECT_NE(figures["build_vector_instructions"], "none");  // x86-64 has SSE2 at least
 #endif
   EXPECT_TRUE(figures["cpu"].is_string());
-  // Two threads: how long a handshake between them took (positive, far below the 100 ms allowed).
-  ASSERT_TRUE(figures["thread_round_trip_ns"].is_number()) << figures["thread_round_trip_ns"];
-  EXPECT_GT(figures["thread_round_trip_ns"].get<double>(), 0.0);
-  EXPECT_LT(figures["thread_round_trip_ns"].get<double>(), 1e8);
+  // Two threads: how long a handshake between them took (positive, below the 100 ms allowed for
+  // them all), or null where a busy machine (tests running side by side) left no time for one.
+  const json& round_trip = figures["thread_round_trip_ns"];
+  ASSERT_TRUE(round_trip.is_number() || round_trip.is_null()) << round_trip;
+  if (round_trip.is_number()) {
+    EXPECT_GT(round_trip.get<double>(), 0.0);
+    EXPECT_LT(round_trip.get<double>(), 1e8);
+  }
 }
 
-TEST(Bench, OneThreadMeasuresNoRoundTrip) {
+TEST(Bench, RoundTripOnlyWithThreads) {
   const auto result = run_fastcorot("bench --beam 5x2x2 --steps 2 --json");
   ASSERT_EQ(result.status, 0) << result.output;
   EXPECT_TRUE(json::parse(result.output)["thread_round_trip_ns"].is_null());
+  const auto one = run_fastcorot("bench --beam 5x2x2 --steps 2");
+  ASSERT_EQ(one.status, 0) << one.output;
+  EXPECT_EQ(one.output.find("\nthreads: "), std::string::npos) << one.output;
   const auto text = run_fastcorot("bench --beam 5x2x2 --steps 2 --threads 2");
   ASSERT_EQ(text.status, 0) << text.output;
-  EXPECT_NE(text.output.find("comes back in"), std::string::npos) << text.output;
+  EXPECT_NE(text.output.find("\nthreads: "), std::string::npos) << text.output;
 }
 
 TEST(Bench, VtuFramesAreTimedAsOutput) {
