@@ -93,9 +93,10 @@ void bench(const BenchOptions& options, std::ostream& out) {
                            : options.scene.empty() ? "built-in beam 40x10x10" : options.scene;
 
   // With threads, how far apart the system puts two of them just now (NaN: not measured, or no
-  // round trip within 100 ms on a busy machine). Before the warm-up, while no worker of the
+  // round trip within the budget on a busy machine). Before the warm-up, while no worker of the
   // simulation's own spins beside the two.
-  const double round_trip_ns = options.threads > 1 ? thread_round_trip_ns(20000, std::chrono::milliseconds(100))
+  constexpr auto kRoundTripBudget = std::chrono::milliseconds(100);
+  const double round_trip_ns = options.threads > 1 ? thread_round_trip_ns(20000, kRoundTripBudget)
                                                    : std::numeric_limits<double>::quiet_NaN();
   for (long step = 0; step < options.warmup; ++step) simulation.step();
   // Each object adds to its own phase times (objects may run concurrently).
@@ -194,7 +195,8 @@ void bench(const BenchOptions& options, std::ostream& out) {
     out << "threads: a value written by one reaches another and comes back in " << round_trip_ns
         << " ns (measured before the steps; two-thread figures depend on it)\n";
   } else if (options.threads > 1) {
-    out << "threads: no round trip between two of them within 100 ms (a busy machine)\n";
+    out << "threads: no round trip between two of them within " << kRoundTripBudget.count()
+        << " ms (a busy machine)\n";
   }
   if (size.renumbered_force_fields > 0) {
     out << size.renumbered_force_fields
