@@ -6,7 +6,7 @@
 #pragma once
 
 #include "fastcorot/core/error.h"
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
 #include "json_io.h"
@@ -97,7 +97,7 @@ inline bool has_nan(const nlohmann::json& value) {
 
 // Besides the error contract: a configuration of moderate size never yields a NaN force, rotation
 // or stiffness product, whatever the method and however the current state is inverted or
-// collapsed (README, "Inverted and collapsed elements"). Numbers up to 1e6 cannot overflow the
+// collapsed (docs/robustness.md, "Inverted and collapsed elements"). Numbers up to 1e6 cannot overflow the
 // computation (E · L² · strain stays far below 1e308), so a NaN there is a defect.
 inline void probe_json(std::string_view text) {
   value_or_error([&] {

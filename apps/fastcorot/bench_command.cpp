@@ -7,7 +7,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/core/machine.h"
 #include "fastcorot/core/phase_times.h"
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/vtu_writer.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include <sys/resource.h>

@@ -1,6 +1,6 @@
 // `fastcorot bench [SCENE] [--beam NXxNYxNZ] [--steps N] [--warmup N] [--threads N] [--vtu DIR] [--json]`:
 // times whole time steps of a scene (default: the built-in 40×10×10 cantilever beam) and splits
-// the time per phase (README.md, "Performance"). Nothing is written unless --vtu asks for a frame
+// the time per phase (docs/performance.md). Nothing is written unless --vtu asks for a frame
 // per step (timed as the output phase).
 #pragma once
 

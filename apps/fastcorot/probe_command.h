@@ -4,7 +4,7 @@
 // per tetrahedron; SOFA's defaults 5000 and 0.45), method ("qr"), x (current positions, default
 // points), dx (optional), kFactor (1), edges (optional explicit edge list, any order/orientation).
 // Output keys: force, dforce (when dx is given), energy, stiffness {size, triplets [row, col, value]},
-// rotations, edges, restVolume. See README.md.
+// rotations, edges, restVolume. See docs/cli.md.
 #pragma once
 
 #include <nlohmann/json.hpp>

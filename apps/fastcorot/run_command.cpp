@@ -6,8 +6,9 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/render/drawing_vtu.h"
-#include "fastcorot/scene/checkpoint.h"
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/checkpoint.h"
+#include "fastcorot/io/mesh_readers.h"
+#include "fastcorot/io/vtu_writer.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include <unistd.h>

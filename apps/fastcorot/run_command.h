@@ -4,7 +4,7 @@
 //                [--checkpoint-every K [--checkpoint FILE]] [--resume FILE] [--divergence-factor
 //                F]`:
 // runs a SOFA scene (.scn), a tetrahedral mesh (.msh/.vtk/.vtu, with documented defaults) or the
-// built-in cantilever beam, headless. See README.md, "fastcorot run", and docs/rendering.md.
+// built-in cantilever beam, headless. See docs/cli.md and docs/rendering.md.
 #pragma once
 
 #include "picture_options.h"

@@ -21,7 +21,7 @@ void bind_errors(py::module_& m) {
       if (failure) std::rethrow_exception(failure);
     } catch (const Error& error) {
       const std::string message = error.what();
-      // The mesh readers' words for an absent file (src/scene/mesh_file.cpp).
+      // The mesh readers' words for an absent file (src/io/mesh_readers.cpp).
       const bool absent = message.find(": no such file") != std::string::npos;
       PyErr_SetString(absent ? PyExc_FileNotFoundError : PyExc_ValueError, message.c_str());
     }

@@ -1,7 +1,7 @@
 #include "fastcorot/render/image.h"
 
 #include "fastcorot/core/error.h"
-#include "fastcorot/scene/atomic_file.h"
+#include "fastcorot/io/atomic_file.h"
 
 #include <png.h>
 

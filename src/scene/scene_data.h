@@ -7,7 +7,7 @@
 
 #include "fastcorot/core/types.h"
 #include "fastcorot/scene/component_table.h"
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 #include "fastcorot/scene/scene_graph.h"
 
 #include <map>

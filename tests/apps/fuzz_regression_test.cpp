@@ -1,4 +1,4 @@
-// Replays every input the fuzzers found (tests/data/fuzz/TARGET/, README "Bad input") through the
+// Replays every input the fuzzers found (tests/data/fuzz/TARGET/, docs/robustness.md "Fuzzing") through the
 // very function the fuzz target runs (fuzz/fuzz_targets.h): each must be read or refused with a
 // fastcorot::Error, nothing else escaping. The fuzzers themselves run by hand (scripts/fuzz).
 #include "fuzz_targets.h"

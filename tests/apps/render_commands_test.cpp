@@ -2,7 +2,7 @@
 // executable: pictures are written, not blank, identical for identical runs; bad options exit 2
 // with a clear message; the viewer runs in Xvfb (xvfb-run) and its screenshot is not blank.
 #include "fastcorot/render/image.h"
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 #include "render/render_scenes.h"
 
 #include "support/command.h"

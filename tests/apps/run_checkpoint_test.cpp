@@ -1,10 +1,10 @@
 // `fastcorot run` on long runs: --checkpoint-every and --resume give byte-identical output files;
 // damaged or foreign checkpoints are refused; a diverging run stops naming the step, time, object
 // and vertex; output files are never left half-written, even when the program is killed while
-// writing one (FASTCOROT_FAULT, include/fastcorot/scene/atomic_file.h).
+// writing one (FASTCOROT_FAULT, include/fastcorot/io/atomic_file.h).
 #include "support/sofa_reference.h"
 
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include "support/command.h"
 

@@ -2,7 +2,7 @@
 // output, the built-in scene, and bad scenes (clear message, exit status 2).
 #include "support/sofa_reference.h"
 
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include "support/command.h"
 

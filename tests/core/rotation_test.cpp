@@ -123,7 +123,7 @@ TEST(PolarFactor, NearlySingularHugeAndTinyMatricesGiveTheRotationNotNaN) {
 
 // Beyond that (a subnormal singular value, whose few bits of precision the cofactors lose, or
 // singular values 1e300 apart) the result is finite but need not be the rotation: the contract is
-// no NaN, not accuracy (README, "Inverted and collapsed elements").
+// no NaN, not accuracy (docs/robustness.md, "Inverted and collapsed elements").
 TEST(PolarFactor, ExtremelyIllConditionedMatricesGiveAFiniteResult) {
   const Mat3<double> q = axis_rotation(0.6, Vec3<double>(1, -1, 2));
   for (const Vec3<double>& diagonal : {Vec3<double>(1, 0.5, 1e-310), Vec3<double>(1, 0.5, 5e-324),

@@ -102,7 +102,7 @@ TEST_P(ForceFieldMethod, MatchesTheStraightforwardReference) {
   EXPECT_LT(relative_error(Eigen::MatrixXd(field.stiffness_matrix(k_factor)), k_factor * ref.stiffness), 1e-12);
 }
 
-// Elements pushed through themselves during a run (README, "Inverted and collapsed elements"): the
+// Elements pushed through themselves during a run (docs/robustness.md, "Inverted and collapsed elements"): the
 // SIMD kernels (their own QR frame, a batch of elements at once) treat them exactly as the
 // per-element reference does, with finite results.
 TEST_P(ForceFieldMethod, InvertedElementsMatchTheReference) {

@@ -1,4 +1,4 @@
-// Inverted and collapsed elements during a run (README, "Inverted and collapsed elements"): an
+// Inverted and collapsed elements during a run (docs/robustness.md, "Inverted and collapsed elements"): an
 // element pushed through itself, flattened onto a plane or a line, or collapsed to a point yields
 // finite forces, stiffness products, stiffness matrices and energies for every rotation method, in
 // float and double. Also the rest-mesh side: both orientations of a tetrahedron are accepted as
@@ -99,7 +99,7 @@ TYPED_TEST(DegenerateElements, GiveFiniteForcesStiffnessAndEnergyForEveryMethod)
   }
 }
 
-// What an element pushed through itself does (README, "Inverted and collapsed elements"), derived by
+// What an element pushed through itself does (docs/robustness.md, "Inverted and collapsed elements"), derived by
 // hand for the unit tetrahedron with vertex 3 mirrored through the face (0,1,2), x = M p with
 // M = diag(1, 1, -1). qr takes its frame from the edges (0,1) and (0,2), which did not move: R = I,
 // and vertex 3 is pulled back up (the linear element, `none`, likewise). polar's F = M and

@@ -187,9 +187,9 @@ TEST(PatchTest, EdgeFrameMethodsReproduceRotatedDilation) {
 
 TEST(PatchTest, EdgeFrameMethodsApproachGeneralAffineMapAsStrainVanishes) {
   // Under a general stretch and shear the qr and polar2 rotations differ from element to element
-  // (SOFA's formulation; see README.md), so these methods do not pass the patch test exactly. They
-  // are consistent: the relative error must vanish faster than the strain (measured: ~4.6e-4 at 5%
-  // strain for qr, ~3.6e-4 for polar2, dividing by ~3 each time the strain halves).
+  // (SOFA's formulation; see tests/physics/README.md), so these methods do not pass the patch test
+  // exactly. They are consistent: the relative error must vanish faster than the strain (measured:
+  // ~4.6e-4 at 5% strain for qr, ~3.6e-4 for polar2, dividing by ~3 each time the strain halves).
   for (RotationMethod method : {RotationMethod::qr, RotationMethod::polar2}) {
     SCOPED_TRACE(to_string(method));
     double previous = 0;

@@ -1,6 +1,7 @@
 // The drawn tetrahedra as a VTK grid: four shrunk corners and four coloured triangles per drawn
 // tetrahedron, displacement interpolated, and a file that read_vtu reads back.
 #include "fastcorot/render/drawing_vtu.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include "fastcorot/render/tetrahedron_drawing.h"
 #include "render/render_scenes.h"

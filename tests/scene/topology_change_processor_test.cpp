@@ -4,7 +4,7 @@
 // the first step starting at or after it; interval repeats), a run resumed from a checkpoint after
 // a cut equal to the uninterrupted run, and clear errors for what is not supported or wrong.
 #include "fastcorot/core/error.h"
-#include "fastcorot/scene/checkpoint.h"
+#include "fastcorot/io/checkpoint.h"
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
 

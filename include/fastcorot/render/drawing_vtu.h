@@ -8,7 +8,7 @@
 #pragma once
 
 #include "fastcorot/render/draw_geometry.h"
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/vtu_writer.h"
 
 #include <filesystem>
 

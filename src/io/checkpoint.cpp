@@ -1,7 +1,7 @@
-#include "fastcorot/scene/checkpoint.h"
+#include "fastcorot/io/checkpoint.h"
 
 #include "fastcorot/core/error.h"
-#include "fastcorot/scene/atomic_file.h"
+#include "fastcorot/io/atomic_file.h"
 
 #include <bit>
 #include <cstring>

@@ -10,9 +10,9 @@
 // block) and each block is a zlib stream. VTK base64-encodes header and data either together or
 // separately (then the header ends in '=' padding), so base64 is decoded group by group.
 // Raw appended bytes are not XML, so the file is split at the '_' marker before parsing.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
-#include "mesh_file_detail.h"
+#include "mesh_reader_support.h"
 
 #include <tinyxml2.h>
 #include <zlib.h>

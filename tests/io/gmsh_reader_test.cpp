@@ -2,7 +2,7 @@
 // for the commands) and on small hand-written files: values read from the file text by eye,
 // agreement of formats 2.2 / 4.1, ASCII / binary, non-contiguous node tags, both byte orders,
 // skipped element types, and an error naming the file and line for each kind of bad input.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include "fastcorot/core/error.h"
 

@@ -2,7 +2,7 @@
 // its README.md) and on small hand-written files: values read from the file text by eye, the 4.2
 // and 5.1 cell layouts, ASCII and big-endian BINARY, float points, FIELD and METADATA blocks
 // before the geometry, skipped cell types, and an error naming file and line for bad input.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include "fastcorot/core/error.h"
 

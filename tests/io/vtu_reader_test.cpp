@@ -3,7 +3,7 @@
 // not, UInt32 and UInt64 headers, Float32 and Float64 points, Int32 and Int64 cells, little- and
 // big-endian; plus values read from the file text by eye, small hand-written files (several
 // pieces, one tetrahedron) and an error naming file and line for each kind of bad input.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include "fastcorot/core/error.h"
 

@@ -1,6 +1,6 @@
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
-#include "mesh_file_detail.h"
+#include "mesh_reader_support.h"
 
 #include <algorithm>
 #include <cctype>

@@ -4,9 +4,9 @@
 // mapped to 0-based indices in file order. Only 4-node tetrahedra (type 4) and 3-node triangles
 // (type 2) are kept; the node counts of the other types below are needed to step over them in
 // binary files.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
-#include "mesh_file_detail.h"
+#include "mesh_reader_support.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "fastcorot/core/error.h"
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include <bit>
 #include <charconv>

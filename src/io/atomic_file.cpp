@@ -1,4 +1,4 @@
-#include "fastcorot/scene/atomic_file.h"
+#include "fastcorot/io/atomic_file.h"
 
 #include "fastcorot/core/error.h"
 

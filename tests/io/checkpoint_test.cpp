@@ -1,7 +1,7 @@
-// Checkpoints (include/fastcorot/scene/checkpoint.h): a run stopped at step K and resumed from its
+// Checkpoints (include/fastcorot/io/checkpoint.h): a run stopped at step K and resumed from its
 // checkpoint continues bitwise as the uninterrupted run; a damaged, foreign, other-version or
 // other-scene checkpoint is refused with a message naming what is wrong, and changes nothing.
-#include "fastcorot/scene/checkpoint.h"
+#include "fastcorot/io/checkpoint.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/scene/scene_builder.h"

@@ -2,7 +2,8 @@
 // fields are stored as documented (Float64, base64 with a UInt32 byte-count header, decoded here
 // independently of the reader), the .pvd text is exact, and bad input is refused with an error
 // naming the file.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
+#include "fastcorot/io/vtu_writer.h"
 
 #include "fastcorot/core/error.h"
 

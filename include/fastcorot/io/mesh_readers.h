@@ -1,4 +1,4 @@
-// Reading and writing tetrahedral mesh files: Gmsh .msh (formats 2.2 and 4.1, ASCII and binary),
+// Reading tetrahedral mesh files: Gmsh .msh (formats 2.2 and 4.1, ASCII and binary),
 // legacy VTK .vtk (4.2 and 5.1, ASCII and binary) and VTK XML .vtu (ascii, base64 "binary" and raw
 // or base64 "appended" data, zlib-compressed or not) — whatever gmsh, meshio and ParaView write by
 // default. Points are kept in file order (all of them, as SOFA's loaders keep them); tetrahedra are
@@ -10,10 +10,8 @@
 #include "fastcorot/core/types.h"
 
 #include <filesystem>
-#include <span>
 #include <string>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 namespace fastcorot {
@@ -47,35 +45,5 @@ MeshData read_vtu(const std::filesystem::path& path);
 MeshData read_gmsh_bytes(std::string_view bytes, const std::string& name);
 MeshData read_vtk_legacy_bytes(std::string_view bytes, const std::string& name);
 MeshData read_vtu_bytes(std::string_view bytes, const std::string& name);
-
-// A named per-point (or per-cell) field of 3-vectors or scalars for VTU output.
-struct VtuField {
-  std::string name;
-  int components = 3;          // 1 or 3
-  std::vector<double> values;  // size = count × components
-};
-
-struct VtuCellBlock {
-  int vtk_cell_type = 10;  // 10 = tetrahedron, 5 = triangle
-  int nodes_per_cell = 4;
-  std::vector<Index> connectivity;  // cells × nodes_per_cell
-};
-
-// One block of VTK tetrahedra (type 10) holding these tetrahedra.
-VtuCellBlock tetrahedron_cells(std::span<const Tetrahedron> tetrahedra);
-
-// Writes an unstructured grid (.vtu, base64 binary, uncompressed, UInt32 headers, little-endian)
-// with the given point and cell fields; cell fields cover the cells of all blocks in order. Points
-// and fields are written as Float64, connectivity and offsets as Int64, cell types as UInt8; a
-// read_vtu of the file gives the points back bitwise. Throws fastcorot::Error naming the file for
-// an index out of range, a field of the wrong size or component count, or a write failure.
-void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>>& points,
-               const std::vector<VtuCellBlock>& cells, const std::vector<VtuField>& point_fields,
-               const std::vector<VtuField>& cell_fields = {});
-
-// Writes a ParaView collection (.pvd) listing (time, file) pairs; file names relative to the .pvd.
-// Times are written in the shortest form that reads back exactly; a non-finite time is an error.
-void write_pvd(const std::filesystem::path& path,
-               const std::vector<std::pair<double, std::string>>& time_steps);
 
 }  // namespace fastcorot

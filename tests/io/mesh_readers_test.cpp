@@ -2,7 +2,7 @@
 // meshio and VTK wrote (tests/data/meshes, see its README.md), robustness against truncated and
 // corrupted files (every outcome is a result or a fastcorot::Error, never a crash or another
 // exception), and the cylinder validation mesh examples/meshes/cylinder.msh.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/topology/tet_mesh.h"

@@ -1,7 +1,7 @@
 // write_file_atomically: a file is either its previous complete content or the new complete one,
 // never half-written; the temporary lives beside the file and never survives a failed writer.
 // (Killed processes: tests/apps/run_checkpoint_test.cpp injects FASTCOROT_FAULT into the program.)
-#include "fastcorot/scene/atomic_file.h"
+#include "fastcorot/io/atomic_file.h"
 
 #include "fastcorot/core/error.h"
 

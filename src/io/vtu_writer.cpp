@@ -3,11 +3,11 @@
 // itself writes for an uncompressed inline array), and a ParaView collection (.pvd) that lists
 // the files of a time series. Both are written atomically (atomic_file.h): a reader never sees
 // half a file.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/vtu_writer.h"
 
-#include "fastcorot/scene/atomic_file.h"
+#include "fastcorot/io/atomic_file.h"
 
-#include "mesh_file_detail.h"
+#include "mesh_reader_support.h"
 
 #include <charconv>
 #include <cmath>

@@ -6,9 +6,9 @@
 //    `CONNECTIVITY <type>` arrays.
 // BINARY files store the arrays big-endian right after the keyword line. Attribute data
 // (POINT_DATA, CELL_DATA) comes after the geometry in every writer, so reading stops there.
-#include "fastcorot/scene/mesh_file.h"
+#include "fastcorot/io/mesh_readers.h"
 
-#include "mesh_file_detail.h"
+#include "mesh_reader_support.h"
 
 #include <algorithm>
 #include <array>
