@@ -35,6 +35,12 @@ int float_itemsize(py::handle value) {
   return static_cast<int>(dtype.itemsize());
 }
 
+bool integer_array(py::handle value) {
+  if (!py::isinstance<py::array>(value)) return false;
+  const char kind = py::reinterpret_borrow<py::array>(value).dtype().kind();
+  return kind == 'i' || kind == 'u';
+}
+
 template <class Real>
 PointArray<Real> point_array(py::handle value, const std::string& what, py::ssize_t rows,
                              const std::string& dtype_note) {
@@ -42,6 +48,9 @@ PointArray<Real> point_array(py::handle value, const std::string& what, py::ssiz
   py::array array;
   if (py::isinstance<py::array>(value)) {
     array = py::reinterpret_borrow<py::array>(value);
+    // Integers become floating point as numpy's own functions convert them; another float type
+    // is refused, since converting it would hide a precision the caller did not ask for.
+    if (integer_array(array)) array = converted(value, what, expected, py::dtype::of<Real>());
     if (float_itemsize(array) != static_cast<int>(sizeof(Real))) {
       throw py::type_error(what + ": dtype " + dtype_name(array) + "; expected " +
                            (sizeof(Real) == 4 ? "float32" : "float64") + dtype_note);

@@ -25,8 +25,12 @@ using PointArray = py::array_t<Real, py::array::c_style>;
 // True when `value` is a numpy array whose dtype is float32 (returns 4) or float64 (8); 0 otherwise.
 int float_itemsize(py::handle value);
 
-// An (rows, 3) array of Real. A numpy array must have exactly that dtype (`dtype_note` explains
-// the requirement in the TypeError); a nested sequence is converted. rows < 0 accepts any count.
+// True when `value` is a numpy array of an integer dtype (signed or unsigned, any size).
+bool integer_array(py::handle value);
+
+// An (rows, 3) array of Real. A floating-point numpy array must have exactly that dtype
+// (`dtype_note` explains the requirement in the TypeError); integer arrays and nested sequences
+// are converted to Real. rows < 0 accepts any count.
 template <class Real>
 PointArray<Real> point_array(py::handle value, const std::string& what, py::ssize_t rows,
                              const std::string& dtype_note);

@@ -93,9 +93,10 @@ class ForceField {
   ForceField(py::handle points, py::handle tetrahedra, py::handle young_modulus, py::handle poisson_ratio,
              py::handle method, py::handle edges, double rayleigh_stiffness) {
     const int itemsize = float_itemsize(points);
-    if (py::isinstance<py::array>(points) && itemsize == 0) {
+    if (py::isinstance<py::array>(points) && itemsize == 0 && !integer_array(points)) {
       throw py::type_error("points: dtype " + std::string(py::str(points.attr("dtype"))) +
-                           "; expected float32 or float64 (the ForceField computes in the dtype of its points)");
+                           "; expected float32 or float64 (the ForceField computes in the dtype of its points;"
+                           " integer arrays are converted to float64)");
     }
     if (!py::isinstance<py::str>(method)) {
       throw py::type_error("method: expected a string (qr, large, polar, polar2, none, linear or small)");

@@ -43,8 +43,10 @@ def test_force_field_errors_are_the_probes(change, tmp_path):
 
 
 def test_force_field_rejects_wrong_dtypes_and_shapes():
-    with pytest.raises(TypeError, match="points: dtype int64; expected float32 or float64"):
-        fastcorot.ForceField(POINTS.astype(np.int64), TETRAHEDRA)
+    with pytest.raises(TypeError, match="points: dtype complex128; expected float32 or float64"):
+        fastcorot.ForceField(POINTS.astype(np.complex128), TETRAHEDRA)
+    with pytest.raises(TypeError, match="points: dtype bool; expected float32 or float64"):
+        fastcorot.ForceField(POINTS.astype(bool), TETRAHEDRA)
     with pytest.raises(TypeError, match="tetrahedra: dtype float64; expected an \\(m, 4\\) array of integer"):
         fastcorot.ForceField(POINTS, np.array(TETRAHEDRA, float))
     with pytest.raises(ValueError, match=r"tetrahedra: expected shape \(m, 4\), got \(1, 3\)"):

@@ -189,3 +189,50 @@ def test_two_python_threads_on_one_field_take_turns():
     for t in threads:
         t.join()
     assert failures == []
+
+
+INTEGER_DTYPES = [np.int8, np.int16, np.int32, np.int64, np.uint8, np.uint16, np.uint32, np.uint64]
+
+
+@pytest.mark.parametrize("dtype", INTEGER_DTYPES)
+def test_integer_points_are_converted_to_float64(dtype):
+    # numpy's habit: integer input to a floating-point computation is taken as float64.
+    points = np.array([[0, 0, 0], [2, 0, 0], [0, 2, 0], [0, 0, 2], [2, 2, 2]])
+    tetrahedra = [[0, 1, 2, 3], [1, 2, 3, 4]]
+    x = np.array([[0, 0, 0], [3, 0, 0], [0, 2, 0], [0, 0, 2], [2, 3, 2]])
+    field = fastcorot.ForceField(points.astype(dtype), tetrahedra, young_modulus=1000, poisson_ratio=0.3)
+    reference = fastcorot.ForceField(points.astype(np.float64), tetrahedra, young_modulus=1000, poisson_ratio=0.3)
+    assert field.dtype == np.float64
+    force = field.add_force(x.astype(dtype))
+    assert force.dtype == np.float64
+    np.testing.assert_array_equal(force, reference.add_force(x.astype(np.float64)))
+    np.testing.assert_array_equal(field.add_dforce(x.astype(dtype)), reference.add_dforce(x.astype(np.float64)))
+    assert field.potential_energy(x.astype(dtype)) == reference.potential_energy(x.astype(np.float64))
+
+
+def test_integer_positions_take_a_float32_fields_dtype():
+    points = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], np.float32)
+    field = fastcorot.ForceField(points, [[0, 1, 2, 3]])
+    x = np.array([[0, 0, 0], [2, 0, 0], [0, 1, 0], [0, 0, 1]], np.int32)
+    force = field.add_force(x)
+    assert force.dtype == np.float32
+    np.testing.assert_array_equal(force, field.add_force(x.astype(np.float32)))
+
+
+@pytest.mark.parametrize("dtype", INTEGER_DTYPES)
+def test_indices_of_any_integer_dtype(dtype):
+    points, tetrahedra, x = small_mesh()
+    reference = fastcorot.ForceField(points, tetrahedra).add_force(x)
+    given = np.asarray(tetrahedra).astype(dtype)
+    np.testing.assert_array_equal(fastcorot.ForceField(points, given).add_force(x), reference)
+    edges = fastcorot.ForceField(points, tetrahedra).edges
+    np.testing.assert_array_equal(
+        fastcorot.ForceField(points, tetrahedra, edges=np.asarray(edges).astype(dtype)).add_force(x), reference)
+
+
+def test_indices_beyond_the_index_range_are_refused():
+    points, tetrahedra, x = small_mesh()
+    huge = np.asarray(tetrahedra).astype(np.uint64)
+    huge[0, 0] = np.uint64(2**63 + 5)
+    with pytest.raises(ValueError, match=r"tetrahedra\[0\] has index"):
+        fastcorot.ForceField(points, huge)

@@ -215,3 +215,14 @@ def test_a_block_jacobi_preconditioned_cg_scene_converges_to_the_direct_solution
     moved = np.abs(direct_positions - rest).max()
     assert moved > 1e-2
     np.testing.assert_allclose(pcg_positions, direct_positions, rtol=0, atol=1e-9 * moved)
+
+
+def test_integer_arrays_assigned_to_the_state_are_converted():
+    root = python_beam()
+    fastcorot.Simulation(root)
+    state = root.beam.state
+    view = state.velocity
+    state.velocity = np.full((4000, 3), 2, dtype=np.int16)
+    assert view.dtype == np.float64 and np.all(view == 2.0)
+    with pytest.raises(TypeError, match="dtype complex128"):
+        state.velocity = np.zeros((4000, 3), np.complex128)
