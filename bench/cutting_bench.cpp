@@ -6,6 +6,7 @@
 // both need (it rebuilds the edge blocks). Run: build-release/bench/fastcorot_bench_cutting.
 #include "beams.h"
 
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/mechanical_system.h"
 
 #include <algorithm>
@@ -91,7 +92,8 @@ void full_reinit(benchmark::State& state, const Beam& beam) {
   for (Index t = 0; t < s.beam.mesh->num_tetrahedra(); ++t) {
     if (!gone[static_cast<std::size_t>(t)]) kept.push_back(s.beam.mesh->tetrahedron(t));
   }
-  CorotationalForceField<double>::Parameters parameters = s.system.force_fields[0]->parameters();
+  CorotationalForceField<double>::Parameters parameters =
+      dynamic_cast<const CorotationalForceField<double>&>(*s.system.force_fields[0]).parameters();
   for (auto _ : state) {
     auto mesh = std::make_shared<TetMesh>(s.beam.mesh->num_points(), kept);
     CorotationalForceField<double> field(mesh, s.beam.rest, parameters);

@@ -8,6 +8,7 @@
 //   build-release/bench/fastcorot_bench_step --benchmark_filter='76x16x16/qr/double'
 #include "beams.h"
 
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/conjugate_gradient.h"
 #include "fastcorot/sim/mechanical_system.h"
 #include "fastcorot/sim/ode_solver.h"

@@ -5,6 +5,7 @@
 #include "picture_series.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/render/drawing_vtu.h"
 #include "fastcorot/io/checkpoint.h"
 #include "fastcorot/io/mesh_readers.h"
@@ -95,6 +96,21 @@ std::string file_stem(const std::string& path) {
   return stem;
 }
 
+// TetrahedronFEMForceField's von Mises stress (computeVonMisesStress 1 or 2) of the object's mesh:
+// per point and per tetrahedron, as SOFA's vonMisesPerNode and vonMisesPerElement.
+void add_von_mises_fields(const SimulatedObject<double>& object, std::vector<VtuField>& point_fields,
+                          std::vector<VtuField>& cell_fields) {
+  for (const auto& field : object.system.force_fields) {
+    const auto* fem = dynamic_cast<const TetrahedronFEMForceField<double>*>(field.get());
+    if (!fem || !object.mesh || &fem->mesh() != object.mesh.get() || fem->von_mises_per_node().empty()) continue;
+    const auto per_node = fem->von_mises_per_node();
+    const auto per_element = fem->von_mises_per_element();
+    point_fields.push_back({"vonMisesPerNode", 1, {per_node.begin(), per_node.end()}});
+    cell_fields.push_back({"vonMisesPerElement", 1, {per_element.begin(), per_element.end()}});
+    return;
+  }
+}
+
 class VtuSeries {
  public:
   VtuSeries(const std::string& dir, const Simulation<double>& simulation, TetrahedronDrawing drawing)
@@ -123,8 +139,10 @@ class VtuSeries {
       }
       std::vector<VtuCellBlock> cells;
       if (object.mesh) cells.push_back(tetrahedron_cells(object.mesh->tetrahedra()));
+      std::vector<VtuField> point_fields{displacement, velocity, force_field}, cell_fields;
+      add_von_mises_fields(object, point_fields, cell_fields);
       const std::string file = names_[o] + "_" + std::to_string(simulation.steps_done()) + ".vtu";
-      write_vtu(std::filesystem::path(dir_) / file, x, cells, {displacement, velocity, force_field});
+      write_vtu(std::filesystem::path(dir_) / file, x, cells, point_fields, cell_fields);
       frames_[o].push_back({simulation.time(), file});
       write_pvd(std::filesystem::path(dir_) / (names_[o] + ".pvd"), frames_[o]);
       // The drawn tetrahedra go to a series of their own: their points are not the mesh's.

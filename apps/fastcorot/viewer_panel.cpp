@@ -77,8 +77,9 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
         simulation.objects.size() <= 2 ? ImGuiTreeNodeFlags_DefaultOpen : 0;
     if (ImGui::CollapsingHeader(simulation.objects[o].path.c_str(), open)) {
       int method = index_of(session.materials[o].method);
-      if (ImGui::Combo("method", &method, kMethodNames.data(),
-                       static_cast<int>(kMethodNames.size()))) {
+      if (!session.materials[o].method_editable) {
+        ImGui::TextUnformatted(("method " + simulation.objects[o].system.force_fields.front()->method_name()).c_str());
+      } else if (ImGui::Combo("method", &method, kMethodNames.data(), static_cast<int>(kMethodNames.size()))) {
         session.set_method(o, kMethods[static_cast<std::size_t>(method)]);
         state.pending[o].method = session.materials[o].method;
       }

@@ -3,6 +3,8 @@
 #include "run_command.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/corotational_force_field.h"
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/render/picking.h"
 
 #include <algorithm>
@@ -32,10 +34,16 @@ void ViewerSession::load() {
   for (const auto& object : scene.simulation.objects) {
     ObjectMaterial material;
     if (!object.system.force_fields.empty()) {
-      const auto& parameters = object.system.force_fields.front()->parameters();
-      material.method = parameters.method;
-      material.young_modulus = parameters.young_modulus.front();
-      material.poisson_ratio = parameters.poisson_ratio.front();
+      const auto& field = object.system.force_fields.front();
+      if (const auto* corotational = dynamic_cast<const CorotationalForceField<double>*>(field.get())) {
+        material.method = corotational->method();
+        material.young_modulus = corotational->parameters().young_modulus.front();
+        material.poisson_ratio = corotational->parameters().poisson_ratio.front();
+      } else if (const auto* fem = dynamic_cast<const TetrahedronFEMForceField<double>*>(field.get())) {
+        material.method_editable = false;
+        material.young_modulus = fem->parameters().young_modulus.front();
+        material.poisson_ratio = fem->parameters().poisson_ratio.front();
+      }
     }
     materials.push_back(material);
   }
@@ -79,7 +87,10 @@ void ViewerSession::reload() {
 
 void ViewerSession::set_method(std::size_t o, RotationMethod method) {
   auto& object = scene_.simulation.objects.at(o);
-  for (auto& field : object.system.force_fields) field->set_method(method);
+  // The methods of FastTetrahedralCorotationalForceField; a TetrahedronFEMForceField keeps its own.
+  for (auto& field : object.system.force_fields) {
+    if (auto* corotational = dynamic_cast<CorotationalForceField<double>*>(field.get())) corotational->set_method(method);
+  }
   materials.at(o).method = method;
 }
 
@@ -88,16 +99,22 @@ void ViewerSession::set_material(std::size_t o, double young_modulus, double poi
   auto& fields = object.system.force_fields;
   try {
     // Build every new field before replacing any, so that a bad value changes nothing.
-    std::vector<std::shared_ptr<CorotationalForceField<double>>> rebuilt;
+    std::vector<std::shared_ptr<ForceField<double>>> rebuilt;
     for (const auto& field : fields) {
-      auto parameters = field->parameters();
-      parameters.young_modulus = {young_modulus};
-      parameters.poisson_ratio = {poisson_ratio};
       auto mesh = object.mesh && &field->mesh() == object.mesh.get()
                       ? object.mesh
                       : std::make_shared<TetMesh>(field->mesh());
-      rebuilt.push_back(std::make_shared<CorotationalForceField<double>>(
-          mesh, object.system.state.rest_position, parameters));
+      const auto rebuild = [&](auto parameters, auto* kind) {
+        parameters.young_modulus = {young_modulus};
+        parameters.poisson_ratio = {poisson_ratio};
+        using Field = std::remove_pointer_t<decltype(kind)>;
+        rebuilt.push_back(std::make_shared<Field>(mesh, object.system.state.rest_position, parameters));
+      };
+      if (const auto* corotational = dynamic_cast<const CorotationalForceField<double>*>(field.get())) {
+        rebuild(corotational->parameters(), static_cast<CorotationalForceField<double>*>(nullptr));
+      } else if (const auto* fem = dynamic_cast<const TetrahedronFEMForceField<double>*>(field.get())) {
+        rebuild(fem->parameters(), static_cast<TetrahedronFEMForceField<double>*>(nullptr));
+      }
     }
     fields = std::move(rebuilt);
     materials.at(o).young_modulus = young_modulus;

@@ -24,6 +24,7 @@ namespace fastcorot::cli {
 // What the panel edits for one object; applied with set_method / set_material.
 struct ObjectMaterial {
   RotationMethod method = RotationMethod::qr;
+  bool method_editable = true;  // false for TetrahedronFEMForceField (its methods are its own)
   double young_modulus = 0;
   double poisson_ratio = 0;
 };

@@ -1,5 +1,9 @@
 #include "fastcorot/core/rotation.h"
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -94,6 +98,63 @@ Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
   return mk.transpose();
 }
 
+// SOFA's Decompose::zeroTolerance: below it an eigenvalue of F^T F counts as zero.
+template <class Real>
+constexpr Real zero_tolerance() {
+  return sizeof(Real) >= sizeof(double) ? Real(1e-8) : Real(1e-6);
+}
+
+template <class Real>
+Mat3<Real> stable_polar_factor(const Mat3<Real>& f) {
+  // SOFA's SVD_stable: V and S^2 from the eigen decomposition of F^T F, V made a rotation, U = F V
+  // S^-1 with the columns of zero singular values rebuilt, then U made a rotation by negating the
+  // column of the smallest singular value; the result is U V^T.
+  const Eigen::SelfAdjointEigenSolver<Mat3<Real>> eigen(f.transpose() * f);
+  Mat3<Real> v = eigen.eigenvectors();
+  Vec3<Real> s = eigen.eigenvalues();
+  if (v.determinant() < 0) v.col(0) = -v.col(0);
+  int degenerated = 0;
+  Vec3<Real> inverse;
+  for (int i = 0; i < 3; ++i) {
+    if (s[i] < zero_tolerance<Real>()) {
+      ++degenerated;
+      s[i] = 0;
+      inverse[i] = 1;
+    } else {
+      s[i] = std::sqrt(s[i]);
+      inverse[i] = 1 / s[i];
+    }
+  }
+  // Columns from the smallest singular value to the largest.
+  std::array<int, 3> order{0, 1, 2};
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return s[a] < s[b]; });
+  Mat3<Real> u = f * v * inverse.asDiagonal();
+  if (degenerated == 1) {
+    // Flattened onto a plane: the two valid columns span it, their cross product completes them.
+    u.col(order[0]) = u.col(order[1]).cross(u.col(order[2]));
+  } else if (degenerated == 2) {
+    // Collapsed onto a line: two unit vectors orthogonal to the valid column. (SOFA takes the line's
+    // direction from entries of two columns, u(0, largest), u(1, smallest), u(2, smallest); kept.)
+    const Vec3<Real> line(u(0, order[2]), u(1, order[0]), u(2, order[0]));
+    const Real a0 = std::abs(line[0]), a1 = std::abs(line[1]), a2 = std::abs(line[2]);
+    Vec3<Real> e0;
+    if (a0 > a1) {
+      e0 = a0 > a2 ? Vec3<Real>(0, 1, 0) : Vec3<Real>(1, 0, 0);
+    } else {
+      e0 = a1 > a2 ? Vec3<Real>(0, 0, 1) : Vec3<Real>(1, 0, 0);
+    }
+    Vec3<Real> e1 = line.cross(e0);
+    e1.normalize();
+    e0 = e1.cross(line);
+    u.col(order[0]) = e0;
+    u.col(order[1]) = e1;
+  } else if (degenerated == 3) {
+    u.setIdentity();
+  }
+  if (u.determinant() < 0) u.col(order[0]) = -u.col(order[0]);
+  return u * v.transpose();
+}
+
 template <class Real>
 Mat3<Real> polar_frame(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c) {
   Mat3<Real> rows;
@@ -107,6 +168,8 @@ template Mat3<float> qr_frame(const Vec3<float>&, const Vec3<float>&);
 template Mat3<double> qr_frame(const Vec3<double>&, const Vec3<double>&);
 template Mat3<float> polar_factor(const Mat3<float>&, float);
 template Mat3<double> polar_factor(const Mat3<double>&, double);
+template Mat3<float> stable_polar_factor(const Mat3<float>&);
+template Mat3<double> stable_polar_factor(const Mat3<double>&);
 template Mat3<float> polar_frame(const Vec3<float>&, const Vec3<float>&, const Vec3<float>&);
 template Mat3<double> polar_frame(const Vec3<double>&, const Vec3<double>&, const Vec3<double>&);
 

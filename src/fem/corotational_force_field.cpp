@@ -511,10 +511,12 @@ void CorotationalForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_
 }
 
 template <class Real>
-Eigen::SparseMatrix<Real> CorotationalForceField<Real>::stiffness_matrix(Real k_factor) const {
-  TripletSink<Real> sink;
-  add_stiffness(sink, k_factor);
-  return sink.to_sparse(3 * mesh_->num_points());
+std::vector<double> CorotationalForceField<Real>::model_values() const {
+  std::vector<double> values(parameters_.young_modulus.begin(), parameters_.young_modulus.end());
+  values.insert(values.end(), parameters_.poisson_ratio.begin(), parameters_.poisson_ratio.end());
+  values.push_back(static_cast<double>(parameters_.method));
+  values.push_back(static_cast<double>(parameters_.rayleigh_stiffness));
+  return values;
 }
 
 template <class Real>

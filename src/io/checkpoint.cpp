@@ -1,6 +1,7 @@
 #include "fastcorot/io/checkpoint.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/io/atomic_file.h"
 
 #include <bit>
@@ -160,11 +161,17 @@ ObjectFingerprint fingerprint(const SimulatedObject<double>& object) {
   model = hash_values(
       std::vector<double>{system.gravity.x(), system.gravity.y(), system.gravity.z()}, model);
   for (const auto& field : system.force_fields) {
-    const auto& p = field->parameters();
-    model = hash_values(p.young_modulus, model);
-    model = hash_values(p.poisson_ratio, model);
-    model = hash_values(std::vector<double>{static_cast<double>(p.method), p.rayleigh_stiffness},
-                        model);
+    if (const auto* corotational = dynamic_cast<const CorotationalForceField<double>*>(field.get())) {
+      // Hashed as format version 1 always hashed it, so that earlier checkpoints still resume.
+      const auto& p = corotational->parameters();
+      model = hash_values(p.young_modulus, model);
+      model = hash_values(p.poisson_ratio, model);
+      model = hash_values(std::vector<double>{static_cast<double>(p.method), p.rayleigh_stiffness},
+                          model);
+    } else {
+      model = hash_text(field->component(), model);
+      model = hash_values(field->model_values(), model);
+    }
   }
   model = hash_text(object.ode_solver ? typeid(*object.ode_solver).name() : "-", model);
   model = hash_text(object.linear_solver ? typeid(*object.linear_solver).name() : "-", model);

@@ -1,6 +1,8 @@
 #include "fastcorot/scene/scene_builder.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/corotational_force_field.h"
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "scene_data.h"
 #include "solver_builder.h"
 #include "topology_change_processor.h"
@@ -197,6 +199,7 @@ class Builder {
         if (!c->spec) continue;
         const std::string_view type = c->type();
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
+        if (type == "TetrahedronFEMForceField") add_tetrahedron_fem(*c, object);
         if (type == "ConstantForceField") add_constant_force(*c, system);
         if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
         if (type == "BoxROI") add_boxes(*c, object);
@@ -274,6 +277,47 @@ class Builder {
       }
       system.force_fields.push_back(
           std::make_shared<CorotationalForceField<double>>(mesh, system.state.rest_position, parameters));
+      object.force_field_drawing.push_back(drawing);
+      if (!object.mesh) object.mesh = mesh;
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  void add_tetrahedron_fem(Component& c, SimulatedObject<double>& object) {
+    auto& system = object.system;
+    TetrahedronFEMForceField<double>::Parameters parameters;
+    if (c.has("youngModulus")) parameters.young_modulus = data_.data(c, "youngModulus");
+    if (c.has("poissonRatio")) parameters.poisson_ratio = data_.data(c, "poissonRatio");
+    parameters.rayleigh_stiffness = data_.real(c, "rayleighStiffness", 0.0);
+    if (c.has("localStiffnessFactor")) parameters.local_stiffness_factor = data_.data(c, "localStiffnessFactor");
+    parameters.von_mises = data_.whole_number(c, "computeVonMisesStress", 0);
+    try {
+      if (parameters.young_modulus.empty()) throw make_error("youngModulus is empty");
+      if (parameters.poisson_ratio.empty()) throw make_error("poissonRatio is empty");
+      parameters.method = parse_tetrahedron_fem_method(data_.text(c, "method", "large"));
+      const bool assembling = data_.boolean(c, "computeGlobalMatrix", false) || data_.boolean(c, "assembling", false);
+      if (assembling && (parameters.method == TetrahedronFEMMethod::polar || parameters.method == TetrahedronFEMMethod::svd)) {
+        throw make_error("computeGlobalMatrix=\"true\" with method ", to_string(parameters.method),
+                         ": SOFA computes no elastic force in that combination (its accumulateForce",
+                         parameters.method == TetrahedronFEMMethod::polar ? "Polar" : "SVD",
+                         " only reports an error); use computeGlobalMatrix=\"false\"");
+      }
+      if (data_.boolean(c, "updateStiffnessMatrix", false)) {
+        throw make_error("updateStiffnessMatrix=\"true\" is not supported (J is taken from the rest shape)");
+      }
+      if (data_.real(c, "plasticMaxThreshold", 0.0) > 0) {
+        throw make_error("plasticMaxThreshold > 0: plasticity is not simulated by fastcorot");
+      }
+      if (parameters.von_mises == 1 && parameters.method == TetrahedronFEMMethod::small) {
+        info_.push_back(c.where() + ": computeVonMisesStress=\"1\" with method small: SOFA marks the component invalid and "
+             "computes no von Mises stress (it still simulates); use 2 for the Green strain");
+      }
+      auto mesh = mesh_of(c, system.size());
+      ForceFieldDrawing drawing;
+      drawing.drawing = data_.boolean(c, "drawing", false);
+      system.force_fields.push_back(
+          std::make_shared<TetrahedronFEMForceField<double>>(mesh, system.state.rest_position, parameters));
       object.force_field_drawing.push_back(drawing);
       if (!object.mesh) object.mesh = mesh;
     } catch (const Error& error) {

@@ -86,6 +86,7 @@ StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number,
     throw Error(
         brief("diverged at step ", step_number, " (t = ", time, "): ", object.path, " ", *problem));
   }
+  for (auto& field : object.system.force_fields) field->end_step(object.system.state.position);
   return report;
 }
 

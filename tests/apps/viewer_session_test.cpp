@@ -6,6 +6,7 @@
 
 #include "fastcorot/core/error.h"
 #include "render/render_scenes.h"
+#include "support/force_fields.h"
 
 #include <gtest/gtest.h>
 
@@ -56,12 +57,12 @@ TEST(ViewerSession, ChangesMethodAndMaterialLive) {
   EXPECT_EQ(session.materials[0].poisson_ratio, 0.3);
   auto& fields = session.simulation().objects[0].system.force_fields;
   session.set_method(0, RotationMethod::polar);
-  EXPECT_EQ(fields[0]->method(), RotationMethod::polar);
+  EXPECT_EQ(testing::corotational(fields[0]).method(), RotationMethod::polar);
   session.set_material(0, 5000, 0.45);
   EXPECT_TRUE(session.message.empty()) << session.message;
-  EXPECT_EQ(fields[0]->parameters().young_modulus, (std::vector<double>{5000}));
-  EXPECT_EQ(fields[0]->parameters().poisson_ratio, (std::vector<double>{0.45}));
-  EXPECT_EQ(fields[0]->method(), RotationMethod::polar);  // kept
+  EXPECT_EQ(testing::corotational(fields[0]).parameters().young_modulus, (std::vector<double>{5000}));
+  EXPECT_EQ(testing::corotational(fields[0]).parameters().poisson_ratio, (std::vector<double>{0.45}));
+  EXPECT_EQ(testing::corotational(fields[0]).method(), RotationMethod::polar);  // kept
   EXPECT_EQ(session.materials[0].young_modulus, 5000);
   const auto before = fields[0];
   session.set_material(0, 5000, 0.5);  // refused: nu must be below 0.5

@@ -7,6 +7,7 @@
 #include "fastcorot/sim/sparse_direct_solver.h"
 
 #include "fastcorot/scene/component_table.h"
+#include "support/force_fields.h"
 
 #include <gtest/gtest.h>
 
@@ -63,7 +64,7 @@ TEST(SceneBuilder, GridBeamFollowsSofaConventions) {
   // 6 tetrahedra per cell; DiagonalMass: total = density × volume = 2 × 2.
   ASSERT_EQ(system.force_fields.size(), 1u);
   EXPECT_EQ(system.force_fields[0]->mesh().num_tetrahedra(), 12);
-  EXPECT_EQ(system.force_fields[0]->method(), RotationMethod::qr);
+  EXPECT_EQ(testing::corotational(system.force_fields[0]).method(), RotationMethod::qr);
   EXPECT_NEAR(system.mass.total_mass(), 4.0, 1e-12);
   // A corner point belongs to the tetrahedra of one cell only, a middle point to two cells.
   const auto masses = system.mass.vertex_masses();
@@ -88,7 +89,7 @@ TEST(SceneBuilder, DefaultsAreSofas) {
   EXPECT_EQ(simulation.objects[0].path, "root");
   EXPECT_EQ(system.fixed, std::vector<Index>{0});  // FixedProjectiveConstraint's default indices
   EXPECT_NEAR(system.mass.total_mass(), 1.0, 1e-15);  // DiagonalMass with nothing set: totalMass 1
-  const auto& parameters = system.force_fields[0]->parameters();
+  const auto& parameters = testing::corotational(system.force_fields[0]).parameters();
   EXPECT_EQ(parameters.young_modulus, std::vector<double>{5000});
   EXPECT_EQ(parameters.poisson_ratio, std::vector<double>{0.45});
   EXPECT_NE(dynamic_cast<SparseDirectSolver<double>*>(simulation.objects[0].linear_solver.get()), nullptr);

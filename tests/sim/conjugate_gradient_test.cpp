@@ -1,6 +1,7 @@
 // ConjugateGradientSolver: SOFA's CGLinearSolver (docs/sofa-solvers.md §2). The small systems are
 // built from masses alone (A = m M is then diagonal with known eigenvalues, so every CG iterate can
 // be worked out by hand) and from one tetrahedron with a mass (compared with a dense direct solve).
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/conjugate_gradient.h"
 
 #include "fastcorot/core/error.h"

@@ -2,6 +2,7 @@
 // and §2.2; docs/sofa-components.md §4 FixedProjectiveConstraint, §6 ConstantForceField).
 // References are built independently in each test: a second force field with the same parameters,
 // hand-written masses, dense Eigen matrices.
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/mechanical_system.h"
 
 #include "fastcorot/core/error.h"

@@ -2,6 +2,7 @@
 // Each step is compared with a reference computed here, densely, straight from the formulas of the
 // notes (§1.2, §1.4, §1.5, §3.1, §3.2) and from independently built M and K: a second force field
 // with the same parameters (its stiffness_matrix at x_n) and the masses written by hand.
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/ode_solver.h"
 
 #include "fastcorot/core/error.h"

@@ -2,6 +2,7 @@
 // direct preconditioners (docs/sofa-solvers.md §2.4). The reference is a plain dense implementation
 // of the same iteration written here, on the matrix obtained column by column from the matrix-free
 // product, with P inverted from that matrix's own diagonal (or the whole matrix, densely).
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 
 #include "fastcorot/core/error.h"

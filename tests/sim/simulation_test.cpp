@@ -1,6 +1,7 @@
 // Simulation: SOFA's DefaultAnimationLoop over independent solver nodes (docs/sofa-solvers.md
 // §5.2): each object integrated by its own ODE and linear solver, then time += dt; a non-finite or
 // exploding state stops the run with an error naming the step, the time, the object and the vertex.
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/simulation.h"
 
 #include "fastcorot/core/error.h"

@@ -2,6 +2,7 @@
 // (docs/sofa-solvers.md §4.1, §4.2): rows and columns of fixed DOFs cleared, 1 on the diagonal, so a
 // projected right-hand side gives exactly 0 there. The symbolic analysis is reused while the pattern
 // is unchanged (§4.2); these tests change values and patterns between solves.
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
 
 #include "fastcorot/core/error.h"

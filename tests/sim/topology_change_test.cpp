@@ -2,6 +2,7 @@
 // DiagonalMass and MeshMatrixMass do (equal to masses computed afresh from the new mesh), points
 // left without tetrahedra and mass are held still (and let go when a tetrahedron comes back), and
 // a failed addition changes nothing.
+#include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/sim/mechanical_system.h"
 
 #include "fastcorot/core/error.h"

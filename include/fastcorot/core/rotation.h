@@ -34,6 +34,15 @@ constexpr Real polar_tolerance() {
 template <class Real>
 Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance = polar_tolerance<Real>());
 
+// The rotation closest to F for any F, inverted or collapsed ones included (SOFA's
+// Decompose::polarDecomposition_stable, through its SVD_stable, which TetrahedronFEMForceField's
+// `svd` method uses for inverted or flat elements): U V^T of an SVD F = U S V^T whose U and V are
+// rotations, the smallest singular value taking the sign of det F. Singular values below 1e-4
+// (1e-3 in float; SOFA's tolerance on F^T F's eigenvalues) count as zero, and the missing
+// directions are completed as SOFA completes them. The result is a rotation for every finite F.
+template <class Real>
+Mat3<Real> stable_polar_factor(const Mat3<Real>& f);
+
 // The polar factor of the matrix whose rows are a, b and c (SOFA's `polar2` frame of three edges).
 template <class Real>
 Mat3<Real> polar_frame(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c);

@@ -18,6 +18,7 @@
 
 #include "fastcorot/core/phase_times.h"
 #include "fastcorot/core/types.h"
+#include "fastcorot/fem/force_field.h"
 #include "fastcorot/fem/matrix_sink.h"
 #include "fastcorot/fem/rotation_method.h"
 #include "fastcorot/fem/tetrahedron_element.h"
@@ -36,7 +37,7 @@
 namespace fastcorot {
 
 template <class Real>
-class CorotationalForceField {
+class CorotationalForceField final : public ForceField<Real> {
  public:
   // Scene attributes of the same names. youngModulus and poissonRatio hold one value for every
   // tetrahedron or one value per tetrahedron.
@@ -53,38 +54,37 @@ class CorotationalForceField {
   CorotationalForceField(std::shared_ptr<TetMesh> mesh, std::span<const Vec3<Real>> rest_positions,
                          Parameters parameters);
 
-  const TetMesh& mesh() const { return *mesh_; }
+  std::string component() const override { return "FastTetrahedralCorotationalForceField"; }
+  std::string method_name() const override { return to_string(parameters_.method); }
+  const TetMesh& mesh() const override { return *mesh_; }
   const Parameters& parameters() const { return parameters_; }
   RotationMethod method() const { return parameters_.method; }
 
   // f += forces at positions x (#V points each); rebuilds the edge stiffness blocks used by
   // add_dforce and the assembly (the linearisation at x).
-  void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+  void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
 
   // f += forces at x without touching the linearisation (for explicit schemes and for measuring
   // what the stiffness refresh costs inside add_force).
-  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
 
   // df += K(x_last) dx · (k_factor + b_factor · rayleighStiffness), K = df/dx as SPEC assembles it
   // from the edge blocks of the last add_force (rest state before the first one).
   void add_dforce(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> df, Real k_factor,
-                  Real b_factor = 0) const;
+                  Real b_factor = 0) const override;
 
   // Adds (k_factor + b_factor · rayleighStiffness) · df/dx into `sink`, block (i, j) at scalar row
   // offset + 3i and column offset + 3j.
-  void add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset = 0, Real b_factor = 0) const;
+  void add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset = 0, Real b_factor = 0) const override;
 
   // diagonal[v] += the (v, v) block of (k_factor + b_factor · rayleighStiffness) · df/dx, for every
   // point v (one block per point of the mesh): the diagonal blocks add_stiffness assembles, with the
   // same bits, for block-Jacobi preconditioning. Throws fastcorot::Error for a wrong size.
-  void add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor = 0) const;
-
-  // The 3#V × 3#V matrix k_factor · df/dx (row = 3 · vertex + axis).
-  Eigen::SparseMatrix<Real> stiffness_matrix(Real k_factor = 1) const;
+  void add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor = 0) const override;
 
   // Sum over tetrahedra of U_t = -1/2 sum_j u_j . g_j at positions x (rotations taken at x).
   // SOFA returns 0 here; this is the energy whose gradient is -f for `none`.
-  Real potential_energy(std::span<const Vec3<Real>> x) const;
+  Real potential_energy(std::span<const Vec3<Real>> x) const override;
 
   // Switches the rotation method; recomputes the rest rotations and resets the linearisation to
   // the rest state.
@@ -97,9 +97,9 @@ class CorotationalForceField {
   //
   // Throws fastcorot::Error (nothing changed) when a tetrahedron to add has a vertex out of range or
   // a (near) zero rest volume.
-  void check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const;
+  void check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const override;
   // Follows a change just made to the shared mesh (every change, in order, before any other call).
-  void apply(const TopologyChange& change);
+  void apply(const TopologyChange& change) override;
   // Changes the shared mesh and follows (for a mesh no one else holds data on).
   TopologyChange add_tetrahedra(std::span<const Tetrahedron> tetrahedra);
   TopologyChange remove_tetrahedra(std::span<const Index> indices);
@@ -110,25 +110,28 @@ class CorotationalForceField {
 
   // Rotation of each tetrahedron (rest frame to world) at the positions of the last add_force
   // (identity before the first); computed on demand.
-  std::vector<Mat3<Real>> rotations() const;
+  std::vector<Mat3<Real>> rotations() const override;
   // Signed rest volume V of each tetrahedron (SOFA's sign convention).
   std::vector<Real> rest_volumes() const;
   // Stiffness block K_E of each mesh edge, oriented as the mesh edge (SPEC.md, "Stiffness").
   std::vector<Mat3<Real>> edge_stiffness() const;
 
   // Threads for add_force, add_dforce and add_stiffness; results do not depend on it.
-  void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
-  int threads() const { return threads_; }
+  void set_threads(int threads) override { threads_ = threads < 1 ? 1 : threads; }
+  int threads() const override { return threads_; }
   // Where add_force adds its time (null: not timed).
-  void set_phase_times(PhaseTimes* times) { times_ = times; }
+  void set_phase_times(PhaseTimes* times) override { times_ = times; }
 
   // Bytes held by the force field (rest data, edge blocks, schedules, last positions, add_dforce's
   // padded points once it has run), not counting the shared mesh.
-  std::size_t memory_bytes() const;
+  std::size_t memory_bytes() const override;
+
+  // E list, nu list, the method and rayleighStiffness, in that order.
+  std::vector<double> model_values() const override;
 
   // Whether the force field keeps the points in an order of its own, because the mesh's numbering
   // is scattered (docs/performance.md); results are the same up to rounding either way.
-  bool renumbers_points() const { return !internal_point_.empty(); }
+  bool renumbers_points() const override { return !internal_point_.empty(); }
 
  private:
   void rebuild();

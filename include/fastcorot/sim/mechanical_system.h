@@ -8,7 +8,7 @@
 
 #include "fastcorot/core/phase_times.h"
 #include "fastcorot/core/types.h"
-#include "fastcorot/fem/corotational_force_field.h"
+#include "fastcorot/fem/force_field.h"
 #include "fastcorot/sim/mass.h"
 #include "fastcorot/sim/mechanical_state.h"
 #include "fastcorot/topology/tet_mesh.h"
@@ -41,7 +41,7 @@ template <class Real>
 class MechanicalSystem {
  public:
   MechanicalState<Real> state;
-  std::vector<std::shared_ptr<CorotationalForceField<Real>>> force_fields;
+  std::vector<std::shared_ptr<ForceField<Real>>> force_fields;  // any of fem/*_force_field.h
   Mass<Real> mass;                   // empty (size 0) when the object has no mass component
   std::vector<Index> fixed;          // fixed point indices, sorted, unique
   // Points whose velocity is zeroed after each step (FixedProjectiveConstraint's

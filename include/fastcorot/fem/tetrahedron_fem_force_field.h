@@ -1,0 +1,156 @@
+// TetrahedronFEMForceField<Real>: SOFA's TetrahedronFEMForceField, the linear tetrahedron with four
+// ways of following rotations (`small`: none; `large`: the frame of the first two edges; `polar`:
+// the polar factor of the edge matrix; `svd`: the polar factor, or for an inverted or flat element
+// the rotation of a stable SVD). Per tetrahedron it keeps what SOFA keeps: the strain-displacement
+// matrix J (12×6, three distinct values per vertex, six times the volume times the shape gradient,
+// in the rest frame of the method), the material matrix K (6×6 isotropic, divided by 36 times the
+// volume), the rest positions in that frame and the rest rotation. The force of an element is
+// R J K J^T D, D being the rest positions minus the current ones in the element's frame; the
+// stiffness is SOFA's tangent R J K J^T R^T (no derivative of R), which `add_force` assembles into
+// one 3×3 block per point and per mesh edge, so that `add_dforce` is a block-sparse product.
+//
+// The mathematics differ from FastTetrahedralCorotationalForceField's (SPEC.md) where the two
+// components differ in SOFA: here the linearisation point of `large` is the element's first vertex
+// and its first edge (forces of the same strain, another rotation), and the stiffness blocks come
+// from J K J^T rather than from shape-vector outer products; docs/tetrahedron-fem.md compares them.
+// Loops that add into shared arrays follow a ScatterSchedule, so results are bitwise the same on
+// any thread count.
+#pragma once
+
+#include "fastcorot/core/phase_times.h"
+#include "fastcorot/core/types.h"
+#include "fastcorot/fem/force_field.h"
+#include "fastcorot/fem/tetrahedron_element.h"
+#include "fastcorot/topology/scatter_schedule.h"
+#include "fastcorot/topology/tet_mesh.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fastcorot {
+
+enum class TetrahedronFEMMethod { small, large, polar, svd };
+
+// "small", "large", "polar" or "svd" (SOFA's names); throws fastcorot::Error naming the value.
+TetrahedronFEMMethod parse_tetrahedron_fem_method(std::string_view name);
+std::string to_string(TetrahedronFEMMethod method);
+
+template <class Real>
+class TetrahedronFEMForceField final : public ForceField<Real> {
+ public:
+  using Mat6 = Eigen::Matrix<Real, 6, 6>;
+  using StrainDisplacement = Eigen::Matrix<Real, 12, 6>;
+
+  // Scene attributes of the same names (SOFA's defaults).
+  struct Parameters {
+    std::vector<Real> young_modulus{Real(5000)};  // one value, or one per tetrahedron
+    std::vector<Real> poisson_ratio{Real(0.45)};  // one value, or one per tetrahedron
+    TetrahedronFEMMethod method = TetrahedronFEMMethod::large;
+    Real rayleigh_stiffness = 0;
+    // localStiffnessFactor: M factors; tetrahedron t's E is multiplied by factor[t * M / #T].
+    std::vector<Real> local_stiffness_factor;
+    // computeVonMisesStress: 0 none, 1 from the corotational strain, 2 from the Green strain.
+    int von_mises = 0;
+  };
+
+  // What SOFA keeps per tetrahedron, compactly: J holds three distinct values per vertex
+  // (gradient[i] = (J(3i,0), J(3i,3), J(3i,5)), six times the volume times vertex i's shape
+  // gradient in the element's rest frame) and K three (material = (K(0,0), K(0,1), K(3,3)));
+  // strain_displacement() and material_matrix() give SOFA's full matrices. `rotation` maps the
+  // element's frame to the world as SOFA's Transformation `rotations[i]` does; `initial_rotation` is
+  // its value at rest.
+  struct Element {
+    std::array<Vec3<Real>, 4> gradient{};
+    Vec3<Real> material = Vec3<Real>::Zero();
+    std::array<Vec3<Real>, 4> rotated_rest{};     // rest positions in the element's rest frame
+    Mat3<Real> initial_rotation = Mat3<Real>::Identity();
+    Mat3<Real> rotation = Mat3<Real>::Identity();  // at the last add_force
+    Mat3<Real> initial_transformation = Mat3<Real>::Identity();  // svd: the rest edge matrix's inverse
+  };
+
+  // Computes the rest data from `rest_positions`. Throws fastcorot::Error for an empty mesh, a list
+  // whose length is neither 1 nor the tetrahedron count, E <= 0, nu outside [0, 0.5), a negative
+  // rayleighStiffness or local stiffness factor, computeVonMisesStress outside 0..2, or a
+  // degenerate tetrahedron (by index).
+  TetrahedronFEMForceField(std::shared_ptr<TetMesh> mesh, std::span<const Vec3<Real>> rest_positions,
+                           Parameters parameters);
+
+  std::string component() const override { return "TetrahedronFEMForceField"; }
+  std::string method_name() const override { return to_string(parameters_.method); }
+  const TetMesh& mesh() const override { return *mesh_; }
+  const Parameters& parameters() const { return parameters_; }
+  const Element& element(Index t) const { return elements_.at(static_cast<std::size_t>(t)); }
+  StrainDisplacement strain_displacement(Index t) const;
+  Mat6 material_matrix(Index t) const;
+
+  void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
+  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
+  void add_dforce(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> df, Real k_factor,
+                  Real b_factor = 0) const override;
+  void add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset = 0, Real b_factor = 0) const override;
+  void add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor = 0) const override;
+
+  // SOFA's getPotentialEnergy for `small` (1/2 D^T J K J^T D summed); for the other methods SOFA
+  // returns 0, and this returns the same expression in each element's frame at x.
+  Real potential_energy(std::span<const Vec3<Real>> x) const override;
+  // Rest frame to world: rotation * initial_rotation^T per tetrahedron (identity for small).
+  std::vector<Mat3<Real>> rotations() const override;
+
+  // Von Mises stress (computeVonMisesStress 1 or 2) at positions x, as SOFA computes it after each
+  // step (and at init): per tetrahedron, and per point the mean over its tetrahedra. Empty when not asked for, or
+  // for method small with computeVonMisesStress 1, where SOFA computes none.
+  void update_von_mises_stress(std::span<const Vec3<Real>> x);
+  void end_step(std::span<const Vec3<Real>> x) override { update_von_mises_stress(x); }
+  std::span<const Real> von_mises_per_element() const { return von_mises_element_; }
+  std::span<const Real> von_mises_per_node() const { return von_mises_node_; }
+  bool computes_von_mises_stress() const;
+
+  void check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const override;
+  void apply(const TopologyChange& change) override;
+  std::vector<double> model_values() const override;
+
+  void set_threads(int threads) override { threads_ = threads < 1 ? 1 : threads; }
+  int threads() const override { return threads_; }
+  void set_phase_times(PhaseTimes* times) override { times_ = times; }
+  std::size_t memory_bytes() const override;
+
+ private:
+  void initialise_element(Index t);
+  Real young_modulus_of(Index t) const;
+  Real poisson_ratio_of(Index t) const;
+  void schedule();
+  void check_size(std::span<const Vec3<Real>> v, const char* what) const;
+  // The element's displacement D at its points p in its frame (SOFA's D of the method), and the
+  // frame (world to element, SOFA's R_0_2; identity for small).
+  static std::array<Vec3<Real>, 4> displacement(const Element& element, const TetPoints<Real>& p,
+                                                TetrahedronFEMMethod method, Mat3<Real>& frame);
+  // Forces of element t at x into f; with kLinearise also its rotation.
+  template <bool kLinearise>
+  void accumulate_element(Index t, std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+  // Adds element t's blocks R J K J^T R^T into the point and edge blocks.
+  void add_element_blocks(Index t);
+  void refresh_blocks();
+  void ensure_linearisation() const;
+
+  std::shared_ptr<TetMesh> mesh_;
+  std::vector<Vec3<Real>> rest_positions_;
+  Parameters parameters_;
+  bool young_per_tetrahedron_ = false, poisson_per_tetrahedron_ = false;
+  std::vector<Element> elements_;
+  ScatterSchedule schedule_;
+  std::vector<Mat3<Real>> point_blocks_;  // block (v, v)
+  std::vector<Mat3<Real>> edge_blocks_;   // block (a, b) of mesh edge (a, b)
+  std::vector<Vec3<Real>> last_positions_;
+  bool stale_ = false;  // a topological change came after the last add_force
+  std::vector<Real> von_mises_element_, von_mises_node_;
+  int threads_ = 1;
+  PhaseTimes* times_ = nullptr;
+};
+
+}  // namespace fastcorot

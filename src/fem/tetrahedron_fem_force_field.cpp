@@ -1,0 +1,527 @@
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/core/lame.h"
+#include "fastcorot/core/parallel.h"
+#include "fastcorot/core/rotation.h"
+#include "fastcorot/fem/tetrahedron_element.h"
+
+#include <cmath>
+
+namespace fastcorot {
+
+TetrahedronFEMMethod parse_tetrahedron_fem_method(std::string_view name) {
+  if (name == "small") return TetrahedronFEMMethod::small;
+  if (name == "large") return TetrahedronFEMMethod::large;
+  if (name == "polar") return TetrahedronFEMMethod::polar;
+  if (name == "svd") return TetrahedronFEMMethod::svd;
+  throw make_error("method = \"", name, "\": expected small, large, polar or svd");
+}
+
+std::string to_string(TetrahedronFEMMethod method) {
+  switch (method) {
+    case TetrahedronFEMMethod::small: return "small";
+    case TetrahedronFEMMethod::large: return "large";
+    case TetrahedronFEMMethod::polar: return "polar";
+    case TetrahedronFEMMethod::svd: return "svd";
+  }
+  return "?";
+}
+
+namespace {
+
+// SOFA's peudo_determinant_for_coef of the 2×3 matrix with rows (p_u q_u r_u) and (p_v q_v r_v),
+// written in SOFA's order of operations.
+template <class Real>
+Real pseudo_determinant(const Vec3<Real>& p, const Vec3<Real>& q, const Vec3<Real>& r, int u, int v) {
+  return q[u] * r[v] - q[v] * r[u] - p[u] * r[v] + p[v] * r[u] + p[u] * q[v] - p[v] * q[u];
+}
+
+// J's values (SOFA's computeStrainDisplacement) for the element (a, b, c, d): vertex i's gradient
+// entries come from the other three vertices, starting after i, with alternating signs.
+template <class Real>
+std::array<Vec3<Real>, 4> strain_gradients(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c,
+                                           const Vec3<Real>& d) {
+  const auto entries = [](const Vec3<Real>& p, const Vec3<Real>& q, const Vec3<Real>& r, Real sign) {
+    return Vec3<Real>(sign * pseudo_determinant(p, q, r, 1, 2), -sign * pseudo_determinant(p, q, r, 0, 2),
+                      sign * pseudo_determinant(p, q, r, 0, 1));
+  };
+  return {entries(b, c, d, Real(-1)), entries(c, d, a, Real(1)), entries(d, a, b, Real(-1)),
+          entries(a, b, c, Real(1))};
+}
+
+// SOFA's computeRotationLarge: rows x along (b - a), z normal to the plane of (b - a, c - a).
+template <class Real>
+Mat3<Real> large_frame(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c) {
+  return qr_frame<Real>(b - a, c - a);
+}
+
+template <class Real>
+Mat3<Real> edge_rows(const TetPoints<Real>& p) {
+  Mat3<Real> rows;
+  rows.row(0) = (p[1] - p[0]).transpose();
+  rows.row(1) = (p[2] - p[0]).transpose();
+  rows.row(2) = (p[3] - p[0]).transpose();
+  return rows;
+}
+
+// F = J K J^T D for one element (SOFA's computeForce, in its order of operations): g are J's
+// values per vertex, k K's three values, D the twelve displacements.
+template <class Real>
+std::array<Vec3<Real>, 4> element_force(const std::array<Vec3<Real>, 4>& g, const Vec3<Real>& k,
+                                        const std::array<Vec3<Real>, 4>& d) {
+  Real e[6] = {0, 0, 0, 0, 0, 0};
+  for (int i = 0; i < 4; ++i) {
+    e[0] += g[i].x() * d[i].x();
+    e[1] += g[i].y() * d[i].y();
+    e[2] += g[i].z() * d[i].z();
+    e[3] += g[i].y() * d[i].x() + g[i].x() * d[i].y();
+    e[4] += g[i].z() * d[i].y() + g[i].y() * d[i].z();
+    e[5] += g[i].z() * d[i].x() + g[i].x() * d[i].z();
+  }
+  const Real s[6] = {k[0] * e[0] + k[1] * e[1] + k[1] * e[2], k[1] * e[0] + k[0] * e[1] + k[1] * e[2],
+                     k[1] * e[0] + k[1] * e[1] + k[0] * e[2], k[2] * e[3],
+                     k[2] * e[4],                             k[2] * e[5]};
+  std::array<Vec3<Real>, 4> f;
+  for (int i = 0; i < 4; ++i) {
+    f[i] = Vec3<Real>(g[i].x() * s[0] + g[i].y() * s[3] + g[i].z() * s[5],
+                      g[i].y() * s[1] + g[i].x() * s[3] + g[i].z() * s[4],
+                      g[i].z() * s[2] + g[i].y() * s[4] + g[i].x() * s[5]);
+  }
+  return f;
+}
+
+template <class Real>
+void check_list(const std::vector<Real>& values, const char* name, Index num_tetrahedra) {
+  if (values.size() != 1 && values.size() != static_cast<std::size_t>(num_tetrahedra)) {
+    throw make_error(name, ": ", values.size(), " values given; expected 1 or one per tetrahedron (",
+                     num_tetrahedra, ")");
+  }
+}
+
+}  // namespace
+
+template <class Real>
+TetrahedronFEMForceField<Real>::TetrahedronFEMForceField(std::shared_ptr<TetMesh> mesh,
+                                                         std::span<const Vec3<Real>> rest_positions,
+                                                         Parameters parameters)
+    : mesh_(std::move(mesh)),
+      rest_positions_(rest_positions.begin(), rest_positions.end()),
+      parameters_(std::move(parameters)) {
+  if (!mesh_ || mesh_->num_tetrahedra() == 0) {
+    throw make_error("TetrahedronFEMForceField: the topology has no tetrahedra");
+  }
+  const Index n = mesh_->num_tetrahedra();
+  check_list(parameters_.young_modulus, "youngModulus", n);
+  check_list(parameters_.poisson_ratio, "poissonRatio", n);
+  if (!(parameters_.rayleigh_stiffness >= 0) || !std::isfinite(parameters_.rayleigh_stiffness)) {
+    throw make_error("rayleighStiffness = ", parameters_.rayleigh_stiffness, ": must be a finite value >= 0");
+  }
+  for (std::size_t i = 0; i < parameters_.local_stiffness_factor.size(); ++i) {
+    const Real factor = parameters_.local_stiffness_factor[i];
+    if (!(factor > 0) || !std::isfinite(factor)) {
+      throw make_error("localStiffnessFactor[", i, "] = ", factor, ": must be a finite value > 0");
+    }
+  }
+  if (parameters_.von_mises < 0 || parameters_.von_mises > 2) {
+    throw make_error("computeVonMisesStress = ", parameters_.von_mises,
+                     ": expected 0 (none), 1 (corotational strain) or 2 (Green strain)");
+  }
+  if (static_cast<Index>(rest_positions_.size()) != mesh_->num_points()) {
+    throw make_error("TetrahedronFEMForceField: ", rest_positions_.size(), " rest positions for a mesh of ",
+                     mesh_->num_points(), " points");
+  }
+  check_rest_volumes<Real>(*mesh_, rest_positions_);
+  young_per_tetrahedron_ = parameters_.young_modulus.size() > 1;
+  poisson_per_tetrahedron_ = parameters_.poisson_ratio.size() > 1;
+  elements_.resize(static_cast<std::size_t>(n));
+  for (Index t = 0; t < n; ++t) initialise_element(t);
+  schedule();
+  last_positions_ = rest_positions_;
+  refresh_blocks();
+  update_von_mises_stress(rest_positions_);  // SOFA's reinit computes it once
+}
+
+template <class Real>
+Real TetrahedronFEMForceField<Real>::young_modulus_of(Index t) const {
+  const auto& young = parameters_.young_modulus;
+  const auto i = static_cast<std::size_t>(t);
+  Real e = young_per_tetrahedron_ && i < young.size() ? young[i] : young.front();
+  const auto& factors = parameters_.local_stiffness_factor;
+  if (!factors.empty()) {
+    // SOFA: factor[i * M / N] for N tetrahedra (with the count the field was built with).
+    const std::size_t m = factors.size(), count = elements_.size();
+    e *= factors[std::min(m - 1, i * m / count)];
+  }
+  return e;
+}
+
+template <class Real>
+Real TetrahedronFEMForceField<Real>::poisson_ratio_of(Index t) const {
+  const auto& poisson = parameters_.poisson_ratio;
+  const auto i = static_cast<std::size_t>(t);
+  return poisson_per_tetrahedron_ && i < poisson.size() ? poisson[i] : poisson.front();
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::initialise_element(Index t) {
+  Element& element = elements_[static_cast<std::size_t>(t)];
+  element = Element{};
+  const Real young = young_modulus_of(t), nu = poisson_ratio_of(t);
+  try {
+    lame_parameters(young, nu);  // the same checks (and messages) as every force field
+  } catch (const Error& error) {
+    if (!young_per_tetrahedron_ && !poisson_per_tetrahedron_ && parameters_.local_stiffness_factor.empty()) throw;
+    throw make_error(error.what(), " (tetrahedron ", t, ")");
+  }
+  const TetPoints<Real> p = tetrahedron_points<Real>(mesh_->tetrahedron(t), rest_positions_);
+  // SOFA's computeMaterialStiffness: the unit matrix entries scaled by E (1 - nu) / ((1 + nu)
+  // (1 - 2 nu)), then divided by 36 |V|.
+  const Real scale = (young * (1 - nu)) / ((1 + nu) * (1 - 2 * nu));
+  const Real volume36 = std::abs(signed_volume(p)) * 36;
+  element.material = Vec3<Real>((1 * scale) / volume36, ((nu / (1 - nu)) * scale) / volume36,
+                                (((1 - 2 * nu) / (2 * (1 - nu))) * scale) / volume36);
+  switch (parameters_.method) {
+    case TetrahedronFEMMethod::small:
+      element.gradient = strain_gradients(p[0], p[1], p[2], p[3]);
+      for (int i = 0; i < 4; ++i) element.rotated_rest[static_cast<std::size_t>(i)] = p[static_cast<std::size_t>(i)];
+      return;
+    case TetrahedronFEMMethod::large: {
+      const Mat3<Real> frame = large_frame(p[0], p[1], p[2]);
+      element.initial_rotation = frame.transpose();
+      std::array<Vec3<Real>, 4> r;
+      for (int i = 0; i < 4; ++i) r[static_cast<std::size_t>(i)] = frame * p[static_cast<std::size_t>(i)];
+      for (int i = 1; i < 4; ++i) r[static_cast<std::size_t>(i)] -= r[0];
+      r[0].setZero();
+      element.rotated_rest = r;
+      break;
+    }
+    case TetrahedronFEMMethod::svd:
+      element.initial_transformation = edge_rows(p).inverse();
+      [[fallthrough]];
+    case TetrahedronFEMMethod::polar: {
+      const Mat3<Real> frame = polar_factor<Real>(edge_rows(p));
+      element.initial_rotation = frame.transpose();
+      for (int i = 0; i < 4; ++i) {
+        element.rotated_rest[static_cast<std::size_t>(i)] = frame * p[static_cast<std::size_t>(i)];
+      }
+      break;
+    }
+  }
+  element.rotation = element.initial_rotation;
+  const auto& r = element.rotated_rest;
+  element.gradient = strain_gradients(r[0], r[1], r[2], r[3]);
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::schedule() {
+  schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra());
+  point_blocks_.assign(static_cast<std::size_t>(mesh_->num_points()), Mat3<Real>::Zero());
+  edge_blocks_.assign(static_cast<std::size_t>(mesh_->num_edges()), Mat3<Real>::Zero());
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::check_size(std::span<const Vec3<Real>> v, const char* what) const {
+  if (static_cast<Index>(v.size()) != mesh_->num_points()) {
+    throw make_error("TetrahedronFEMForceField: ", what, " has ", v.size(), " points; the mesh has ",
+                     mesh_->num_points());
+  }
+}
+
+template <class Real>
+typename TetrahedronFEMForceField<Real>::StrainDisplacement TetrahedronFEMForceField<Real>::strain_displacement(
+    Index t) const {
+  const Element& element = this->element(t);
+  StrainDisplacement j = StrainDisplacement::Zero();
+  for (int i = 0; i < 4; ++i) {
+    const Vec3<Real>& g = element.gradient[static_cast<std::size_t>(i)];
+    j(3 * i, 0) = j(3 * i + 1, 3) = j(3 * i + 2, 5) = g.x();
+    j(3 * i, 3) = j(3 * i + 1, 1) = j(3 * i + 2, 4) = g.y();
+    j(3 * i, 5) = j(3 * i + 1, 4) = j(3 * i + 2, 2) = g.z();
+  }
+  return j;
+}
+
+template <class Real>
+typename TetrahedronFEMForceField<Real>::Mat6 TetrahedronFEMForceField<Real>::material_matrix(Index t) const {
+  const Vec3<Real>& k = this->element(t).material;
+  Mat6 m = Mat6::Zero();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) m(i, j) = i == j ? k[0] : k[1];
+    m(3 + i, 3 + i) = k[2];
+  }
+  return m;
+}
+
+template <class Real>
+std::array<Vec3<Real>, 4> TetrahedronFEMForceField<Real>::displacement(const Element& element, const TetPoints<Real>& p,
+                                                                       TetrahedronFEMMethod method, Mat3<Real>& frame) {
+  const auto& rest = element.rotated_rest;
+  std::array<Vec3<Real>, 4> d;
+  if (method == TetrahedronFEMMethod::small) {
+    // SOFA's accumulateForceSmall: displacements relative to the first vertex.
+    frame.setIdentity();
+    d[0].setZero();
+    for (std::size_t i = 1; i < 4; ++i) d[i] = rest[i] - rest[0] - p[i] + p[0];
+    return d;
+  }
+  if (method == TetrahedronFEMMethod::large) {
+    frame = large_frame(p[0], p[1], p[2]);
+  } else if (method == TetrahedronFEMMethod::polar) {
+    frame = polar_factor<Real>(edge_rows(p));
+  } else {
+    const Mat3<Real> a = edge_rows(p);
+    const Mat3<Real> deformation = a * element.initial_transformation;
+    if (deformation.determinant() < Real(1e-6)) {
+      // Inverted or too flat: the rotation of a stable SVD, composed with the rest frame.
+      frame = stable_polar_factor<Real>(deformation) * element.initial_rotation.transpose();
+    } else {
+      frame = polar_factor<Real>(a);
+    }
+  }
+  std::array<Vec3<Real>, 4> deformed;
+  for (std::size_t i = 0; i < 4; ++i) deformed[i] = frame * p[i];
+  if (method == TetrahedronFEMMethod::large) {
+    // SOFA's accumulateForceLarge: the frame puts vertex 1 on the x axis and vertex 2 in the xy
+    // plane, whose other coordinates it takes as exactly zero.
+    deformed[1][0] -= deformed[0][0];
+    deformed[2][0] -= deformed[0][0];
+    deformed[2][1] -= deformed[0][1];
+    deformed[3] -= deformed[0];
+    d[0].setZero();
+    d[1] = Vec3<Real>(rest[1][0] - deformed[1][0], 0, 0);
+    d[2] = Vec3<Real>(rest[2][0] - deformed[2][0], rest[2][1] - deformed[2][1], 0);
+    d[3] = rest[3] - deformed[3];
+  } else {
+    for (std::size_t i = 0; i < 4; ++i) d[i] = rest[i] - deformed[i];
+  }
+  return d;
+}
+
+template <class Real>
+template <bool kLinearise>
+void TetrahedronFEMForceField<Real>::accumulate_element(Index t, std::span<const Vec3<Real>> x,
+                                                        std::span<Vec3<Real>> f) {
+  Element& element = elements_[static_cast<std::size_t>(t)];
+  const Tetrahedron& tet = mesh_->tetrahedron(t);
+  Mat3<Real> frame;  // SOFA's R_0_2: world to the element's current frame
+  const auto d = displacement(element, tetrahedron_points<Real>(tet, x), parameters_.method, frame);
+  const auto force = element_force(element.gradient, element.material, d);
+  if (parameters_.method == TetrahedronFEMMethod::small) {
+    for (std::size_t i = 0; i < 4; ++i) f[static_cast<std::size_t>(tet[i])] += force[i];
+    return;
+  }
+  const Mat3<Real> rotation = frame.transpose();
+  if constexpr (kLinearise) element.rotation = rotation;
+  for (std::size_t i = 0; i < 4; ++i) f[static_cast<std::size_t>(tet[i])] += rotation * force[i];
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
+  // Block (k, l) of R J K J^T R^T is k1 w_k w_l^T + k2 w_l w_k^T + k2 (w_k . w_l) I with w = R g (the
+  // gradients in the world) and K's values k: J K J^T's blocks in the element's frame, rotated.
+  // (Their diagonal also carries (k0 - k1 - 2 k2) w_k∘w_l in the frame, zero for isotropic K up to
+  // rounding; it is left out.)
+  const Element& element = elements_[static_cast<std::size_t>(t)];
+  const Real k1 = element.material[1], k2 = element.material[2];
+  std::array<Vec3<Real>, 4> w;
+  for (std::size_t i = 0; i < 4; ++i) w[i] = element.rotation * element.gradient[i];
+  const auto block = [&](int k, int l) -> Mat3<Real> {
+    const Vec3<Real>& a = w[static_cast<std::size_t>(k)];
+    const Vec3<Real>& b = w[static_cast<std::size_t>(l)];
+    Mat3<Real> m = k1 * a * b.transpose() + k2 * b * a.transpose();
+    m.diagonal().array() += k2 * a.dot(b);
+    return m;
+  };
+  const Tetrahedron& tet = mesh_->tetrahedron(t);
+  for (int k = 0; k < 4; ++k) point_blocks_[static_cast<std::size_t>(tet[static_cast<std::size_t>(k)])] += block(k, k);
+  const auto& edges = mesh_->edges_of_tetrahedron(t);
+  for (int e = 0; e < 6; ++e) {
+    const int k = kTetrahedronEdges[e][0], l = kTetrahedronEdges[e][1];
+    Mat3<Real>& target = edge_blocks_[static_cast<std::size_t>(edges[static_cast<std::size_t>(e)])];
+    // The mesh edge (a, b) holds block (a, b): force at a per displacement of b.
+    if (mesh_->edge_follows_mesh_edge(t, e)) {
+      target += block(k, l);
+    } else {
+      target += block(l, k);
+    }
+  }
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::refresh_blocks() {
+  std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
+  std::fill(edge_blocks_.begin(), edge_blocks_.end(), Mat3<Real>::Zero());
+  run_schedule(schedule_, threads_, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) add_element_blocks(schedule_.order[static_cast<std::size_t>(i)]);
+  });
+  stale_ = false;
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::ensure_linearisation() const {
+  if (!stale_) return;
+  // After a topological change: the blocks of the last linearisation, with the new elements.
+  auto* self = const_cast<TetrahedronFEMForceField*>(this);
+  std::vector<Vec3<Real>> scratch(last_positions_.size(), Vec3<Real>::Zero());
+  const std::vector<Vec3<Real>> at = last_positions_;
+  self->add_force(at, scratch);
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
+  check_size(x, "x");
+  check_size(f, "f");
+  PhaseTimer timer(times_ ? &times_->add_force : nullptr);
+  run_schedule(schedule_, threads_, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) accumulate_element<true>(schedule_.order[static_cast<std::size_t>(i)], x, f);
+  });
+  last_positions_.assign(x.begin(), x.end());
+  refresh_blocks();
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
+  check_size(x, "x");
+  check_size(f, "f");
+  run_schedule(schedule_, threads_, [&](Index begin, Index end) {
+    for (Index i = begin; i < end; ++i) accumulate_element<false>(schedule_.order[static_cast<std::size_t>(i)], x, f);
+  });
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> df,
+                                                Real k_factor, Real b_factor) const {
+  check_size(dx, "dx");
+  check_size(df, "df");
+  ensure_linearisation();
+  // SOFA's applyStiffness: df -= k R J K J^T R^T dx, here one row of blocks per point (no races,
+  // each point's sum in the order of its edges).
+  const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
+  const TetMesh& mesh = *mesh_;
+  parallel_ranges(threads_, static_cast<std::size_t>(mesh.num_points()), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      Vec3<Real> sum = point_blocks_[v] * dx[v];
+      for (Index e : mesh.edges_around_vertex(static_cast<Index>(v))) {
+        const Edge& edge = mesh.edges()[static_cast<std::size_t>(e)];
+        const Mat3<Real>& block = edge_blocks_[static_cast<std::size_t>(e)];
+        if (edge[0] == static_cast<Index>(v)) {
+          sum += block * dx[static_cast<std::size_t>(edge[1])];
+        } else {
+          sum += block.transpose() * dx[static_cast<std::size_t>(edge[0])];
+        }
+      }
+      df[v] -= k * sum;
+    }
+  });
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset,
+                                                   Real b_factor) const {
+  ensure_linearisation();
+  const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
+  for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
+    const Index row = offset + 3 * static_cast<Index>(v);
+    sink.add_block(row, row, -k * point_blocks_[v]);
+  }
+  for (std::size_t e = 0; e < edge_blocks_.size(); ++e) {
+    const Edge& edge = mesh_->edges()[e];
+    const Mat3<Real> block = -k * edge_blocks_[e];
+    sink.add_block(offset + 3 * edge[0], offset + 3 * edge[1], block);
+    sink.add_block(offset + 3 * edge[1], offset + 3 * edge[0], block.transpose());
+  }
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor,
+                                                         Real b_factor) const {
+  if (diagonal.size() != point_blocks_.size()) {
+    throw make_error("TetrahedronFEMForceField: ", diagonal.size(), " diagonal blocks for ", point_blocks_.size(),
+                     " points");
+  }
+  ensure_linearisation();
+  const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
+  for (std::size_t v = 0; v < diagonal.size(); ++v) diagonal[v] -= k * point_blocks_[v];
+}
+
+template <class Real>
+Real TetrahedronFEMForceField<Real>::potential_energy(std::span<const Vec3<Real>> x) const {
+  check_size(x, "x");
+  // 1/2 D . J K J^T D per element, D as add_force forms it at x: SOFA's getPotentialEnergy for
+  // small; for the others the same in the element's frame at x (SOFA returns 0 there).
+  Real energy = 0;
+  for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
+    const Element& element = elements_[static_cast<std::size_t>(t)];
+    Mat3<Real> frame;
+    const auto d = displacement(element, tetrahedron_points<Real>(mesh_->tetrahedron(t), x), parameters_.method, frame);
+    const auto force = element_force(element.gradient, element.material, d);
+    for (std::size_t i = 0; i < 4; ++i) energy += Real(0.5) * d[i].dot(force[i]);
+  }
+  return energy;
+}
+
+template <class Real>
+std::vector<Mat3<Real>> TetrahedronFEMForceField<Real>::rotations() const {
+  ensure_linearisation();
+  std::vector<Mat3<Real>> out(elements_.size());
+  for (std::size_t t = 0; t < elements_.size(); ++t) {
+    out[t] = elements_[t].rotation * elements_[t].initial_rotation.transpose();
+  }
+  return out;
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const {
+  check_rest_volumes<Real>(tetrahedra, rest_positions_, mesh_->num_tetrahedra());
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::apply(const TopologyChange& change) {
+  apply_moves(elements_, change.tetrahedron_moves);
+  elements_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
+  // New tetrahedra take entry 0 of per-tetrahedron lists (as FastTetrahedralCorotational's do):
+  // their indices have no entry of their own.
+  for (Index t = change.first_added_tetrahedron; t < change.first_added_tetrahedron + change.num_added_tetrahedra;
+       ++t) {
+    const bool young = young_per_tetrahedron_, poisson = poisson_per_tetrahedron_;
+    young_per_tetrahedron_ = poisson_per_tetrahedron_ = false;
+    initialise_element(t);
+    young_per_tetrahedron_ = young;
+    poisson_per_tetrahedron_ = poisson;
+  }
+  if (young_per_tetrahedron_ || poisson_per_tetrahedron_) {
+    apply_moves(parameters_.young_modulus, young_per_tetrahedron_ ? change.tetrahedron_moves
+                                                                 : std::span<const IndexMove>{});
+    apply_moves(parameters_.poisson_ratio, poisson_per_tetrahedron_ ? change.tetrahedron_moves
+                                                                   : std::span<const IndexMove>{});
+    if (young_per_tetrahedron_) parameters_.young_modulus.resize(elements_.size(), parameters_.young_modulus.front());
+    if (poisson_per_tetrahedron_) parameters_.poisson_ratio.resize(elements_.size(), parameters_.poisson_ratio.front());
+  }
+  // The schedule is made anew (its cost is that of the mesh, not of the change).
+  schedule();
+  stale_ = true;
+  if (computes_von_mises_stress()) update_von_mises_stress(last_positions_);
+}
+
+template <class Real>
+std::vector<double> TetrahedronFEMForceField<Real>::model_values() const {
+  std::vector<double> values(parameters_.young_modulus.begin(), parameters_.young_modulus.end());
+  values.insert(values.end(), parameters_.poisson_ratio.begin(), parameters_.poisson_ratio.end());
+  values.insert(values.end(), parameters_.local_stiffness_factor.begin(), parameters_.local_stiffness_factor.end());
+  values.push_back(static_cast<double>(parameters_.method));
+  values.push_back(static_cast<double>(parameters_.rayleigh_stiffness));
+  return values;
+}
+
+template <class Real>
+std::size_t TetrahedronFEMForceField<Real>::memory_bytes() const {
+  return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + edge_blocks_.capacity()) * sizeof(Mat3<Real>) +
+         last_positions_.capacity() * sizeof(Vec3<Real>) + schedule_.order.capacity() * sizeof(Index) +
+         (von_mises_element_.capacity() + von_mises_node_.capacity()) * sizeof(Real);
+}
+
+template class TetrahedronFEMForceField<float>;
+template class TetrahedronFEMForceField<double>;
+
+}  // namespace fastcorot
