@@ -217,7 +217,33 @@ template <class Real>
 void TetrahedronFEMForceField<Real>::schedule() {
   schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra());
   point_blocks_.assign(static_cast<std::size_t>(mesh_->num_points()), Mat3<Real>::Zero());
-  edge_blocks_.assign(static_cast<std::size_t>(mesh_->num_edges()), Mat3<Real>::Zero());
+  const Index n = mesh_->num_points();
+  row_begin_.assign(static_cast<std::size_t>(n) + 1, 0);
+  row_neighbour_.clear();
+  // Entry of each edge in the rows of its first and its second point.
+  std::vector<std::array<Index, 2>> entry_of_edge(static_cast<std::size_t>(mesh_->num_edges()));
+  for (Index v = 0; v < n; ++v) {
+    for (Index e : mesh_->edges_around_vertex(v)) {
+      const Edge& edge = mesh_->edges()[static_cast<std::size_t>(e)];
+      const bool first = edge[0] == v;
+      entry_of_edge[static_cast<std::size_t>(e)][first ? 0 : 1] = static_cast<Index>(row_neighbour_.size());
+      row_neighbour_.push_back(first ? edge[1] : edge[0]);
+    }
+    row_begin_[static_cast<std::size_t>(v) + 1] = static_cast<Index>(row_neighbour_.size());
+  }
+  row_blocks_.assign(row_neighbour_.size(), Mat3<Real>::Zero());
+  element_entries_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
+  for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
+    const auto& edges = mesh_->edges_of_tetrahedron(t);
+    auto& entries = element_entries_[static_cast<std::size_t>(t)];
+    for (int e = 0; e < 6; ++e) {
+      // Local edge (k, l) runs along its mesh edge or against it.
+      const auto& at = entry_of_edge[static_cast<std::size_t>(edges[static_cast<std::size_t>(e)])];
+      const bool along = mesh_->edge_follows_mesh_edge(t, e);
+      entries[static_cast<std::size_t>(2 * e)] = at[along ? 0 : 1];
+      entries[static_cast<std::size_t>(2 * e + 1)] = at[along ? 1 : 0];
+    }
+  }
 }
 
 template <class Real>
@@ -335,23 +361,18 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
   };
   const Tetrahedron& tet = mesh_->tetrahedron(t);
   for (int k = 0; k < 4; ++k) point_blocks_[static_cast<std::size_t>(tet[static_cast<std::size_t>(k)])] += block(k, k);
-  const auto& edges = mesh_->edges_of_tetrahedron(t);
+  const auto& entries = element_entries_[static_cast<std::size_t>(t)];
   for (int e = 0; e < 6; ++e) {
-    const int k = kTetrahedronEdges[e][0], l = kTetrahedronEdges[e][1];
-    Mat3<Real>& target = edge_blocks_[static_cast<std::size_t>(edges[static_cast<std::size_t>(e)])];
-    // The mesh edge (a, b) holds block (a, b): force at a per displacement of b.
-    if (mesh_->edge_follows_mesh_edge(t, e)) {
-      target += block(k, l);
-    } else {
-      target += block(l, k);
-    }
+    const Mat3<Real> kl = block(kTetrahedronEdges[e][0], kTetrahedronEdges[e][1]);
+    row_blocks_[static_cast<std::size_t>(entries[static_cast<std::size_t>(2 * e)])] += kl;
+    row_blocks_[static_cast<std::size_t>(entries[static_cast<std::size_t>(2 * e + 1)])] += kl.transpose();
   }
 }
 
 template <class Real>
 void TetrahedronFEMForceField<Real>::refresh_blocks() {
   std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
-  std::fill(edge_blocks_.begin(), edge_blocks_.end(), Mat3<Real>::Zero());
+  std::fill(row_blocks_.begin(), row_blocks_.end(), Mat3<Real>::Zero());
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i) add_element_blocks(schedule_.order[static_cast<std::size_t>(i)]);
   });
@@ -398,18 +419,12 @@ void TetrahedronFEMForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, 
   // SOFA's applyStiffness: df -= k R J K J^T R^T dx, here one row of blocks per point (no races,
   // each point's sum in the order of its edges).
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
-  const TetMesh& mesh = *mesh_;
-  parallel_ranges(threads_, static_cast<std::size_t>(mesh.num_points()), [&](std::size_t begin, std::size_t end) {
+  parallel_ranges(threads_, point_blocks_.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
       Vec3<Real> sum = point_blocks_[v] * dx[v];
-      for (Index e : mesh.edges_around_vertex(static_cast<Index>(v))) {
-        const Edge& edge = mesh.edges()[static_cast<std::size_t>(e)];
-        const Mat3<Real>& block = edge_blocks_[static_cast<std::size_t>(e)];
-        if (edge[0] == static_cast<Index>(v)) {
-          sum += block * dx[static_cast<std::size_t>(edge[1])];
-        } else {
-          sum += block.transpose() * dx[static_cast<std::size_t>(edge[0])];
-        }
+      const auto last = static_cast<std::size_t>(row_begin_[v + 1]);
+      for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < last; ++entry) {
+        sum += row_blocks_[entry] * dx[static_cast<std::size_t>(row_neighbour_[entry])];
       }
       df[v] -= k * sum;
     }
@@ -425,11 +440,12 @@ void TetrahedronFEMForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real 
     const Index row = offset + 3 * static_cast<Index>(v);
     sink.add_block(row, row, -k * point_blocks_[v]);
   }
-  for (std::size_t e = 0; e < edge_blocks_.size(); ++e) {
-    const Edge& edge = mesh_->edges()[e];
-    const Mat3<Real> block = -k * edge_blocks_[e];
-    sink.add_block(offset + 3 * edge[0], offset + 3 * edge[1], block);
-    sink.add_block(offset + 3 * edge[1], offset + 3 * edge[0], block.transpose());
+  for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
+    const Index row = offset + 3 * static_cast<Index>(v);
+    for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < static_cast<std::size_t>(row_begin_[v + 1]);
+         ++entry) {
+      sink.add_block(row, offset + 3 * row_neighbour_[entry], -k * row_blocks_[entry]);
+    }
   }
 }
 
@@ -501,6 +517,7 @@ void TetrahedronFEMForceField<Real>::apply(const TopologyChange& change) {
   // The schedule is made anew (its cost is that of the mesh, not of the change).
   schedule();
   stale_ = true;
+  shape_derivatives_.clear();  // remade for the new tetrahedra
   if (computes_von_mises_stress()) update_von_mises_stress(last_positions_);
 }
 
@@ -516,9 +533,12 @@ std::vector<double> TetrahedronFEMForceField<Real>::model_values() const {
 
 template <class Real>
 std::size_t TetrahedronFEMForceField<Real>::memory_bytes() const {
-  return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + edge_blocks_.capacity()) * sizeof(Mat3<Real>) +
+  return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + row_blocks_.capacity()) * sizeof(Mat3<Real>) +
+         element_entries_.capacity() * sizeof(std::array<Index, 12>) +
          last_positions_.capacity() * sizeof(Vec3<Real>) + schedule_.order.capacity() * sizeof(Index) +
-         (von_mises_element_.capacity() + von_mises_node_.capacity()) * sizeof(Real);
+         (von_mises_element_.capacity() + von_mises_node_.capacity()) * sizeof(Real) +
+         shape_derivatives_.capacity() * sizeof(Eigen::Matrix<Real, 3, 4>) +
+         (row_begin_.capacity() + row_neighbour_.capacity()) * sizeof(Index);
 }
 
 template class TetrahedronFEMForceField<float>;

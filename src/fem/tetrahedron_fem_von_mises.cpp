@@ -22,19 +22,26 @@ void TetrahedronFEMForceField<Real>::update_von_mises_stress(std::span<const Vec
   check_size(x, "x");
   using Mat4 = Eigen::Matrix<Real, 4, 4>;
   const Index num_tetrahedra = mesh_->num_tetrahedra();
+  if (shape_derivatives_.size() != static_cast<std::size_t>(num_tetrahedra)) {
+    // SOFA's elemShapeFun (made at init): the inverse of the rows (1, X0_m) of the rest vertices,
+    // whose rows 1..3 hold the derivatives of the four shape functions along x, y, z.
+    shape_derivatives_.resize(static_cast<std::size_t>(num_tetrahedra));
+    for (Index t = 0; t < num_tetrahedra; ++t) {
+      const TetPoints<Real> rest = tetrahedron_points<Real>(mesh_->tetrahedron(t), rest_positions_);
+      Mat4 vertices;
+      for (int m = 0; m < 4; ++m) {
+        vertices(m, 0) = 1;
+        for (int l = 0; l < 3; ++l) vertices(m, l + 1) = rest[static_cast<std::size_t>(m)][l];
+      }
+      shape_derivatives_[static_cast<std::size_t>(t)] = vertices.inverse().template bottomRows<3>();
+    }
+  }
   von_mises_element_.assign(static_cast<std::size_t>(num_tetrahedra), Real(0));
   for (Index t = 0; t < num_tetrahedra; ++t) {
     const Tetrahedron& tet = mesh_->tetrahedron(t);
     const TetPoints<Real> rest = tetrahedron_points<Real>(tet, rest_positions_);
     const TetPoints<Real> p = tetrahedron_points<Real>(tet, x);
-    // SOFA's elemShapeFun: the inverse of the rows (1, X0_m) of the rest vertices; row l + 1 holds
-    // the derivatives of the four shape functions along l.
-    Mat4 vertices;
-    for (int m = 0; m < 4; ++m) {
-      vertices(m, 0) = 1;
-      for (int l = 0; l < 3; ++l) vertices(m, l + 1) = rest[static_cast<std::size_t>(m)][l];
-    }
-    const Mat4 shape = vertices.inverse();
+    const auto& shape = shape_derivatives_[static_cast<std::size_t>(t)];
     // The displacement: the world one (Green strain) or the element's D (corotational; SOFA uses
     // the frame's D with the world rest shape functions, and so do we).
     std::array<Vec3<Real>, 4> u;
@@ -50,7 +57,7 @@ void TetrahedronFEMForceField<Real>::update_von_mises_stress(std::span<const Vec
     Mat3<Real> grad = Mat3<Real>::Zero();
     for (int k = 0; k < 3; ++k) {
       for (int l = 0; l < 3; ++l) {
-        for (int m = 0; m < 4; ++m) grad(k, l) += shape(l + 1, m) * u[static_cast<std::size_t>(m)][k];
+        for (int m = 0; m < 4; ++m) grad(k, l) += shape(l, m) * u[static_cast<std::size_t>(m)][k];
       }
     }
     const Mat3<Real> strain = parameters_.von_mises == 2

@@ -145,10 +145,17 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   std::vector<Element> elements_;
   ScatterSchedule schedule_;
   std::vector<Mat3<Real>> point_blocks_;  // block (v, v)
-  std::vector<Mat3<Real>> edge_blocks_;   // block (a, b) of mesh edge (a, b)
+  // Row v of the assembled blocks: entries [row_begin_[v], row_begin_[v + 1]) of row_neighbour_
+  // (the other point of each mesh edge around v) and row_blocks_ (block (v, neighbour)). Both
+  // blocks of an edge are kept, so that the product reads each row straight through.
+  std::vector<Index> row_begin_, row_neighbour_;
+  std::vector<Mat3<Real>> row_blocks_;
+  // Per tetrahedron and local edge (k, l): the entries of block (k, l) in row k and (l, k) in row l.
+  std::vector<std::array<Index, 12>> element_entries_;
   std::vector<Vec3<Real>> last_positions_;
   bool stale_ = false;  // a topological change came after the last add_force
   std::vector<Real> von_mises_element_, von_mises_node_;
+  std::vector<Eigen::Matrix<Real, 3, 4>> shape_derivatives_;  // von Mises only; made on first use
   int threads_ = 1;
   PhaseTimes* times_ = nullptr;
 };
