@@ -29,6 +29,9 @@ from ._values import canonical, from_text, to_text
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 _STATE_VIEWS = ("position", "velocity", "rest_position")
+# Outputs of a simulated TetrahedronFEMForceField (numpy copies, after the last step).
+_VON_MISES = ("vonMisesPerNode", "vonMisesPerElement")
+_FORCE_FIELDS = ("FastTetrahedralCorotationalForceField", "TetrahedronFEMForceField")
 
 
 def _caller_location():
@@ -131,6 +134,9 @@ class Object:
         if self._binding is not None and name in _STATE_VIEWS:
             core, k = self._binding
             return getattr(core, name)(k)
+        if self._binding is not None and name in _VON_MISES:
+            core, k = self._binding
+            return core.von_mises_stress(k, name == "vonMisesPerNode")
         kind = self._kind(name)
         where = f"{self.location}: {self._label()}"
         if name in self._data:
@@ -162,9 +168,9 @@ class Object:
 
     # --- cutting (force fields of a built Simulation) ------------------------------------------
     def _simulated_topology(self, what):
-        if self._type != "FastTetrahedralCorotationalForceField":
+        if self._type not in _FORCE_FIELDS:
             raise TypeError(f"{self.location}: {self._label()}: {what} is for a "
-                            "FastTetrahedralCorotationalForceField")
+                            "FastTetrahedralCorotationalForceField or TetrahedronFEMForceField")
         if self._binding is None:
             raise RuntimeError(f"{self.location}: {self._label()}: {what} needs a built "
                                "fastcorot.Simulation of its scene")

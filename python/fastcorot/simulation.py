@@ -42,7 +42,7 @@ class Simulation:
                 if id(obj) in bound:
                     k = bound[id(obj)]
             for obj in node._objects:
-                if obj.type == "FastTetrahedralCorotationalForceField" and k is not None:
+                if obj.type in ("FastTetrahedralCorotationalForceField", "TetrahedronFEMForceField") and k is not None:
                     object.__setattr__(obj, "_binding", (core, k))
             for child in node._children:
                 bind_force_fields(child, k)

@@ -7,6 +7,7 @@
 #include "bindings.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include <pybind11/stl.h>
@@ -152,6 +153,24 @@ void bind_simulation(py::module_& m) {
             return out;
           },
           py::arg("k"), "(m, 4) tetrahedra of object k's force field (empty without one).")
+      .def(
+          "von_mises_stress",
+          [](SimulationCore& c, std::size_t k, bool per_node) -> py::object {
+            c.state(k);  // checks k
+            std::lock_guard lock(c.stepping);
+            for (const auto& field : c.simulation().objects[k].system.force_fields) {
+              const auto* fem = dynamic_cast<const TetrahedronFEMForceField<double>*>(field.get());
+              if (!fem || !fem->computes_von_mises_stress()) continue;
+              const auto values = per_node ? fem->von_mises_per_node() : fem->von_mises_per_element();
+              py::array_t<double> out(static_cast<py::ssize_t>(values.size()));
+              std::copy(values.begin(), values.end(), out.mutable_data());
+              return std::move(out);
+            }
+            return py::none();
+          },
+          py::arg("k"), py::arg("per_node"),
+          "Object k's von Mises stress (TetrahedronFEMForceField with computeVonMisesStress 1 or 2), per point "
+          "or per tetrahedron, after the last step (a copy); None when none is computed.")
       .def(
           "remove_tetrahedra",
           [](SimulationCore& c, std::size_t k, py::handle indices) {

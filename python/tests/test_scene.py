@@ -226,3 +226,22 @@ def test_integer_arrays_assigned_to_the_state_are_converted():
     assert view.dtype == np.float64 and np.all(view == 2.0)
     with pytest.raises(TypeError, match="dtype complex128"):
         state.velocity = np.zeros((4000, 3), np.complex128)
+
+
+def test_tetrahedron_fem_von_mises_stress_and_cutting_from_python():
+    root = fastcorot.load(str(REPOSITORY / "examples" / "tetrahedron_fem_beams.scn"))
+    sim = fastcorot.Simulation(root)
+    sim.step(3)
+    fem = root.BeamTFEM_LARGE.FEM
+    per_node, per_element = fem.vonMisesPerNode, fem.vonMisesPerElement
+    assert per_node.shape == (500,) and per_element.shape == (1824,)
+    assert per_element.max() > 0 and np.all(np.isfinite(per_node))
+    # Each point's value is the mean over its tetrahedra (SOFA's vonMisesPerNode).
+    tetrahedra = sim.tetrahedra(1)
+    around = np.any(tetrahedra == 0, axis=1)
+    assert per_node[0] == pytest.approx(per_element[around].mean(), rel=1e-12)
+    # A TetrahedronFEMForceField is cut as the other force field is.
+    new_index = fem.remove_tetrahedra([0, 5])
+    assert (new_index == -1).sum() == 2 and len(sim.tetrahedra(1)) == 1822
+    sim.step(1)
+    assert fem.vonMisesPerElement.shape == (1822,) and np.all(np.isfinite(fem.vonMisesPerNode))

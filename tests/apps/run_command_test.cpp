@@ -99,6 +99,26 @@ TEST(Run, VtuSeriesHasOneFilePerWrittenStepAndACollection) {
   EXPECT_NE(collection.find("root_BeamFEM_LARGE_3.vtu"), std::string::npos);
 }
 
+TEST(Run, VtuFramesCarryTheVonMisesStressOfTetrahedronFEMForceField) {
+  const auto dir = output_dir("run_vtu_von_mises");
+  const auto result = run_fastcorot("run " + std::string(FASTCOROT_EXAMPLES_DIR) +
+                                    "/tetrahedron_fem_beams.scn --steps 2 --vtu --quiet --out " + dir.string());
+  ASSERT_EQ(result.status, 0) << result.output;
+  for (const char* beam : {"SMALL", "LARGE", "POLAR", "SVD"}) {
+    std::ifstream in(dir / (std::string("root_BeamTFEM_") + beam + "_2.vtu"));
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("Name=\"vonMisesPerNode\""), std::string::npos) << beam;
+    EXPECT_NE(text.find("Name=\"vonMisesPerElement\""), std::string::npos) << beam;
+  }
+  // FastTetrahedralCorotationalForceField computes none.
+  const auto plain = output_dir("run_vtu_plain");
+  ASSERT_EQ(run_fastcorot("run " + testing::sofa_reference_path("four_beams.scn") + " --steps 1 --vtu --quiet --out " +
+                          plain.string()).status, 0);
+  std::ifstream in(plain / "root_BeamFEM_LARGE_1.vtu");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("vonMises"), std::string::npos);
+}
+
 TEST(Run, BadScenesExitWith2AndAClearMessage) {
   const auto dir = output_dir("run_bad");
   const std::string solver = "<EulerImplicitSolver/><CGLinearSolver/>";
