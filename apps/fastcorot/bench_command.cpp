@@ -16,6 +16,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <ostream>
 #include <regex>
@@ -84,8 +85,9 @@ void bench(const BenchOptions& options, std::ostream& out) {
   if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
   if (!options.beam.empty() && !options.scene.empty()) throw make_error("--beam replaces SCENE: give one of them");
   LoadedScene scene = options.beam.empty()
-                          ? load_scene_argument(options.scene)
+                          ? load_scene_argument(options.scene, options.strict)
                           : build_scene(parse_scene_text(beam_scene_text(options.beam), "<built-in beam " + options.beam + ">"));
+  for (const auto& line : scene.warnings) std::cerr << "warning: " << line << '\n';
   Simulation<double>& simulation = scene.simulation;
   simulation.threads = options.threads;
   if (!options.vtu_dir.empty()) make_output_folder(options.vtu_dir, "--vtu");

@@ -14,6 +14,7 @@ struct BenchOptions {
   std::string beam;   // "NXxNYxNZ": the built-in beam with this many grid points (no SCENE then)
   long steps = 200;
   long warmup = 10;
+  bool strict = false;  // warnings (unknown attributes) are errors
   int threads = 1;
   std::string vtu_dir;  // empty: no output
   bool json = false;

@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   run->add_option("--threads", run_options.threads, "threads: independent objects concurrently, then each object's kernels")
       ->capture_default_str();
   run->add_flag("--quiet", run_options.quiet, "no progress bar, info lines or summary");
+  run->add_flag("--strict", run_options.strict, "treat warnings (unknown attributes) as errors");
   auto* checkpoint_every = run->add_option("--checkpoint-every", run_options.checkpoint_every,
                                            "save the whole state every K steps (to --checkpoint)");
   run->add_option("--checkpoint", run_options.checkpoint_file,
@@ -90,6 +91,7 @@ int main(int argc, char** argv) {
   view_options.picture.size = "1280x720";
   add_picture_options(view, view_options.picture);
   view->add_flag("--paused", view_options.paused, "start paused");
+  view->add_flag("--strict", view_options.strict, "treat warnings (unknown attributes) as errors");
   view->add_option("--frames", view_options.frames, "close after N frames (0: when the window is closed)")
       ->capture_default_str();
   view->add_option("--screenshot", view_options.screenshot, "save the last frame shown as PNG");
@@ -107,6 +109,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   bench->add_option("--vtu", bench_options.vtu_dir, "write a VTU frame per step to DIR (timed as output)");
   bench->add_flag("--json", bench_options.json, "print the figures as JSON");
+  bench->add_flag("--strict", bench_options.strict, "treat warnings (unknown attributes) as errors");
 
   app.add_subcommand("components", "Print the supported SOFA components and their attributes (Markdown)");
 

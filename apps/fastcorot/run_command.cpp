@@ -70,14 +70,15 @@ std::string mesh_scene_text(const std::string& mesh_path) {
   return scene.str();
 }
 
-LoadedScene load_scene_argument(const std::string& scene) {
-  if (scene.empty()) return build_scene(parse_scene_text(kDefaultScene, "<built-in cantilever beam>"));
+LoadedScene load_scene_argument(const std::string& scene, bool strict) {
+  const SceneOptions options{strict};
+  if (scene.empty()) return build_scene(parse_scene_text(kDefaultScene, "<built-in cantilever beam>"), options);
   std::string extension = std::filesystem::path(scene).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
   if (extension == ".msh" || extension == ".vtk" || extension == ".vtu") {
-    return build_scene(parse_scene_text(mesh_scene_text(scene), scene + " (default mesh scene)"));
+    return build_scene(parse_scene_text(mesh_scene_text(scene), scene + " (default mesh scene)"), options);
   }
-  return load_scene_file(scene);
+  return load_scene_file(scene, options);
 }
 
 void make_output_folder(const std::string& dir, const std::string& option) {
@@ -210,7 +211,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
                      ": must be >= 0 (0: no bound)");
   }
   const TetrahedronDrawing drawing = parse_tetrahedron_drawing(options.picture.drawing);
-  LoadedScene scene = load_scene_argument(options.scene);
+  LoadedScene scene = load_scene_argument(options.scene, options.strict);
   Simulation<double>& simulation = scene.simulation;
   if (options.dt) {
     if (!(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
@@ -226,6 +227,8 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     const auto folder = std::filesystem::path(checkpoint_file).parent_path();
     if (!folder.empty()) make_output_folder(folder.string(), "--checkpoint");
   }
+  // Warnings are printed even with --quiet: they name settings of the scene that are ignored.
+  for (const auto& line : scene.warnings) err << "warning: " << line << '\n';
   if (!options.quiet) {
     for (const auto& line : scene.info) err << "info: " << line << '\n';
   }

@@ -29,6 +29,7 @@ struct RunOptions {
   std::set<long> dump_steps = {0, 1, 10, 100};
   int threads = 1;
   bool quiet = false;
+  bool strict = false;  // warnings (unknown attributes) are errors
   std::string png_dir;     // empty: no pictures; else one PNG per written frame
   PictureOptions picture;  // what the pictures (and the drawn tetrahedra in --vtu) look like
   long checkpoint_every = 0;    // 0: no checkpoints; else save the state every K steps
@@ -45,7 +46,8 @@ std::string mesh_scene_text(const std::string& mesh_path);
 
 // The scene `fastcorot run SCENE` and `fastcorot view SCENE` simulate: a .scn file, a mesh file
 // (.msh/.vtk/.vtu, through mesh_scene_text) or, for an empty argument, the built-in beam.
-LoadedScene load_scene_argument(const std::string& scene);
+// With strict, unknown attributes are errors rather than warnings.
+LoadedScene load_scene_argument(const std::string& scene, bool strict = false);
 
 // Makes `dir` and its parents; throws fastcorot::Error naming `option`, the folder and the reason
 // when it cannot, or when `dir` is not a writable folder.

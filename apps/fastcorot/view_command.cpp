@@ -201,6 +201,7 @@ void view(const ViewOptions& options, std::ostream& out, std::ostream& err) {
   const CameraOptions camera_choices = camera_options(options.picture);
   if (options.frames < 0) throw make_error("--frames ", options.frames, ": must be >= 0");
   ViewerSession session(options);
+  for (const auto& line : session.warnings) err << "warning: " << line << '\n';
 
   Window window(size.width, size.height, "fastcorot view: " + session.title());
   GlRenderer renderer(glfw_loader);

@@ -23,6 +23,7 @@ struct ViewOptions {
   std::string scene;       // empty: the built-in beam
   PictureOptions picture;  // size is the window's
   bool paused = false;
+  bool strict = false;  // warnings (unknown attributes) are errors
   long frames = 0;  // > 0: close after this many frames
   std::string screenshot;
   std::optional<double> dt;

@@ -27,7 +27,8 @@ ViewerSession::ViewerSession(const ViewOptions& options) : options_(options) {
 }
 
 void ViewerSession::load() {
-  LoadedScene scene = load_scene_argument(options_.scene);
+  LoadedScene scene = load_scene_argument(options_.scene, options_.strict);
+  warnings = scene.warnings;
   if (options_.dt) scene.simulation.dt = *options_.dt;
   scene.simulation.threads = options_.threads;
   materials.clear();

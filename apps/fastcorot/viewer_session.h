@@ -43,6 +43,7 @@ class ViewerSession {
   DrawOptions draw;
   std::string message;                    // the last failure, shown until the next success
   std::vector<ObjectMaterial> materials;  // one per object, as last applied
+  std::vector<std::string> warnings;      // of the scene as last loaded (unknown attributes)
   // Cutting: in cut mode the view's left drag cuts instead of orbiting. The brush removes, besides
   // the tetrahedron hit, those of the same object whose centroid lies within cut_radius (world
   // units) of the point hit; 0 cuts one tetrahedron at a time.

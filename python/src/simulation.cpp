@@ -37,7 +37,7 @@ struct SimulationCore {
 };
 
 std::unique_ptr<SimulationCore> build(py::handle tree) {
-  return std::make_unique<SimulationCore>(build_scene(scene_node_from_tree(tree)));
+  return std::make_unique<SimulationCore>(build_scene(scene_node_from_tree(tree), SceneOptions{true}));
 }
 
 void step(SimulationCore& core, long count) {

@@ -90,7 +90,8 @@ def test_scene_errors_are_the_programs(name, tmp_path):
     {SCENES[name]}
   </Node>
 </Node>""")
-    expected = cli_error("run", scene, "--steps", 1, "--quiet")
+    # Python checks scenes strictly (an unknown attribute is an error), as `run --strict` does.
+    expected = cli_error("run", scene, "--steps", 1, "--quiet", "--strict")
     with pytest.raises(ValueError) as raised:
         fastcorot.Simulation(fastcorot.load(scene))
     assert str(raised.value) == expected

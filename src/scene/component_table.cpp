@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 
 #include <algorithm>
+#include <cctype>
 #include <array>
 #include <sstream>
 
@@ -248,22 +249,67 @@ bool is_common_attribute(std::string_view name) {
          name.starts_with("show");
 }
 
-const ComponentSpec* check_scene_object(const SceneObject& object) {
+namespace {
+
+// Edit distance between two names, letters compared without case (a typo, a swapped pair of
+// letters or a different capital).
+std::size_t name_distance(std::string_view a, std::string_view b) {
+  const auto lower = [](char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); };
+  std::vector<std::size_t> previous(b.size() + 1), current(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) previous[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    current[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitute = previous[j - 1] + (lower(a[i - 1]) == lower(b[j - 1]) ? 0 : 1);
+      current[j] = std::min({previous[j] + 1, current[j - 1] + 1, substitute});
+    }
+    std::swap(previous, current);
+  }
+  return previous[b.size()];
+}
+
+// " (did you mean 'X'?)" for the closest candidate within a third of the name's length (at least
+// 2 edits), else "".
+template <class Names>
+std::string suggestion(std::string_view name, const Names& candidates) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, name.size() / 3) + 1;
+  for (const auto& candidate : candidates) {
+    const std::size_t d = name_distance(name, candidate);
+    if (d < best_distance) {
+      best_distance = d;
+      best = std::string(candidate);
+    }
+  }
+  return best.empty() ? "" : " (did you mean '" + best + "'?)";
+}
+
+}  // namespace
+
+const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<std::string>* warnings) {
   const ComponentSpec* spec = find_component(object.type);
   if (!spec) {
     if (is_ignored_component(object.type)) return nullptr;
-    throw make_error(object.location.to_string(), ": unknown component '", object.type, "'; supported: ",
-                     supported_names(),
+    std::vector<std::string_view> names;
+    for (const auto& s : table()) names.push_back(s.name);
+    throw make_error(object.location.to_string(), ": unknown component '", object.type, "'",
+                     suggestion(object.type, names), "; supported: ", supported_names(),
                      " (and display or collision components, which are ignored); see `fastcorot components`");
   }
   for (const auto& [attribute, value] : object.attributes) {
     if (is_common_attribute(attribute)) continue;
     bool known = false;
     for (const auto& a : spec->attributes) known = known || a.name == attribute;
-    if (!known) {
-      throw make_error(object.location.to_string(), ": ", spec->name, ": unknown attribute '", attribute,
-                       "'; supported: ", join_names(spec->attributes));
+    if (known) continue;
+    std::vector<std::string_view> names;
+    for (const auto& a : spec->attributes) names.push_back(a.name);
+    const std::string hint = suggestion(attribute, names);
+    if (!warnings) {
+      throw make_error(object.location.to_string(), ": ", spec->name, ": unknown attribute '", attribute, "'",
+                       hint, "; supported: ", join_names(spec->attributes));
     }
+    warnings->push_back(object.location.to_string() + ": " + std::string(spec->name) + ": unknown attribute '" +
+                        attribute + "' ignored" + hint + "; supported: " + join_names(spec->attributes));
   }
   return spec;
 }

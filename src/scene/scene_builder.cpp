@@ -92,7 +92,8 @@ Rgba parse_color(const std::string& attribute, const std::string& text) {
 
 class Builder {
  public:
-  explicit Builder(const SceneNode& root) : data_(root, info_) {}
+  Builder(const SceneNode& root, const SceneOptions& options)
+      : data_(root, info_, options.strict ? nullptr : &warnings_) {}
 
   LoadedScene build() {
     const SceneNode& root = *data_.root().scene;
@@ -114,7 +115,7 @@ class Builder {
     rank_objects(root, rank);
     std::vector<std::size_t> state_objects;
     for (const SceneObject* state : states_) state_objects.push_back(rank.at(state));
-    return {std::move(simulation_), std::move(info_), std::move(state_objects)};
+    return {std::move(simulation_), std::move(info_), std::move(warnings_), std::move(state_objects)};
   }
 
  private:
@@ -426,6 +427,7 @@ class Builder {
   }
 
   std::vector<std::string> info_;
+  std::vector<std::string> warnings_;
   SceneData data_;
   Simulation<double> simulation_;
   std::vector<const SceneObject*> states_;  // the MechanicalObject of each simulated object
@@ -434,8 +436,10 @@ class Builder {
 
 }  // namespace
 
-LoadedScene build_scene(const SceneNode& root) { return Builder(root).build(); }
+LoadedScene build_scene(const SceneNode& root, const SceneOptions& options) { return Builder(root, options).build(); }
 
-LoadedScene load_scene_file(const std::filesystem::path& path) { return build_scene(parse_scene_file(path)); }
+LoadedScene load_scene_file(const std::filesystem::path& path, const SceneOptions& options) {
+  return build_scene(parse_scene_file(path), options);
+}
 
 }  // namespace fastcorot

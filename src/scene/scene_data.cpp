@@ -67,7 +67,8 @@ Numbers flatten_indices(const std::vector<std::array<Index, N>>& tuples) {
 
 }  // namespace
 
-SceneData::SceneData(const SceneNode& root, std::vector<std::string>& info) {
+SceneData::SceneData(const SceneNode& root, std::vector<std::string>& info, std::vector<std::string>* warnings)
+    : warnings_(warnings) {
   root_ = build_node(root, nullptr, info);
 }
 
@@ -81,7 +82,7 @@ std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNo
     auto component = std::make_unique<Component>();
     component->object = &object;
     component->node = node.get();
-    component->spec = check_scene_object(object);
+    component->spec = check_scene_object(object, warnings_);
     if (!component->spec) {
       info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
     }

@@ -51,8 +51,9 @@ struct GraphNode {
 class SceneData {
  public:
   // Builds the graph, checking every component and attribute against the table. Ignored
-  // components are reported through `info`.
-  SceneData(const SceneNode& root, std::vector<std::string>& info);
+  // components are reported through `info`, unknown attributes through `warnings` (null: they are
+  // errors).
+  SceneData(const SceneNode& root, std::vector<std::string>& info, std::vector<std::string>* warnings);
 
   GraphNode& root() { return *root_; }
 
@@ -85,6 +86,7 @@ class SceneData {
   std::optional<Numbers> written(Component& c, const std::string& name);
   Numbers parse_numbers(const Component& c, const std::string& name, const std::string& text) const;
   const MeshData& mesh_file(Component& loader);
+  std::vector<std::string>* warnings_ = nullptr;
   std::unique_ptr<GraphNode> build_node(const SceneNode& scene, GraphNode* parent, std::vector<std::string>& info);
 
   std::unique_ptr<GraphNode> root_;

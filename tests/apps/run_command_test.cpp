@@ -119,6 +119,27 @@ TEST(Run, VtuFramesCarryTheVonMisesStressOfTetrahedronFEMForceField) {
   EXPECT_EQ(text.find("vonMises"), std::string::npos);
 }
 
+TEST(Run, UnknownAttributesWarnAndStrictMakesThemErrors) {
+  const auto dir = output_dir("run_strict");
+  const std::string scene = write_scene(dir, R"(<Node name="root">
+  <EulerImplicitSolver/><CGLinearSolver/>
+  <MechanicalObject position="0 0 0  1 0 0  0 1 0  0 0 1"/>
+  <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/>
+  <UniformMass totalMass="1"/>
+  <TetrahedronFEMForceField youngModulus="100" poissonRatio="0.3" methd="small"/>
+</Node>)");
+  const auto lenient = run_fastcorot("run " + scene + " --steps 2 --quiet");
+  EXPECT_EQ(lenient.status, 0) << lenient.output;
+  EXPECT_NE(lenient.output.find("warning: " + scene + ":6: TetrahedronFEMForceField: unknown attribute 'methd' "
+                                "ignored (did you mean 'method'?)"),
+            std::string::npos)
+      << lenient.output;
+  const auto strict = run_fastcorot("run " + scene + " --steps 2 --quiet --strict");
+  EXPECT_EQ(strict.status, 2) << strict.output;
+  EXPECT_NE(strict.output.find("unknown attribute 'methd' (did you mean 'method'?)"), std::string::npos)
+      << strict.output;
+}
+
 TEST(Run, BadScenesExitWith2AndAClearMessage) {
   const auto dir = output_dir("run_bad");
   const std::string solver = "<EulerImplicitSolver/><CGLinearSolver/>";

@@ -189,13 +189,38 @@ TEST(SceneBuilder, IgnoredComponentsAndMappedNodesGetInfoLines) {
   EXPECT_TRUE(visual);
 }
 
+TEST(SceneBuilder, UnknownAttributesAreWarningsWithTheClosestNameOrErrorsWhenStrict) {
+  const std::string body = kTet + "\n<UniformMass totalMass=\"1\" weight=\"3\" vertexMas=\"2\"/>";
+  const std::string text = "<Node name=\"root\">\n" + body + "\n</Node>";
+  const LoadedScene scene = build_scene(parse_scene_text(text, "test.scn"));
+  ASSERT_EQ(scene.warnings.size(), 2u);
+  // Attributes in name order: vertexMas, then weight.
+  EXPECT_EQ(scene.warnings[0].rfind("test.scn:8: UniformMass: unknown attribute 'vertexMas' ignored (did you mean "
+                                    "'vertexMass'?); supported: vertexMass, totalMass", 0), 0u) << scene.warnings[0];
+  EXPECT_EQ(scene.warnings[1].find("did you mean"), std::string::npos) << scene.warnings[1];  // nothing close to weight
+  // The attribute is ignored: the mass is totalMass's.
+  EXPECT_DOUBLE_EQ(scene.simulation.objects[0].system.mass.vertex_masses()[0], 0.2);
+  try {
+    build_scene(parse_scene_text(text, "test.scn"), SceneOptions{true});
+    ADD_FAILURE() << "strict checking accepted an unknown attribute";
+  } catch (const Error& error) {
+    EXPECT_EQ(std::string(error.what()).rfind("test.scn:8: UniformMass: unknown attribute 'vertexMas' (did you mean "
+                                              "'vertexMass'?); supported: ", 0), 0u) << error.what();
+  }
+}
+
+TEST(SceneBuilder, UnknownComponentsSuggestTheClosestName) {
+  const std::string message = error_of(kTet + "\n<TetrahedronFEMForcefield/>");
+  EXPECT_NE(message.find("unknown component 'TetrahedronFEMForcefield' (did you mean 'TetrahedronFEMForceField'?)"),
+            std::string::npos) << message;
+}
+
 TEST(SceneBuilder, BadScenesNameTheProblemAndTheLine) {
   auto expect = [](const std::string& body, std::initializer_list<std::string> needles) {
     const std::string message = error_of(body);
     for (const auto& needle : needles) EXPECT_NE(message.find(needle), std::string::npos) << "message: " << message << "\nlacks: " << needle;
   };
   expect(kTet + "\n<SpringForceField/>", {"test.scn:8", "unknown component 'SpringForceField'", "supported:"});
-  expect(kTet + "\n<UniformMass totalMass=\"1\" weight=\"3\"/>", {"test.scn:8", "unknown attribute 'weight'", "vertexMass"});
   expect(kTet + "\n<FixedProjectiveConstraint indices=\"@nowhere.indices\"/>", {"broken link '@nowhere.indices'", "test.scn:8"});
   expect(kTet + "\n<FixedProjectiveConstraint indices=\"9\"/>", {"index 9 out of range"});
   expect(R"(<EulerImplicitSolver/><CGLinearSolver/><MeshGmshLoader name="l" filename="absent.msh"/>

@@ -43,9 +43,12 @@ bool is_common_attribute(std::string_view name);
 
 // Checks one scene object against the table as the scene builder does: returns its spec, or nullptr
 // for an ignored component; throws fastcorot::Error naming the object's file and line for an unknown
-// component or an unknown attribute, with the supported names. (Front ends that assemble scenes in
-// memory, like the Python module, call it to report mistakes where they are made.)
-const ComponentSpec* check_scene_object(const SceneObject& object);
+// component, with the closest supported name when one is close and the supported names. An unknown
+// attribute of a known component is, as in SOFA, not fatal: with `warnings` it adds a line there
+// (the attribute, its file and line, the closest known attribute) and the attribute is ignored;
+// without (strict checking) it is the same error. (Front ends that assemble scenes in memory, like
+// the Python module, call it to report mistakes where they are made.)
+const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<std::string>* warnings = nullptr);
 
 // A Markdown table of the supported components (used by `fastcorot components` and the README).
 std::string component_documentation();

@@ -1,8 +1,9 @@
 // Turns a parsed SOFA scene into a Simulation: every node that holds an ODE solver becomes one
 // simulated object made of the MechanicalObject, force fields, mass, constraints and loads in that
 // node and below it (SOFA's solver scope), with SOFA's defaults and implicit links
-// (docs/sofa-components.md). Unknown components and attributes, broken links, missing files and
-// inconsistent sizes are errors naming the file and line.
+// (docs/sofa-components.md). Unknown components, broken links, missing files and inconsistent sizes
+// are errors naming the file and line; an unknown attribute of a known component is a warning (as
+// SOFA warns), or an error with SceneOptions::strict.
 #pragma once
 
 #include "fastcorot/scene/scene_graph.h"
@@ -14,16 +15,21 @@
 
 namespace fastcorot {
 
+struct SceneOptions {
+  bool strict = false;  // warnings (unknown attributes) are errors
+};
+
 struct LoadedScene {
   Simulation<double> simulation;
-  std::vector<std::string> info;  // one line per ignored component or node, for the user
+  std::vector<std::string> info;      // one line per ignored component or node, for the user
+  std::vector<std::string> warnings;  // one line per unknown attribute (ignored), for the user
   // For each simulated object (same order as simulation.objects), the MechanicalObject it was built
   // from, as its rank among all the scene's objects in document order (a node's objects, then its
   // child nodes' depth first). Front ends that keep the scene tree use it to find an object's state.
   std::vector<std::size_t> state_objects;
 };
 
-LoadedScene build_scene(const SceneNode& root);
-LoadedScene load_scene_file(const std::filesystem::path& path);
+LoadedScene build_scene(const SceneNode& root, const SceneOptions& options = {});
+LoadedScene load_scene_file(const std::filesystem::path& path, const SceneOptions& options = {});
 
 }  // namespace fastcorot
