@@ -7,6 +7,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/io/mesh_readers.h"
+#include "fastcorot/io/surface_readers.h"
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
 #include "json_io.h"
@@ -41,6 +42,12 @@ inline void vtk_legacy(std::string_view bytes) {
 
 inline void vtu(std::string_view bytes) {
   value_or_error([&] { read_vtu_bytes(bytes, "fuzz.vtu"); });
+}
+
+// The surface readers (OBJ and STL) on the same bytes.
+inline void surface(std::string_view bytes) {
+  value_or_error([&] { read_obj_bytes(bytes, "fuzz.obj"); });
+  value_or_error([&] { read_stl_bytes(bytes, "fuzz.stl"); });
 }
 
 // A grid costs what it asks for: one digit more in a RegularGridTopology's `n` asks for ten times
