@@ -201,10 +201,9 @@ const MeshData& SceneData::mesh_file(Component& loader) {
   if (filename == loader.object->attributes.end() || filename->second.empty()) {
     throw make_error(loader.where(), ": no filename given");
   }
-  const std::filesystem::path path = loader.object->location.file.parent_path() / filename->second;
   MeshData mesh;
   try {
-    mesh = read_mesh_file(path);
+    mesh = read_mesh_file(find_data_file(loader.object->location.file, filename->second));
   } catch (const Error& error) {
     throw make_error(loader.where(), ": ", error.what());
   }

@@ -4,6 +4,7 @@
 
 #include <tinyxml2.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -83,7 +84,13 @@ class Parser {
   void expand_include(const tinyxml2::XMLElement& element, const std::filesystem::path& file, SceneNode& node) {
     const char* href = element.Attribute("href");
     if (!href) throw make_error(file.string(), ":", element.GetLineNum(), ": <include> needs an href attribute");
-    const std::filesystem::path path = file.parent_path() / href;
+    std::filesystem::path path;
+    try {
+      path = find_data_file(file, href);
+    } catch (const Error& error) {
+      throw make_error(file.string(), ":", element.GetLineNum(), ": cannot read included file ", href, " (",
+                       error.what(), ")");
+    }
     const auto canonical = std::filesystem::weakly_canonical(path);
     for (const auto& open : files_) {
       if (open == canonical) {
@@ -104,14 +111,57 @@ class Parser {
     if (!root) throw make_error(path.string(), ": no root element");
     files_.push_back(canonical);
     const std::string tag = root->Name();
+    SceneNode included;
     if (is_node_element(tag)) {
-      node.children.push_back(read_node(*root, path));  // the included node becomes a child
+      included = read_node(*root, path);
     } else if (tag == "Group" || tag == "_Group_") {
-      read_children(*root, path, node);  // a group's contents join the including node
+      included.name = "Group";
+      included.location = {path, root->GetLineNum()};
+      read_children(*root, path, included);
     } else {
       throw make_error(path.string(), ":", root->GetLineNum(), ": an included file's root must be a <Node> or <Group>");
     }
     files_.pop_back();
+    // The include's attributes: a name renames the included node; any other replaces the values of
+    // the attributes of that name in the included file (NODE__attribute: in the node NODE only).
+    for (const auto* a = element.FirstAttribute(); a; a = a->Next()) {
+      const std::string attribute = a->Name();
+      if (attribute == "href") continue;
+      if (attribute == "name") {
+        included.name = a->Value();
+        included.attributes["name"] = a->Value();
+        continue;
+      }
+      const auto separator = attribute.find("__");
+      if (separator == std::string::npos) {
+        replace_attribute(included, attribute, a->Value(), nullptr);
+      } else {
+        const std::string target = attribute.substr(0, separator);
+        replace_attribute(included, attribute.substr(separator + 2), a->Value(), &target);
+      }
+    }
+    if (included.name == "Group" || included.name == "_Group_") {
+      for (auto& object : included.objects) node.objects.push_back(std::move(object));
+      for (auto& child : included.children) node.children.push_back(std::move(child));
+    } else {
+      node.children.push_back(std::move(included));
+    }
+  }
+
+  // Sets `attribute` to `value` wherever it is already present (in nodes and objects named
+  // `*only` when given).
+  static void replace_attribute(SceneNode& node, const std::string& attribute, const std::string& value,
+                                const std::string* only) {
+    const auto set = [&](std::map<std::string, std::string>& attributes) {
+      const auto it = attributes.find(attribute);
+      if (it == attributes.end()) return;
+      const auto name = attributes.find("name");
+      if (only && (name == attributes.end() || name->second != *only)) return;
+      it->second = value;
+    };
+    set(node.attributes);
+    for (auto& object : node.objects) set(object.attributes);
+    for (auto& child : node.children) replace_attribute(child, attribute, value, only);
   }
 
   static std::map<std::string, std::string> read_attributes(const tinyxml2::XMLElement& element) {
@@ -124,6 +174,47 @@ class Parser {
 };
 
 }  // namespace
+
+std::filesystem::path find_data_file(const std::filesystem::path& from, const std::string& name) {
+  const std::filesystem::path relative(name);
+  if (relative.is_absolute()) {
+    if (std::filesystem::exists(relative)) return relative;
+    throw make_error(name, ": no such file");
+  }
+  std::vector<std::filesystem::path> tried;
+  const auto found = [&](const std::filesystem::path& candidate) {
+    tried.push_back(candidate);
+    std::error_code ec;
+    return std::filesystem::is_regular_file(candidate, ec);
+  };
+  const std::filesystem::path folder = from.parent_path();
+  if (found(folder / relative)) return folder / relative;
+  if (const char* data_path = std::getenv("FASTCOROT_DATA_PATH")) {
+    std::string list = data_path;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+      const std::size_t end = std::min(list.find(':', start), list.size());
+      if (end > start) {
+        const std::filesystem::path candidate = std::filesystem::path(list.substr(start, end - start)) / relative;
+        if (found(candidate)) return candidate;
+      }
+      start = end + 1;
+    }
+  }
+  std::error_code ec;
+  for (std::filesystem::path above = std::filesystem::absolute(folder, ec); !above.empty(); above = above.parent_path()) {
+    if (std::filesystem::is_directory(above / "share", ec) || std::filesystem::is_directory(above / "examples", ec)) {
+      for (const char* sub : {"share", "share/mesh", "examples"}) {
+        if (found(above / sub / relative)) return above / sub / relative;
+      }
+      break;
+    }
+    if (above == above.parent_path()) break;
+  }
+  std::string where;
+  for (const auto& t : tried) where += (where.empty() ? "" : ", ") + t.string();
+  throw make_error(name, ": no such file (looked for ", where, ")");
+}
 
 SceneNode parse_scene_text(const std::string& text, const std::filesystem::path& file) {
   return Parser().parse(text, file);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -81,6 +82,59 @@ TEST_F(SceneFiles, IncludeInsertsANodeAsChildAndAGroupInPlace) {
   EXPECT_EQ(root.objects[0].location.file, dir_ / "parts/solvers.xml");
   ASSERT_EQ(root.children.size(), 1u);
   EXPECT_EQ(root.children[0].name, "body");
+}
+
+TEST_F(SceneFiles, IncludeAttributesReplaceThoseOfTheIncludedObjectsAsInSofa) {
+  // SOFA's examples/Objects/TetrahedronSetTopology.xml pattern: a Node named Group whose objects
+  // join the including node, with src="@" replaced by the include's src.
+  write("parts/topology.xml", R"(<Node name="Group">
+  <TetrahedronSetTopologyContainer name="Container" src="@" tags=" "/>
+  <TetrahedronSetGeometryAlgorithms name="GeomAlgo" template="Vec3"/>
+</Node>)");
+  write("parts/named.xml", R"(<Node name="part"><Object type="MechanicalObject" name="a" template="Vec3"/><Object type="MechanicalObject" name="b" template="Vec3"/></Node>)");
+  const auto scene = write("main.scn", R"(<Node name="root">
+  <include href="parts/topology.xml" src="@loader" template="Vec1"/>
+  <include href="parts/named.xml" name="renamed" b__template="Vec3f" color="red"/>
+</Node>)");
+  const SceneNode root = parse_scene_file(scene);
+  ASSERT_EQ(root.objects.size(), 2u);
+  EXPECT_EQ(root.objects[0].attributes.at("src"), "@loader");
+  EXPECT_EQ(root.objects[0].attributes.count("template"), 0u);  // only replaced where present
+  EXPECT_EQ(root.objects[1].attributes.at("template"), "Vec1");
+  ASSERT_EQ(root.children.size(), 1u);
+  EXPECT_EQ(root.children[0].name, "renamed");
+  EXPECT_EQ(root.children[0].objects[0].attributes.at("template"), "Vec3");
+  EXPECT_EQ(root.children[0].objects[1].attributes.at("template"), "Vec3f");
+  EXPECT_EQ(root.children[0].objects[0].attributes.count("color"), 0u);
+}
+
+TEST_F(SceneFiles, DataFilesAreFoundAsSofasRepositoriesFindThem) {
+  // dir/share/mesh/m.obj, dir/examples/Objects/o.xml, the scene in dir/examples/Component/A.
+  std::filesystem::create_directories(dir_ / "share/mesh");
+  std::filesystem::create_directories(dir_ / "examples/Objects");
+  std::filesystem::create_directories(dir_ / "examples/Component/A");
+  std::filesystem::create_directories(dir_ / "elsewhere/mesh");
+  write("share/mesh/m.obj", "v 0 0 0\n");
+  write("share/s.txt", "");
+  write("examples/Objects/o.xml", "<Group/>");
+  write("elsewhere/mesh/n.obj", "");
+  write("examples/Component/A/local.msh", "");
+  const auto from = write("examples/Component/A/scene.scn", "<Node/>");
+  EXPECT_EQ(find_data_file(from, "local.msh"), dir_ / "examples/Component/A/local.msh");  // the scene's folder first
+  EXPECT_EQ(find_data_file(from, "mesh/m.obj"), std::filesystem::absolute(dir_ / "share/mesh/m.obj"));
+  EXPECT_EQ(find_data_file(from, "m.obj"), std::filesystem::absolute(dir_ / "share/mesh/m.obj"));
+  EXPECT_EQ(find_data_file(from, "s.txt"), std::filesystem::absolute(dir_ / "share/s.txt"));
+  EXPECT_EQ(find_data_file(from, "Objects/o.xml"), std::filesystem::absolute(dir_ / "examples/Objects/o.xml"));
+  EXPECT_THROW(find_data_file(from, "mesh/n.obj"), Error);
+  ::setenv("FASTCOROT_DATA_PATH", ("/nonexistent:" + (dir_ / "elsewhere").string()).c_str(), 1);
+  EXPECT_EQ(find_data_file(from, "mesh/n.obj"), dir_ / "elsewhere/mesh/n.obj");
+  ::unsetenv("FASTCOROT_DATA_PATH");
+  try {
+    find_data_file(from, "mesh/absent.obj");
+    ADD_FAILURE() << "found an absent file";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("mesh/absent.obj: no such file (looked for"), std::string::npos) << error.what();
+  }
 }
 
 TEST_F(SceneFiles, IncludeErrors) {

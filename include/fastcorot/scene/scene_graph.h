@@ -36,8 +36,20 @@ struct SceneNode {
   SourceLocation location;
 };
 
+// Finds a file a scene names (a mesh, an included file) as SOFA's data repositories find it: `name`
+// itself when absolute; else in the folder of `from` (the file that names it), then in each folder of
+// the environment variable FASTCOROT_DATA_PATH (colon-separated), then in the `share/`,
+// `share/mesh/` and `examples/` folders of the nearest folder above `from` that has a `share/` or an
+// `examples/` folder. Returns the first that exists; throws fastcorot::Error listing where it
+// looked when none does.
+std::filesystem::path find_data_file(const std::filesystem::path& from, const std::string& name);
+
 // Parses a scene file. Throws fastcorot::Error naming the file and line for malformed XML, a root
-// that is not a Node, an include that cannot be read, or an include cycle.
+// that is not a Node, an include that cannot be read, or an include cycle. <include href="F" a="v">
+// works as SOFA's: F is found with find_data_file; attribute a (not href or name) replaces the
+// value of every object or node of F that has an attribute a (N__a only in those named N); a
+// `name` renames the included node; an included node named Group or _Group_ adds its objects and
+// children to the including node.
 SceneNode parse_scene_file(const std::filesystem::path& path);
 
 // Parses scene text; `file` names it in messages and anchors relative include paths.

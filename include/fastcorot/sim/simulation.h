@@ -10,6 +10,7 @@
 #include "fastcorot/sim/mechanical_system.h"
 #include "fastcorot/sim/ode_solver.h"
 #include "fastcorot/sim/topology_script.h"
+#include "fastcorot/sim/visual_surface.h"
 #include "fastcorot/topology/tet_mesh.h"
 
 #include <array>
@@ -48,6 +49,9 @@ struct SimulatedObject {
   // order), and the BoxROI boxes of the object's nodes (fixed points are system.fixed).
   std::vector<ForceFieldDrawing> force_field_drawing;
   std::vector<DrawnBox> boxes;
+  // Visual models mapped onto the object's points (OglModel with a BarycentricMapping or
+  // IdentityMapping in a child node); display and output only.
+  std::vector<VisualSurface> visual_surfaces;
   // Scripted topological changes (TopologicalChangeProcessor), applied at the start of each step.
   std::vector<TopologyScript> topology_scripts;
 };
