@@ -120,6 +120,14 @@ class VtuSeries {
     for (const auto& object : simulation.objects) names_.push_back(file_stem(object.path));
     frames_.resize(simulation.objects.size());
     drawing_frames_.resize(simulation.objects.size());
+    for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
+      const auto& object = simulation.objects[o];
+      surface_stems_.emplace_back();
+      for (const VisualSurface& surface : object.visual_surfaces) {
+        surface_stems_[o].push_back(names_[o] + "_" + file_stem(surface.path.substr(object.path.size() + 1)));
+      }
+      surface_frames_.emplace_back(object.visual_surfaces.size());
+    }
   }
 
   void write(Simulation<double>& simulation) {
@@ -146,6 +154,18 @@ class VtuSeries {
       write_vtu(std::filesystem::path(dir_) / file, x, cells, point_fields, cell_fields);
       frames_[o].push_back({simulation.time(), file});
       write_pvd(std::filesystem::path(dir_) / (names_[o] + ".pvd"), frames_[o]);
+      // Each visual surface (an OglModel mapped onto the object) goes to a series of its own.
+      auto& surface_frames = surface_frames_[o];
+      for (std::size_t s = 0; s < object.visual_surfaces.size(); ++s) {
+        const VisualSurface& surface = object.visual_surfaces[s];
+        const std::string& stem = surface_stems_[o][s];
+        const std::string surface_file = stem + "_" + std::to_string(simulation.steps_done()) + ".vtu";
+        VtuCellBlock triangles{5, 3, {}};
+        for (const Triangle& t : surface.triangles) triangles.connectivity.insert(triangles.connectivity.end(), t.begin(), t.end());
+        write_vtu(std::filesystem::path(dir_) / surface_file, surface.points(x), {triangles}, {});
+        surface_frames[s].push_back({simulation.time(), surface_file});
+        write_pvd(std::filesystem::path(dir_) / (stem + ".pvd"), surface_frames[s]);
+      }
       // The drawn tetrahedra go to a series of their own: their points are not the mesh's.
       const DrawnTetrahedraGrid grid = drawn_tetrahedra_grid(object, drawing_);
       if (grid.empty()) continue;
@@ -170,6 +190,12 @@ class VtuSeries {
         if (std::filesystem::exists(std::filesystem::path(dir_) / drawing_file)) {
           drawing_frames_[o].push_back({time, drawing_file});
         }
+        for (std::size_t s = 0; s < surface_stems_[o].size(); ++s) {
+          const std::string surface_file = surface_stems_[o][s] + "_" + std::to_string(step) + ".vtu";
+          if (std::filesystem::exists(std::filesystem::path(dir_) / surface_file)) {
+            surface_frames_[o][s].push_back({time, surface_file});
+          }
+        }
       }
     }
   }
@@ -180,6 +206,9 @@ class VtuSeries {
   std::vector<std::string> names_;
   std::vector<std::vector<std::pair<double, std::string>>> frames_;
   std::vector<std::vector<std::pair<double, std::string>>> drawing_frames_;
+  // Per object and visual surface: the file stem and the frames written.
+  std::vector<std::vector<std::string>> surface_stems_;
+  std::vector<std::vector<std::vector<std::pair<double, std::string>>>> surface_frames_;
 };
 
 void record(json& steps, const Simulation<double>& simulation) {

@@ -84,7 +84,19 @@ class GmshReader {
         in_.fail_text("expected a section ($Nodes, $Elements, ...), found '",
                       FileCursor::printable(section), "'");
       }
-      if (section == "$Nodes") {
+      if (major_ == 1 && (section == "$NOD" || section == "$NOE")) {
+        if (have_nodes_) in_.fail_text("a second $NOD section");
+        read_nodes_v2();
+        have_nodes_ = true;
+        in_.expect(section == "$NOD" ? "$ENDNOD" : "$ENDNOE");
+      } else if (major_ == 1 && section == "$ELM") {
+        if (!have_nodes_) in_.fail_text("$ELM before $NOD");
+        read_elements_v1();
+        in_.expect("$ENDELM");
+      } else if (major_ == 1 && section.front() == '$') {
+        in_.set_position(section_start);
+        in_.fail_text("unknown section ", FileCursor::printable(section), " in a Gmsh format 1 file");
+      } else if (section == "$Nodes") {
         if (have_nodes_) in_.fail_text("a second $Nodes section");
         major_ == 2 ? read_nodes_v2() : read_nodes_v4();
         have_nodes_ = true;
@@ -113,9 +125,13 @@ class GmshReader {
 
  private:
   void read_format() {
+    const std::size_t start = (in_.skip_whitespace(), in_.position());
     const std::string_view magic = in_.token("$MeshFormat");
     if (magic == "$NOD" || magic == "$NOE") {
-      in_.fail_text("Gmsh format 1 is not supported (supported: 2.2 and 4.1, ASCII or binary)");
+      // Format 1 (Gmsh 1, most of SOFA's own meshes): no header; $NOD and $ELM sections.
+      major_ = 1;
+      in_.set_position(start);
+      return;
     }
     if (magic != "$MeshFormat") {
       in_.set_position(0);
@@ -226,6 +242,30 @@ class GmshReader {
         add_element(type, nodes, tag);
       }
       done += follow;
+    }
+  }
+
+  // --- format 1 -----------------------------------------------------------------------------
+
+  // Each element: number, type, physical region, elementary region, node count, nodes.
+  void read_elements_v1() {
+    const auto count = in_.integer<std::int64_t>("the element count");
+    if (count < 0) in_.fail_text("bad element count ", count);
+    std::vector<std::uint64_t> nodes;
+    for (std::int64_t e = 0; e < count; ++e) {
+      const auto tag = in_.integer<std::int64_t>("an element number");
+      const auto type = in_.integer<std::int64_t>("an element type");
+      in_.integer<std::int64_t>("a physical region");
+      in_.integer<std::int64_t>("an elementary region");
+      const auto num_nodes = in_.integer<std::int64_t>("the element's node count");
+      const int k = nodes_per_element(type);
+      if (k != 0 && num_nodes != k) {
+        in_.fail_text("element ", tag, " of type ", type, " has ", num_nodes, " nodes; expected ", k);
+      }
+      if (num_nodes < 0 || num_nodes > 1000) in_.fail_text("element ", tag, ": bad node count ", num_nodes);
+      nodes.resize(static_cast<std::size_t>(num_nodes));
+      for (auto& n : nodes) n = node_tag(in_.integer<std::int64_t>("an element node"), tag);
+      if (k != 0) add_element(type, nodes, tag);
     }
   }
 

@@ -23,6 +23,27 @@ void add_triangle(TriangleList& list, const std::array<Eigen::Vector3f, 3>& corn
   }
 }
 
+// A mapped visual surface, smooth-shaded: each point's normal is the area-weighted mean of its
+// triangles' normals (SOFA's OglModel computes its normals so).
+void add_visual_surface(TriangleList& list, const VisualSurface& surface, std::span<const Vec3<double>> x) {
+  const std::vector<Vec3<double>> p = surface.points(x);
+  std::vector<Vec3<double>> normals(p.size(), Vec3<double>::Zero());
+  for (const Triangle& t : surface.triangles) {
+    const Vec3<double> n = (p[static_cast<std::size_t>(t[1])] - p[static_cast<std::size_t>(t[0])])
+                               .cross(p[static_cast<std::size_t>(t[2])] - p[static_cast<std::size_t>(t[0])]);
+    for (Index v : t) normals[static_cast<std::size_t>(v)] += n;
+  }
+  for (const Triangle& t : surface.triangles) {
+    for (Index v : t) {
+      const Vec3<double>& n = normals[static_cast<std::size_t>(v)];
+      const double length = n.norm();
+      list.positions.push_back(p[static_cast<std::size_t>(v)].cast<float>());
+      list.normals.push_back(length > 0 ? Eigen::Vector3f((n / length).cast<float>()) : Eigen::Vector3f::Zero());
+      list.colors.push_back(surface.color);
+    }
+  }
+}
+
 void add_segment(LineList& list, const Eigen::Vector3f& a, const Eigen::Vector3f& b,
                  const Rgba& color) {
   list.positions.push_back(a);
@@ -132,7 +153,18 @@ void SceneDrawer::draw_object(const SimulatedObject<Real>& object, const DrawOpt
     }
     drew_tetrahedra = true;
   }
-  if (!drew_tetrahedra && object.mesh) {
+  // Visual models mapped onto the object are what SOFA shows by default; without one (or when the
+  // tetrahedra are drawn) the object's own boundary.
+  bool drew_surfaces = false;
+  if constexpr (std::is_same_v<Real, double>) {
+    if (!drew_tetrahedra) {
+      for (const VisualSurface& surface : object.visual_surfaces) {
+        add_visual_surface(geometry.triangles, surface, positions);
+        drew_surfaces = true;
+      }
+    }
+  }
+  if (!drew_tetrahedra && !drew_surfaces && object.mesh) {
     for (const BoundaryTriangle& b : boundary_of(*object.mesh)) {
       const std::array<Eigen::Vector3f, 3> corners = {
           to_float(x[static_cast<std::size_t>(b.vertices[0])]),

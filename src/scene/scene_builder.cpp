@@ -3,6 +3,9 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
+#include "fastcorot/io/surface_readers.h"
+#include "fastcorot/sim/barycentric_mapping.h"
+#include "fastcorot/sim/visual_surface.h"
 #include "scene_data.h"
 #include "solver_builder.h"
 #include "topology_change_processor.h"
@@ -18,6 +21,7 @@ using scene_detail::Component;
 using scene_detail::GraphNode;
 using scene_detail::Numbers;
 using scene_detail::SceneData;
+using scene_detail::transformed;
 
 namespace {
 
@@ -153,8 +157,12 @@ class Builder {
                            ": mechanics in a mapped node are not supported (node ", node.path, ")");
         }
       }
-      info_.push_back(node.scene->location.to_string() + ": mapped node " + node.path +
-                      " ignored (visual or collision only)");
+      if (node.of_category("visual").empty()) {
+        info_.push_back(node.scene->location.to_string() + ": mapped node " + node.path +
+                        " ignored (visual or collision only)");
+      } else {
+        mapped_.push_back(&node);
+      }
       return;
     }
     nodes.push_back(&node);
@@ -163,6 +171,7 @@ class Builder {
 
   void build_object(GraphNode& solver_node, Component& integrator) {
     std::vector<GraphNode*> nodes;
+    mapped_.clear();
     collect(solver_node, nodes);
     std::vector<Component*> states;
     for (GraphNode* node : nodes) {
@@ -218,11 +227,137 @@ class Builder {
     } catch (const Error& error) {
       throw make_error(state.where(), ": ", error.what());
     }
+    for (GraphNode* visual_node : mapped_) add_visual_surfaces(*visual_node, object);
     auto solvers = build_solvers(data_, info_, integrator, nodes, n);
     object.ode_solver = std::move(solvers.ode);
     object.linear_solver = std::move(solvers.linear);
     simulation_.objects.push_back(std::move(object));
     states_.push_back(state.object);
+  }
+
+  // The visual models of a mapped child node, with their mapping onto the object.
+  void add_visual_surfaces(GraphNode& node, SimulatedObject<double>& object) {
+    const auto mappings = node.of_category("visualmapping");
+    for (Component* model : node.of_category("visual")) {
+      Component* mapping = nullptr;
+      for (Component* m : mappings) {
+        const auto output = m->object->attributes.find("output");
+        if (output == m->object->attributes.end() || &data_.resolve_object(node, output->second, *m) == model) {
+          mapping = m;
+          break;
+        }
+      }
+      if (!model->has("src") && !model->has("filename") && !model->has("fileMesh")) {
+        info_.push_back(model->where() + ": " + std::string(model->type()) + " of mapped node " + node.path +
+                        " has no src (a surface loader) or filename: nothing to draw");
+        continue;
+      }
+      if (!mapping) {
+        info_.push_back(model->where() + ": " + std::string(model->type()) + " of mapped node " + node.path +
+                        " is not mapped (its mapping is none fastcorot draws): not drawn");
+        continue;
+      }
+      try {
+        object.visual_surfaces.push_back(build_surface(node, *model, *mapping, object));
+      } catch (const Error& error) {
+        throw make_error(model->where(), ": ", error.what());
+      }
+    }
+  }
+
+  VisualSurface build_surface(GraphNode& node, Component& model, Component& mapping, SimulatedObject<double>& object) {
+    VisualSurface surface;
+    surface.path = node.path + "/" + (model.object->name().empty() ? std::string(model.type()) : model.object->name());
+    SurfaceData data;
+    if (const auto src = model.object->attributes.find("src"); src != model.object->attributes.end()) {
+      Component& loader = data_.resolve_object(node, src->second, model);
+      if (loader.spec == nullptr || loader.spec->category != "surfaceloader") {
+        throw make_error("src ", src->second, " is a ", loader.type(), ", not a surface loader (MeshOBJLoader, MeshSTLLoader)");
+      }
+      data = load_surface(loader, "filename");
+    } else if (model.has("filename") || model.has("fileMesh")) {
+      data = load_surface(model, model.has("filename") ? "filename" : "fileMesh");
+    } else {
+      throw make_error("no src (a surface loader) or filename: fastcorot cannot tell what to draw");
+    }
+    // The model's own placement (SOFA's VisualModelImpl: scale, then rotation, then translation).
+    data.points = transformed(std::move(data.points), data_.placement(model, "scale3d"),
+                              data_.placement(model, "rotation"), data_.placement(model, "translation"));
+    surface.rest_points = data.points;
+    surface.triangles = data.all_triangles();
+    surface.color = visual_color(model);
+    const auto& system = object.system;
+    if (mapping.type() == "IdentityMapping") {
+      if (surface.rest_points.size() != system.state.position.size()) {
+        throw make_error("IdentityMapping ", mapping.where(), ": the visual model has ", surface.rest_points.size(),
+                         " points, the object ", system.state.position.size());
+      }
+      surface.mapping = "IdentityMapping";
+      surface.map = PointMapping<double>::identity(surface.rest_points.size());
+      return surface;
+    }
+    // SOFA's BarycentricMapping takes the first topology of the object's node: a grid gives the
+    // trilinear mapper, tetrahedra the tetrahedral one.
+    const bool rest = data_.boolean(mapping, "useRestPosition", false);
+    const auto& x = rest ? system.state.rest_position : system.state.position;
+    Component* topology = first_topology(node);
+    if (topology && topology->type() == "RegularGridTopology") {
+      surface.mapping = "BarycentricMapping (trilinear, RegularGridTopology)";
+      surface.map = PointMapping<double>::trilinear(data_.grid(*topology), surface.rest_points);
+      return surface;
+    }
+    if (!object.mesh) throw make_error("BarycentricMapping ", mapping.where(), ": the object has no tetrahedra to map onto");
+    surface.mapping = "BarycentricMapping (tetrahedra)";
+    surface.map = PointMapping<double>::from_barycentric(
+        *object.mesh, map_onto_tetrahedra<double>(*object.mesh, x, surface.rest_points));
+    return surface;
+  }
+
+  // The first topology object of the node above a mapped node (the object's node), as SOFA's
+  // BarycentricMapping finds its input topology.
+  static Component* first_topology(const GraphNode& mapped) {
+    for (const GraphNode* scope = mapped.parent; scope; scope = scope->parent) {
+      const auto topologies = scope->of_category("topology");
+      if (!topologies.empty()) return topologies.front();
+    }
+    return nullptr;
+  }
+
+  SurfaceData load_surface(Component& c, const std::string& attribute) {
+    const std::string name = data_.text(c, attribute, "");
+    if (name.empty()) throw make_error(c.where(), ": no ", attribute, " given");
+    SurfaceData surface;
+    try {
+      surface = read_surface_file(find_data_file(c.object->location.file, name));
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+    if (c.spec && c.spec->category == "surfaceloader") {
+      Vec3<double> scale = data_.vec3(c, "scale3d", {1, 1, 1});
+      if (c.has("scale")) scale *= data_.real(c, "scale", 1);
+      surface.points = transformed(std::move(surface.points), scale, data_.vec3(c, "rotation", {0, 0, 0}),
+                                   data_.vec3(c, "translation", {0, 0, 0}));
+    }
+    return surface;
+  }
+
+  // The model's colour: `color` (a name or r g b [a]), else the Diffuse colour of `material`, else
+  // SOFA's default white.
+  Rgba visual_color(Component& model) {
+    if (model.has("color")) return parse_color("color", data_.text(model, "color", ""));
+    if (model.has("material")) {
+      std::istringstream in(data_.text(model, "material", ""));
+      std::string word;
+      while (in >> word) {
+        if (word == "Diffuse") {
+          int enabled = 0;
+          Rgba rgba{1, 1, 1, 1};
+          if (in >> enabled >> rgba[0] >> rgba[1] >> rgba[2] >> rgba[3]) return rgba;
+          break;
+        }
+      }
+    }
+    return {1, 1, 1, 1};
   }
 
   std::shared_ptr<TetMesh> mesh_of(Component& user, Index num_points) {
@@ -428,6 +563,7 @@ class Builder {
 
   std::vector<std::string> info_;
   std::vector<std::string> warnings_;
+  std::vector<GraphNode*> mapped_;  // the mapped child nodes with visual models of the object being built
   SceneData data_;
   Simulation<double> simulation_;
   std::vector<const SceneObject*> states_;  // the MechanicalObject of each simulated object

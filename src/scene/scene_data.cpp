@@ -33,8 +33,6 @@ Mat3<double> euler_rotation(const Vec3<double>& degrees) {
       .toRotationMatrix();
 }
 
-namespace {
-
 // Applies scale, then rotation, then translation (SOFA's MechanicalObject and loaders).
 std::vector<Vec3<double>> transformed(std::vector<Vec3<double>> points, const Vec3<double>& scale,
                                       const Vec3<double>& rotation_degrees, const Vec3<double>& translation) {
@@ -47,6 +45,8 @@ std::vector<Vec3<double>> transformed(std::vector<Vec3<double>> points, const Ve
   }
   return points;
 }
+
+namespace {
 
 Numbers flatten(const std::vector<Vec3<double>>& points) {
   Numbers out;
@@ -212,6 +212,34 @@ const MeshData& SceneData::mesh_file(Component& loader) {
   return mesh_files_[&loader] = std::move(mesh);
 }
 
+Vec3<double> SceneData::placement(Component& c, const std::string& name) {
+  // SOFA's short forms (MechanicalObject::parse, VisualModelImpl::parse): dx dy dz, rx ry rz, and
+  // scale (uniform) or sx sy sz.
+  const bool scale = name == "scale3d";
+  const char* const* parts = name == "translation" ? kTranslationParts : name == "rotation" ? kRotationParts : kScaleParts;
+  const double fallback = scale ? 1 : 0;
+  if (scale && c.has("scale")) return Vec3<double>::Constant(real(c, "scale", 1));
+  if (c.has(parts[0]) || c.has(parts[1]) || c.has(parts[2])) {
+    return {real(c, parts[0], fallback), real(c, parts[1], fallback), real(c, parts[2], fallback)};
+  }
+  return vec3(c, name, Vec3<double>::Constant(fallback));
+}
+
+RegularGrid SceneData::grid(Component& c) {
+  RegularGrid grid;
+  const Numbers& n = data(c, "n");
+  if (n.size() != 3) throw make_error(c.where(), ": n needs 3 integers");
+  for (int k = 0; k < 3; ++k) grid.n[k] = static_cast<Index>(n[k]);
+  grid.min = vec3(c, "min", {0, 0, 0});
+  grid.max = vec3(c, "max", {1, 1, 1});
+  try {
+    validate(grid);
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+  return grid;
+}
+
 Component* SceneData::topology_of(const GraphNode& node) {
   for (const GraphNode* scope = &node; scope; scope = scope->parent) {
     const auto topologies = scope->of_category("topology");
@@ -229,20 +257,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (type == "MechanicalObject" && name != "position") return {};
     if (type != "MechanicalObject") return data(source, name);
   }
-  if (type == "RegularGridTopology" && name == "position") {
-    RegularGrid grid;
-    const Numbers& n = data(c, "n");
-    if (n.size() != 3) throw make_error(c.where(), ": n needs 3 integers");
-    for (int k = 0; k < 3; ++k) grid.n[k] = static_cast<Index>(n[k]);
-    grid.min = vec3(c, "min", {0, 0, 0});
-    grid.max = vec3(c, "max", {1, 1, 1});
-    try {
-      validate(grid);
-    } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
-    }
-    return flatten(grid_points<double>(grid));
-  }
+  if (type == "RegularGridTopology" && name == "position") return flatten(grid_points<double>(grid(c)));
   if (type == "RegularGridTopology" && name == "n") return {2, 2, 2};
   if (type == "MeshGmshLoader" || type == "MeshVTKLoader") {
     const MeshData& mesh = mesh_file(c);
@@ -266,14 +281,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
           throw make_error(m->where(), ": input must be a RegularGridTopology, not ", grid.type());
         }
         if (name == "position") return data(grid, "position");
-        if (name == "tetrahedra") {
-          RegularGrid spec;
-          const Numbers& n = data(grid, "n");
-          for (int k = 0; k < 3; ++k) spec.n[k] = static_cast<Index>(n[k]);
-          spec.min = vec3(grid, "min", {0, 0, 0});
-          spec.max = vec3(grid, "max", {1, 1, 1});
-          return flatten_indices(grid_tetrahedra(spec, boolean(*m, "swapping", false)));
-        }
+        if (name == "tetrahedra") return flatten_indices(grid_tetrahedra(this->grid(grid), boolean(*m, "swapping", false)));
         return {};
       }
       for (auto& child : node->children) stack.push_back(child.get());
@@ -301,8 +309,8 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
         }
         base = points_from(data(*topology, "position"), *topology, "position");
       }
-      return flatten(transformed(std::move(base), vec3(c, "scale3d", {1, 1, 1}), vec3(c, "rotation", {0, 0, 0}),
-                                 vec3(c, "translation", {0, 0, 0})));
+      return flatten(transformed(std::move(base), placement(c, "scale3d"), placement(c, "rotation"),
+                                 placement(c, "translation")));
     }
     if (name == "rest_position") return data(c, "position");
     if (name == "velocity") return {};

@@ -9,6 +9,7 @@
 #include "fastcorot/scene/component_table.h"
 #include "fastcorot/io/mesh_readers.h"
 #include "fastcorot/scene/scene_graph.h"
+#include "fastcorot/topology/regular_grid.h"
 
 #include <map>
 #include <memory>
@@ -48,6 +49,11 @@ struct GraphNode {
   std::vector<Component*> of_category(std::string_view category) const;
 };
 
+// Applies scale, then rotation (Euler angles in degrees, R = Rz Ry Rx), then translation, as SOFA's
+// MechanicalObject, loaders and visual models place their points.
+std::vector<Vec3<double>> transformed(std::vector<Vec3<double>> points, const Vec3<double>& scale,
+                                      const Vec3<double>& rotation_degrees, const Vec3<double>& translation);
+
 class SceneData {
  public:
   // Builds the graph, checking every component and attribute against the table. Ignored
@@ -79,6 +85,14 @@ class SceneData {
   // The node's topology slot (its last topology component, else the nearest ancestor's); nullptr
   // when there is none.
   Component* topology_of(const GraphNode& node);
+  // Translation, rotation or scale3d of c, or their short forms (dx dy dz, rx ry rz, scale or sx sy
+  // sz) as SOFA's MechanicalObject and visual models read them.
+  Vec3<double> placement(Component& c, const std::string& name);
+  static constexpr const char* kTranslationParts[3] = {"dx", "dy", "dz"};
+  static constexpr const char* kRotationParts[3] = {"rx", "ry", "rz"};
+  static constexpr const char* kScaleParts[3] = {"sx", "sy", "sz"};
+  // The grid a RegularGridTopology describes (validated; errors name the component).
+  RegularGrid grid(Component& c);
 
  private:
   Numbers compute(Component& c, const std::string& name);

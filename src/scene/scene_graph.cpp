@@ -202,7 +202,8 @@ std::filesystem::path find_data_file(const std::filesystem::path& from, const st
     }
   }
   std::error_code ec;
-  for (std::filesystem::path above = std::filesystem::absolute(folder, ec); !above.empty(); above = above.parent_path()) {
+  for (std::filesystem::path above = std::filesystem::absolute(from, ec).parent_path(); !above.empty();
+       above = above.parent_path()) {
     if (std::filesystem::is_directory(above / "share", ec) || std::filesystem::is_directory(above / "examples", ec)) {
       for (const char* sub : {"share", "share/mesh", "examples"}) {
         if (found(above / sub / relative)) return above / sub / relative;

@@ -209,6 +209,41 @@ std::string binary_v22(bool big_endian, std::int32_t one = 1) {
   return s;
 }
 
+TEST(GmshReader, Format1AsSofasOwnMeshesUseIt) {
+  // Gmsh 1 (no header; $NOD, $ELM: number, type, physical and elementary region, node count,
+  // nodes), values by eye: tags 10, 20, 30, 40, 50; a line (type 1) skipped, a triangle kept.
+  const MeshData mesh = read_gmsh_bytes(R"($NOD
+5
+10 0 0 0
+20 1 0 0
+30 0 1 0
+40 0 0 1
+50 1 1 1
+$ENDNOD
+$ELM
+4
+1 1 0 1 2 10 20
+2 2 0 1 3 10 20 30
+3 4 0 1 4 10 20 30 40
+4 4 0 1 4 20 30 40 50
+$ENDELM
+)",
+                                        "v1.msh");
+  ASSERT_EQ(mesh.points.size(), 5u);
+  EXPECT_EQ(mesh.points[4], Vec3<double>(1, 1, 1));
+  ASSERT_EQ(mesh.tetrahedra.size(), 2u);
+  EXPECT_EQ(mesh.tetrahedra[1], (Tetrahedron{1, 2, 3, 4}));
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_EQ(mesh.triangles[0], (Triangle{0, 1, 2}));
+  // SOFA's liver (../shared/sofa-scenes/share/mesh, beside the project, when present).
+  const auto liver = std::filesystem::path(FASTCOROT_SOURCE_DIR) / "../shared/sofa-scenes/share/mesh/liver.msh";
+  if (std::filesystem::exists(liver)) {
+    const MeshData sofa = read_gmsh(liver);
+    EXPECT_EQ(sofa.points.size(), 181u);  // its $NOD count
+    EXPECT_GT(sofa.tetrahedra.size(), 100u);
+  }
+}
+
 TEST(GmshReader, BinaryInBothByteOrders) {
   for (const bool big_endian : {false, true}) {
     SCOPED_TRACE(big_endian ? "big-endian" : "little-endian");
@@ -226,7 +261,12 @@ TEST(GmshReader, ErrorsNameFileLineAndProblem) {
   const std::string version = read_error("$MeshFormat\n4 0 8\n$EndMeshFormat\n");
   EXPECT_TRUE(contains(version, "bad.msh:2: unsupported Gmsh format version '4'")) << version;
   EXPECT_TRUE(contains(version, "supported: 2.2 and 4.1")) << version;
-  EXPECT_TRUE(contains(read_error("$NOD\n1\n1 0 0 0\n$ENDNOD\n"), "format 1 is not supported"));
+  // Format 1: an element naming a node that does not exist, and a node count that does not match.
+  EXPECT_TRUE(contains(read_error("$NOD\n1\n1 0 0 0\n$ENDNOD\n$ELM\n1\n1 4 1 1 4 1 2 3 4\n$ENDELM\n"), "bad.msh:7: element 1 uses node tag 2"))
+      << read_error("$NOD\n1\n1 0 0 0\n$ENDNOD\n$ELM\n1\n1 4 1 1 4 1 2 3 4\n$ENDELM\n");
+  EXPECT_TRUE(contains(read_error("$NOD\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$ENDNOD\n$ELM\n1\n1 4 1 1 3 1 2 3\n$ENDELM\n"),
+                       "has 3 nodes; expected 4"));
+  EXPECT_TRUE(contains(read_error("$NOD\n1\n1 0 0 0\n$ENDNOD\n$Nodes\n"), "unknown section $Nodes in a Gmsh format 1 file"));
   EXPECT_TRUE(contains(read_error("$MeshFormat\n2.2 0 4\n$EndMeshFormat\n"), "data size 4"));
   EXPECT_TRUE(contains(read_error("$MeshFormat\n2.2 3 8\n$EndMeshFormat\n"), "file type 3"));
   EXPECT_TRUE(contains(read_error(binary_v22(false, 2)), "bad endianness check"));
