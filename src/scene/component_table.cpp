@@ -291,6 +291,15 @@ bool is_ignored_component(std::string_view name) {
 
 std::span<const std::string_view> ignored_components() { return kIgnored; }
 
+bool is_collision_component(std::string_view name) {
+  static constexpr std::array<std::string_view, 15> kCollision = {
+      "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase", "BruteForceDetection",
+      "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection", "DiscreteIntersection",
+      "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel", "LineCollisionModel",
+      "PointCollisionModel", "SphereCollisionModel"};
+  return std::find(kCollision.begin(), kCollision.end(), name) != kCollision.end();
+}
+
 bool is_common_attribute(std::string_view name) {
   return std::find(kCommon.begin(), kCommon.end(), name) != kCommon.end() || name.starts_with("draw") ||
          name.starts_with("show");

@@ -83,7 +83,12 @@ std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNo
     component->object = &object;
     component->node = node.get();
     component->spec = check_scene_object(object, warnings_);
-    if (!component->spec) {
+    if (!component->spec && is_collision_component(object.type)) {
+      const std::string line = object.location.to_string() + ": " + object.type +
+                               " ignored: collisions and contacts are not simulated by fastcorot";
+      if (!warnings_) throw make_error(line);
+      warnings_->push_back(line);
+    } else if (!component->spec) {
       info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
     }
     node->components.push_back(std::move(component));

@@ -140,6 +140,37 @@ TEST(Run, UnknownAttributesWarnAndStrictMakesThemErrors) {
       << strict.output;
 }
 
+TEST(Run, VisualSurfacesGetVtuSeriesOfTheirOwn) {
+  const auto dir = output_dir("run_visual");
+  std::ofstream(dir / "tri.obj") << "v 0.2 0.2 0.2\nv 0.8 0.2 0.2\nv 0.2 0.8 0.2\nf 1 2 3\n";
+  const std::string scene = write_scene(dir, R"(<Node name="root">
+  <Node name="body">
+    <EulerImplicitSolver/><CGLinearSolver/>
+    <MechanicalObject position="0 0 0  1 0 0  0 1 0  0 0 1"/>
+    <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/>
+    <UniformMass totalMass="1"/>
+    <TetrahedronFEMForceField/>
+    <Node name="Visu">
+      <MeshOBJLoader name="l" filename="tri.obj"/>
+      <OglModel name="V" src="@l"/>
+      <BarycentricMapping input="@.." output="@V"/>
+    </Node>
+  </Node>
+</Node>)");
+  const auto out = dir / "frames";
+  const auto result = run_fastcorot("run " + scene + " --steps 2 --vtu --quiet --out " + out.string());
+  ASSERT_EQ(result.status, 0) << result.output;
+  for (const char* step : {"0", "1", "2"}) {
+    const MeshData surface = read_vtu(out / (std::string("root_body_Visu_V_") + step + ".vtu"));
+    EXPECT_EQ(surface.points.size(), 3u);
+    EXPECT_EQ(surface.triangles.size(), 1u);
+  }
+  EXPECT_TRUE(std::filesystem::exists(out / "root_body_Visu_V.pvd"));
+  // The free fall moves the triangle with the tetrahedron.
+  const MeshData first = read_vtu(out / "root_body_Visu_V_0.vtu"), last = read_vtu(out / "root_body_Visu_V_2.vtu");
+  EXPECT_LT(last.points[0].y(), first.points[0].y());
+}
+
 TEST(Run, BadScenesExitWith2AndAClearMessage) {
   const auto dir = output_dir("run_bad");
   const std::string solver = "<EulerImplicitSolver/><CGLinearSolver/>";

@@ -11,6 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <fstream>
 
 namespace fastcorot {
@@ -209,6 +212,16 @@ TEST(SceneBuilder, UnknownAttributesAreWarningsWithTheClosestNameOrErrorsWhenStr
   }
 }
 
+TEST(SceneBuilder, CollisionComponentsAreWarnedAsNotSimulated) {
+  const std::string text = "<Node name=\"root\">\n<CollisionPipeline/>\n<Node name=\"b\">" + kTet +
+                           "\n<UniformMass totalMass=\"1\"/>\n<TriangleCollisionModel/>\n</Node>\n</Node>";
+  const LoadedScene scene = build_scene(parse_scene_text(text, "c.scn"));
+  ASSERT_EQ(scene.warnings.size(), 2u);
+  EXPECT_EQ(scene.warnings[0], "c.scn:2: CollisionPipeline ignored: collisions and contacts are not simulated by fastcorot");
+  EXPECT_NE(scene.warnings[1].find("TriangleCollisionModel ignored: collisions"), std::string::npos);
+  EXPECT_THROW(build_scene(parse_scene_text(text, "c.scn"), SceneOptions{true}), Error);
+}
+
 TEST(SceneBuilder, UnknownComponentsSuggestTheClosestName) {
   const std::string message = error_of(kTet + "\n<TetrahedronFEMForcefield/>");
   EXPECT_NE(message.find("unknown component 'TetrahedronFEMForcefield' (did you mean 'TetrahedronFEMForceField'?)"),
@@ -295,6 +308,95 @@ TEST(SceneBuilder, CheckSceneObjectGivesTheBuildersMessages) {
   EXPECT_EQ(check_scene_object(object), nullptr);
   object = {"FixedConstraint", {{"indices", "0"}, {"drawSize", "2"}}, {}};  // an alias; a display option
   EXPECT_EQ(check_scene_object(object), find_component("FixedProjectiveConstraint"));
+}
+
+}  // namespace
+}  // namespace fastcorot
+
+namespace fastcorot {
+namespace {
+
+// A beam of 2×1×1 cells with a visual child node: an OBJ quad over the beam's top face (points
+// inside the mesh's top face and one above it), placed by the OglModel's dx.
+std::string visual_scene(const std::filesystem::path& dir, const std::string& first_topology,
+                         const std::string& mapping) {
+  std::ofstream(dir / "lid.obj") << "v 0.5 1 0.25\nv 1.5 1 0.25\nv 1.5 1 0.75\nv 0.5 1 0.75\nv 1 1.5 0.5\nf 1 2 3 4\nf 1 2 5\n";
+  const std::string grid = R"(<RegularGridTopology name="grid" n="3 2 2" min="0 0 0" max="2 1 1"/>)";
+  const std::string tets = R"(<TetrahedronSetTopologyContainer name="tets"/>)";
+  return R"(<Node name="root" gravity="0 -10 0" dt="0.01">
+  <Node name="beam">
+    <EulerImplicitSolver/><EigenSimplicialLDLT/>
+    )" + (first_topology == "grid" ? grid + tets : tets + grid) + R"(
+    <MechanicalObject name="state"/>
+    <Hexa2TetraTopologicalMapping input="@grid" output="@tets" swapping="true"/>
+    <DiagonalMass massDensity="1" topology="@tets"/>
+    <TetrahedronFEMForceField youngModulus="500" poissonRatio="0.3" topology="@tets"/>
+    <FixedProjectiveConstraint indices="0 3 6 9"/>
+    <Node name="Visu">
+      <MeshOBJLoader name="loader" filename="lid.obj" translation="0 0 0"/>
+      <OglModel name="Visual" src="@loader" color="red" dx="0" material="Default Diffuse 1 0 0.5 0 1"/>
+      <)" + mapping + R"( input="@.." output="@Visual"/>
+    </Node>
+  </Node>
+</Node>)";
+}
+
+class VisualSurfaces : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("fastcorot_visual_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  LoadedScene load(const std::string& text) {
+    std::ofstream(dir_ / "scene.scn") << text;
+    return load_scene_file(dir_ / "scene.scn");
+  }
+  std::filesystem::path dir_;
+};
+
+TEST_F(VisualSurfaces, AnOglModelFollowsItsObjectThroughTheMappingSofaWouldChoose) {
+  for (const std::string first : {"tets", "grid"}) {
+    SCOPED_TRACE(first);
+    LoadedScene scene = load(visual_scene(dir_, first, "BarycentricMapping"));
+    auto& object = scene.simulation.objects.at(0);
+    ASSERT_EQ(object.visual_surfaces.size(), 1u);
+    const VisualSurface& surface = object.visual_surfaces[0];
+    EXPECT_EQ(surface.path, "root/beam/Visu/Visual");
+    EXPECT_EQ(surface.mapping, first == "grid" ? "BarycentricMapping (trilinear, RegularGridTopology)"
+                                               : "BarycentricMapping (tetrahedra)");
+    ASSERT_EQ(surface.rest_points.size(), 5u);
+    EXPECT_EQ(surface.triangles.size(), 3u);  // the quad as two triangles, then the triangle
+    EXPECT_EQ(surface.color, (std::array<float, 4>{1, 0, 0, 1}));  // color wins over material
+    // At rest the mapped points are the surface's own, inside and outside the beam.
+    const auto rest = surface.points(object.system.state.position);
+    for (std::size_t i = 0; i < rest.size(); ++i) EXPECT_LT((rest[i] - surface.rest_points[i]).norm(), 1e-12);
+    // After steps they are the mapping of the state.
+    for (int s = 0; s < 5; ++s) scene.simulation.step();
+    const auto moved = surface.points(object.system.state.position);
+    std::vector<Vec3<double>> expected(5);
+    surface.map.apply(object.system.state.position, expected);
+    EXPECT_EQ(moved, expected);
+    EXPECT_GT((moved[1] - rest[1]).norm(), 1e-6);  // the free end moved, and the surface with it
+  }
+}
+
+TEST_F(VisualSurfaces, IdentityMappingNeedsOnePointPerPointAndBadSurfacesAreErrors) {
+  try {
+    load(visual_scene(dir_, "tets", "IdentityMapping"));
+    ADD_FAILURE() << "an identity mapping of 5 points onto 12 was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("the visual model has 5 points, the object 12"), std::string::npos)
+        << error.what();
+  }
+  std::string missing = visual_scene(dir_, "tets", "BarycentricMapping");
+  missing.replace(missing.find("lid.obj"), 7, "gone.obj");
+  try {
+    load(missing);
+    ADD_FAILURE() << "a missing surface file was accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("gone.obj: no such file"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

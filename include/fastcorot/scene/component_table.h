@@ -36,6 +36,9 @@ std::span<const ComponentSpec> supported_components();
 // Components accepted without effect on the mechanics (visual, plugin, collision, helpers).
 bool is_ignored_component(std::string_view name);
 std::span<const std::string_view> ignored_components();
+// Ignored components that change SOFA's mechanics (collision detection and contact response): the
+// scene loads, with a warning that contacts are not simulated.
+bool is_collision_component(std::string_view name);
 
 // Attributes every component accepts (name, template, tags, printLog, ...) and the rule that
 // attributes beginning with "draw" or "show" are display options with no effect on mechanics.
