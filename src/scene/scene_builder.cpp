@@ -6,6 +6,7 @@
 #include "fastcorot/io/surface_readers.h"
 #include "fastcorot/sim/barycentric_mapping.h"
 #include "fastcorot/sim/visual_surface.h"
+#include "fastcorot/topology/regular_grid.h"
 #include "scene_data.h"
 #include "solver_builder.h"
 #include "topology_change_processor.h"
@@ -365,7 +366,11 @@ class Builder {
                                                : data_.topology_of(*user.node);
     if (!topology) throw make_error(user.where(), ": no topology in its node or above");
     if (const auto it = meshes_.find(topology); it != meshes_.end()) return it->second;
-    const std::vector<Index> flat = data_.indices(*topology, "tetrahedra");
+    std::vector<Index> flat = data_.indices(*topology, "tetrahedra");
+    if (flat.empty() && topology->type() == "RegularGridTopology" && user.type() == "TetrahedronFEMForceField") {
+      // TetrahedronFEMForceField tessellates a grid's hexahedra itself, as SOFA's init does.
+      for (const Tetrahedron& t : tetrahedron_fem_grid_tetrahedra(data_.grid(*topology))) flat.insert(flat.end(), t.begin(), t.end());
+    }
     if (flat.empty()) {
       throw make_error(user.where(), ": its topology ", topology->where(), " has no tetrahedra",
                        topology->type() == "RegularGridTopology"

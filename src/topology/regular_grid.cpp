@@ -179,7 +179,26 @@ std::array<Index, 8> grid_cell_corners(const RegularGrid& grid, Index i, Index j
   return corners_unchecked(grid, i, j, k);
 }
 
+namespace {
+
+// The split of every cell, mirrored as `swapping` says; `follow_mirror` chooses the mirrored split
+// table for mirrored cells (Hexa2TetraTopologicalMapping) or keeps the plain one
+// (TetrahedronFEMForceField's own tessellation).
+std::vector<Tetrahedron> split_cells(const RegularGrid& grid, bool swapping, bool follow_mirror);
+
+}  // namespace
+
 std::vector<Tetrahedron> grid_tetrahedra(const RegularGrid& grid, bool swapping) {
+  return split_cells(grid, swapping, true);
+}
+
+std::vector<Tetrahedron> tetrahedron_fem_grid_tetrahedra(const RegularGrid& grid) {
+  return split_cells(grid, true, false);
+}
+
+namespace {
+
+std::vector<Tetrahedron> split_cells(const RegularGrid& grid, bool swapping, bool follow_mirror) {
   validate(grid);
   const auto& n = grid.n;
   std::vector<Tetrahedron> tetrahedra;
@@ -205,7 +224,7 @@ std::vector<Tetrahedron> grid_tetrahedra(const RegularGrid& grid, bool swapping)
             mirrored = !mirrored;
           }
         }
-        const SplitTable& split = mirrored ? kSplitMirrored : kSplit;
+        const SplitTable& split = mirrored && follow_mirror ? kSplitMirrored : kSplit;
         for (const auto& t : split) {
           tetrahedra.push_back(Tetrahedron{c[t[0]], c[t[1]], c[t[2]], c[t[3]]});
         }
@@ -214,6 +233,8 @@ std::vector<Tetrahedron> grid_tetrahedra(const RegularGrid& grid, bool swapping)
   }
   return tetrahedra;
 }
+
+}  // namespace
 
 template std::vector<Vec3<float>> grid_points<float>(const RegularGrid& grid);
 template std::vector<Vec3<double>> grid_points<double>(const RegularGrid& grid);

@@ -466,3 +466,31 @@ TEST(RegularGridTest, ValidateRejectsZeroExtentAndIndexOverflow) {
 
 }  // namespace
 }  // namespace fastcorot
+
+namespace fastcorot {
+namespace {
+
+// TetrahedronFEMForceField's own tessellation of a grid (its init): the cells mirrored as
+// Hexa2TetraTopologicalMapping's swapping mirrors them, but always SOFA's plain split, so the
+// tetrahedra of cells mirrored an odd number of times are those of the mapping with their last two
+// vertices exchanged (negatively oriented).
+TEST(RegularGrid, TetrahedronFemTessellationIsTheSwappedSplitWithoutItsReorientation) {
+  RegularGrid grid;
+  grid.n = {4, 3, 3};
+  const auto mapped = grid_tetrahedra(grid, true);
+  const auto fem = tetrahedron_fem_grid_tetrahedra(grid);
+  ASSERT_EQ(fem.size(), mapped.size());
+  const auto points = grid_points<double>(grid);
+  for (std::size_t t = 0; t < fem.size(); ++t) {
+    const std::size_t cell = t / 6;
+    const Index i = static_cast<Index>(cell % 3), j = static_cast<Index>((cell / 3) % 2), k = static_cast<Index>(cell / 6);
+    const bool odd = ((i % 2 == 0) + (j % 2 == 1) + (k % 2 == 1)) % 2 == 1;
+    const Tetrahedron expected = odd ? Tetrahedron{mapped[t][0], mapped[t][1], mapped[t][3], mapped[t][2]} : mapped[t];
+    EXPECT_EQ(fem[t], expected) << "tetrahedron " << t;
+    EXPECT_EQ(signed_volume(points, fem[t]) > 0, !odd == (signed_volume(points, mapped[t]) > 0))
+        << "tetrahedron " << t;
+  }
+}
+
+}  // namespace
+}  // namespace fastcorot

@@ -48,4 +48,9 @@ std::array<Index, 8> grid_cell_corners(const RegularGrid& grid, Index i, Index j
 // odd before it is split. The tables and their sources are in regular_grid.cpp. Validates first.
 std::vector<Tetrahedron> grid_tetrahedra(const RegularGrid& grid, bool swapping);
 
+// The tetrahedra TetrahedronFEMForceField makes itself from a grid's hexahedra when its topology
+// has no tetrahedra (its init): cells mirrored as with `swapping`, but always split with the plain
+// table, so that mirrored cells give negatively oriented tetrahedra (which it accepts: it uses |V|).
+std::vector<Tetrahedron> tetrahedron_fem_grid_tetrahedra(const RegularGrid& grid);
+
 }  // namespace fastcorot
