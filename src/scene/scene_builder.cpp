@@ -308,9 +308,13 @@ class Builder {
       return surface;
     }
     if (!object.mesh) throw make_error("BarycentricMapping ", mapping.where(), ": the object has no tetrahedra to map onto");
-    surface.mapping = "BarycentricMapping (tetrahedra)";
+    // A MeshTopology gets SOFA's MeshMapper, which tries every tetrahedron; a dynamic container its
+    // TetrahedronSetMapper, which searches a grid.
+    const bool mesh_topology = topology && topology->object->type == "MeshTopology";
+    surface.mapping = mesh_topology ? "BarycentricMapping (tetrahedra, every one tried)" : "BarycentricMapping (tetrahedra)";
     surface.map = PointMapping<double>::from_barycentric(
-        *object.mesh, map_onto_tetrahedra<double>(*object.mesh, x, surface.rest_points));
+        *object.mesh, map_onto_tetrahedra<double>(*object.mesh, x, surface.rest_points,
+                                                  mesh_topology ? TetrahedronSearch::exhaustive : TetrahedronSearch::grid));
     return surface;
   }
 

@@ -48,7 +48,7 @@ struct Nearest {
 
 template <class Real>
 BarycentricMapping<Real> map_onto_tetrahedra(const TetMesh& mesh, std::span<const Vec3<Real>> x,
-                                             std::span<const Vec3<Real>> points) {
+                                             std::span<const Vec3<Real>> points, TetrahedronSearch search) {
   if (mesh.num_tetrahedra() == 0) throw make_error("BarycentricMapping: the input topology has no tetrahedra");
   const auto n = static_cast<std::size_t>(mesh.num_tetrahedra());
   // Per tetrahedron the inverse of its edge matrix (columns b - a, c - a, d - a) and its centre.
@@ -94,6 +94,12 @@ BarycentricMapping<Real> map_onto_tetrahedra(const TetMesh& mesh, std::span<cons
     const Vec3<Real>& point = points[i];
     if (!point.allFinite()) throw make_error("BarycentricMapping: point ", i, " is not finite");
     Nearest<Real> nearest;
+    if (search == TetrahedronSearch::exhaustive) {
+      for (std::size_t t = 0; t < n; ++t) check(static_cast<Index>(t), point, nearest);
+      mapping.tetrahedron.push_back(nearest.tetrahedron);
+      mapping.coordinates.push_back(nearest.coordinates);
+      continue;
+    }
     const Cell cell = cell_of(point, inverse_size);
     if (const auto it = grid.find(cell); it != grid.end()) {
       for (Index t : it->second) check(t, point, nearest);
@@ -121,8 +127,8 @@ BarycentricMapping<Real> map_onto_tetrahedra(const TetMesh& mesh, std::span<cons
 template struct BarycentricMapping<float>;
 template struct BarycentricMapping<double>;
 template BarycentricMapping<float> map_onto_tetrahedra(const TetMesh&, std::span<const Vec3<float>>,
-                                                       std::span<const Vec3<float>>);
+                                                       std::span<const Vec3<float>>, TetrahedronSearch);
 template BarycentricMapping<double> map_onto_tetrahedra(const TetMesh&, std::span<const Vec3<double>>,
-                                                        std::span<const Vec3<double>>);
+                                                        std::span<const Vec3<double>>, TetrahedronSearch);
 
 }  // namespace fastcorot

@@ -94,6 +94,18 @@ TEST(BarycentricMapping, AffineMotionsOfTheMeshMoveEveryMappedPointAffinely) {
   }
 }
 
+TEST(BarycentricMapping, ExhaustiveSearchAgreesInsideAndPicksTheNearestCentreOutside) {
+  // SOFA's MeshTopology mapper tries every tetrahedron: the same choice for points inside, the
+  // globally nearest centre outside.
+  const Points points = {{0.1, 0.2, 0.3}, {0.6, 0.6, 0.6}, {3, 3, 3}, {-2, 0.1, 0.1}};
+  const auto grid = map_onto_tetrahedra<double>(kTwo, kTwoRest, points);
+  const auto every = map_onto_tetrahedra<double>(kTwo, kTwoRest, points, TetrahedronSearch::exhaustive);
+  EXPECT_EQ(every.tetrahedron[0], grid.tetrahedron[0]);
+  EXPECT_EQ(every.tetrahedron[1], grid.tetrahedron[1]);
+  EXPECT_EQ(every.tetrahedron[2], 1);  // centre (0.5 0.5 0.5) is nearer than (0.25 0.25 0.25)
+  EXPECT_EQ(every.tetrahedron[3], 0);
+}
+
 TEST(BarycentricMapping, BadInputIsAnError) {
   const TetMesh empty(4, {});
   EXPECT_THROW(map_onto_tetrahedra<double>(empty, Points(4, Vec3<double>::Zero()), Points{{0, 0, 0}}), Error);

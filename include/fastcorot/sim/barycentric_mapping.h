@@ -27,10 +27,15 @@ struct BarycentricMapping {
   void apply(const TetMesh& mesh, std::span<const Vec3<Real>> x, std::span<Vec3<Real>> out) const;
 };
 
+// How the candidate tetrahedra of a point are found: SOFA's TetrahedronSetTopologyContainer mapper
+// searches a grid (above); its MeshTopology mapper tries every tetrahedron, with the same rule.
+enum class TetrahedronSearch { grid, exhaustive };
+
 // The mapping of `points` onto `mesh` at positions `x` (the input state when the mapping is made:
 // SOFA's init). Throws fastcorot::Error for a mesh without tetrahedra or a non-finite point.
 template <class Real>
 BarycentricMapping<Real> map_onto_tetrahedra(const TetMesh& mesh, std::span<const Vec3<Real>> x,
-                                             std::span<const Vec3<Real>> points);
+                                             std::span<const Vec3<Real>> points,
+                                             TetrahedronSearch search = TetrahedronSearch::grid);
 
 }  // namespace fastcorot

@@ -1,0 +1,72 @@
+// A fast subset of SOFA's own example scenes (../shared/sofa-scenes beside the project, where
+// scripts/sofa-scenes runs them all): each runs 100 steps from its folder, as runSofa runs it, to
+// finite positions; a scene that needs what fastcorot lacks is refused with status 2 and one error
+// line naming it. Skipped where the scenes are not beside the checkout.
+#include "fastcorot/core/error.h"
+#include "support/command.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace fastcorot {
+namespace {
+
+std::filesystem::path sofa_examples() {
+  return std::filesystem::path(FASTCOROT_SOURCE_DIR) / "../shared/sofa-scenes/examples";
+}
+
+class SofaScene : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SofaScene, RunsAHundredStepsToFinitePositions) {
+  const auto scene = sofa_examples() / GetParam();
+  if (!std::filesystem::exists(scene)) GTEST_SKIP() << "no " << scene;
+  const auto dump = std::filesystem::temp_directory_path() /
+                    ("fastcorot_sofa_scene_" + std::to_string(::getpid()) + "_" + scene.stem().string() + ".json");
+  const auto result = testing::shell("cd '" + scene.parent_path().string() + "' && " FASTCOROT_EXECUTABLE " run '" +
+                                     scene.filename().string() + "' --steps 100 --quiet --dump-state '" + dump.string() +
+                                     "' --dump-steps 100 2>&1");
+  ASSERT_EQ(result.status, 0) << result.output;
+  const auto state = nlohmann::json::parse(std::ifstream(dump));
+  std::filesystem::remove(dump);
+  std::size_t values = 0;
+  for (const auto& [object, points] : state["steps"]["100"].items()) {
+    for (const auto& p : points) {
+      for (const auto& v : p) {
+        ASSERT_TRUE(std::isfinite(v.get<double>())) << object;
+        ++values;
+      }
+    }
+  }
+  EXPECT_GT(values, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Examples, SofaScene,
+    ::testing::Values("Component/SolidMechanics/FEM/TetrahedronFEMForceField.scn",
+                      "Component/SolidMechanics/FEM/TetrahedronFEMForceField_Chain.scn",
+                      "Component/SolidMechanics/FEM/FastTetrahedralCorotationalForceField.scn",
+                      "Component/Topology/Mapping/Hexa2TetraTopologicalMapping.scn",
+                      "Component/Topology/Container/Constant/MeshTopology.scn",
+                      "Component/Mapping/Linear/BarycentricTetraMapping.scn"),
+    [](const auto& info) { return std::filesystem::path(info.param).stem().string(); });
+
+TEST(SofaScenes, ASceneNeedingWhatIsMissingIsRefusedInOneLine) {
+  const auto scene = sofa_examples() / "Component/AnimationLoop/FreeMotionAnimationLoop.scn";
+  if (!std::filesystem::exists(scene)) GTEST_SKIP() << "no " << scene;
+  const auto result = testing::shell("cd '" + scene.parent_path().string() + "' && " FASTCOROT_EXECUTABLE " run '" +
+                                     scene.filename().string() + "' --steps 1 --quiet 2>&1");
+  EXPECT_EQ(result.status, 2) << result.output;
+  std::size_t errors = 0;
+  for (std::size_t at = result.output.find("error:"); at != std::string::npos; at = result.output.find("error:", at + 1)) ++errors;
+  EXPECT_EQ(errors, 1u) << result.output;
+  EXPECT_NE(result.output.find("FreeMotionAnimationLoop"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace fastcorot
