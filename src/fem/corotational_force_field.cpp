@@ -5,6 +5,7 @@
 #include "fastcorot/core/rotation.h"
 #include "fastcorot/topology/point_order.h"
 #include "force_kernels.h"
+#include "material_checks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,14 +15,6 @@
 namespace fastcorot {
 
 namespace {
-
-template <class Real>
-void check_parameter_list(const std::vector<Real>& values, const char* name, Index num_tetrahedra) {
-  if (values.size() != 1 && values.size() != static_cast<std::size_t>(num_tetrahedra)) {
-    throw make_error(name, ": ", values.size(), " values given; expected 1 or one per tetrahedron (",
-                     num_tetrahedra, ")");
-  }
-}
 
 // SPEC.md: element t uses entry t if present, else entry 0.
 template <class Real>
@@ -80,12 +73,7 @@ CorotationalForceField<Real>::CorotationalForceField(std::shared_ptr<TetMesh> me
     throw make_error("FastTetrahedralCorotationalForceField: the topology has no tetrahedra");
   }
   const Index n = mesh_->num_tetrahedra();
-  check_parameter_list(parameters_.young_modulus, "youngModulus", n);
-  check_parameter_list(parameters_.poisson_ratio, "poissonRatio", n);
-  if (!(parameters_.rayleigh_stiffness >= 0) || !std::isfinite(parameters_.rayleigh_stiffness)) {
-    throw make_error("rayleighStiffness = ", parameters_.rayleigh_stiffness,
-                     ": must be a finite value >= 0");
-  }
+  detail::check_material_lists(parameters_.young_modulus, parameters_.poisson_ratio, parameters_.rayleigh_stiffness, n);
   check_rest_volumes<Real>(*mesh_, rest_positions_);
   young_per_tetrahedron_ = n > 1 && parameters_.young_modulus.size() > 1;
   poisson_per_tetrahedron_ = n > 1 && parameters_.poisson_ratio.size() > 1;

@@ -5,6 +5,7 @@
 #include "fastcorot/core/parallel.h"
 #include "fastcorot/core/rotation.h"
 #include "fastcorot/fem/tetrahedron_element.h"
+#include "material_checks.h"
 
 #include <cmath>
 
@@ -91,14 +92,6 @@ std::array<Vec3<Real>, 4> element_force(const std::array<Vec3<Real>, 4>& g, cons
   return f;
 }
 
-template <class Real>
-void check_list(const std::vector<Real>& values, const char* name, Index num_tetrahedra) {
-  if (values.size() != 1 && values.size() != static_cast<std::size_t>(num_tetrahedra)) {
-    throw make_error(name, ": ", values.size(), " values given; expected 1 or one per tetrahedron (",
-                     num_tetrahedra, ")");
-  }
-}
-
 }  // namespace
 
 template <class Real>
@@ -112,11 +105,7 @@ TetrahedronFEMForceField<Real>::TetrahedronFEMForceField(std::shared_ptr<TetMesh
     throw make_error("TetrahedronFEMForceField: the topology has no tetrahedra");
   }
   const Index n = mesh_->num_tetrahedra();
-  check_list(parameters_.young_modulus, "youngModulus", n);
-  check_list(parameters_.poisson_ratio, "poissonRatio", n);
-  if (!(parameters_.rayleigh_stiffness >= 0) || !std::isfinite(parameters_.rayleigh_stiffness)) {
-    throw make_error("rayleighStiffness = ", parameters_.rayleigh_stiffness, ": must be a finite value >= 0");
-  }
+  detail::check_material_lists(parameters_.young_modulus, parameters_.poisson_ratio, parameters_.rayleigh_stiffness, n);
   for (std::size_t i = 0; i < parameters_.local_stiffness_factor.size(); ++i) {
     const Real factor = parameters_.local_stiffness_factor[i];
     if (!(factor > 0) || !std::isfinite(factor)) {
