@@ -342,10 +342,41 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 
 }  // namespace
 
+// SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
+// line saying so (an unknown component's line would not say what is missing).
+std::string_view refusal_reason(std::string_view type) {
+  static const std::array<std::pair<std::string_view, std::string_view>, 16> kRefused = {{
+      {"FreeMotionAnimationLoop", "constraint-based animation (Lagrangian constraints) is not simulated"},
+      {"GenericConstraintSolver", "Lagrangian constraint solvers are not simulated"},
+      {"BlockGaussSeidelConstraintSolver", "Lagrangian constraint solvers are not simulated"},
+      {"LCPConstraintSolver", "Lagrangian constraint solvers are not simulated"},
+      {"UncoupledConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
+      {"LinearSolverConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
+      {"PrecomputedConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
+      {"GenericConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
+      {"BilateralLagrangianConstraint", "Lagrangian constraints are not simulated"},
+      {"FixedLagrangianConstraint", "Lagrangian constraints are not simulated"},
+      {"RigidMapping", "rigid bodies (Rigid3 states, RigidMapping) are not simulated"},
+      {"HexahedronFEMForceField", "hexahedral FEM is not simulated (tetrahedra only)"},
+      {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},
+      {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
+      {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
+      {"StandardTetrahedralFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
+  }};
+  for (const auto& [name, reason] : kRefused) {
+    if (name == type) return reason;
+  }
+  return {};
+}
+
 const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<std::string>* warnings) {
   const ComponentSpec* spec = find_component(object.type);
   if (!spec) {
     if (is_ignored_component(object.type)) return nullptr;
+    if (const std::string_view reason = refusal_reason(object.type); !reason.empty()) {
+      throw make_error(object.location.to_string(), ": ", object.type, ": this scene needs what fastcorot does not have: ",
+                       reason);
+    }
     std::vector<std::string_view> names;
     for (const auto& s : table()) names.push_back(s.name);
     throw make_error(object.location.to_string(), ": unknown component '", object.type, "'",

@@ -222,6 +222,16 @@ TEST(SceneBuilder, CollisionComponentsAreWarnedAsNotSimulated) {
   EXPECT_THROW(build_scene(parse_scene_text(text, "c.scn"), SceneOptions{true}), Error);
 }
 
+TEST(SceneBuilder, ComponentsFastcorotDoesNotSimulateAreRefusedSayingWhy) {
+  const std::string message = error_of(kTet + "\n<HexahedronFEMForceField/>");
+  EXPECT_NE(message.find("test.scn:8: HexahedronFEMForceField: this scene needs what fastcorot does not have: "
+                         "hexahedral FEM is not simulated"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(error_of(kTet + "\n<GenericConstraintSolver/>").find("Lagrangian constraint solvers are not simulated"),
+            std::string::npos);
+}
+
 TEST(SceneBuilder, UnknownComponentsSuggestTheClosestName) {
   const std::string message = error_of(kTet + "\n<TetrahedronFEMForcefield/>");
   EXPECT_NE(message.find("unknown component 'TetrahedronFEMForcefield' (did you mean 'TetrahedronFEMForceField'?)"),
