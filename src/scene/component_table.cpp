@@ -344,7 +344,7 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 
 // SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
 // line saying so (an unknown component's line would not say what is missing).
-std::string_view refusal_reason(std::string_view type) {
+std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
   static const std::array<std::pair<std::string_view, std::string_view>, 16> kRefused = {{
       {"FreeMotionAnimationLoop", "constraint-based animation (Lagrangian constraints) is not simulated"},
       {"GenericConstraintSolver", "Lagrangian constraint solvers are not simulated"},
@@ -363,7 +363,11 @@ std::string_view refusal_reason(std::string_view type) {
       {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
       {"StandardTetrahedralFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
   }};
-  for (const auto& [name, reason] : kRefused) {
+  return kRefused;
+}
+
+std::string_view refusal_reason(std::string_view type) {
+  for (const auto& [name, reason] : refused_components()) {
     if (name == type) return reason;
   }
   return {};
@@ -419,9 +423,20 @@ std::string component_documentation() {
     }
     out << "\n";
   }
+  out << "Drawn only (no effect on the mechanics): OglModel (VisualModel) with its MeshOBJLoader or MeshSTLLoader,\n"
+         "mapped by BarycentricMapping or IdentityMapping.\n\n";
   out << "Accepted without effect on the mechanics (one info line each):";
-  for (auto name : kIgnored) out << " " << name;
-  out << ".\n";
+  for (auto name : kIgnored) {
+    if (!is_collision_component(name)) out << " " << name;
+  }
+  out << ".\n\nIgnored with a warning each, as they change SOFA's mechanics (collisions and contacts are not "
+         "simulated):";
+  for (auto name : kIgnored) {
+    if (is_collision_component(name)) out << " " << name;
+  }
+  out << ".\n\nRefused, the scene with them, in one line saying what is missing:";
+  for (const auto& [name, reason] : refused_components()) out << "\n- " << name << ": " << reason;
+  out << "\n";
   return out.str();
 }
 
