@@ -247,12 +247,12 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 36> kIgnored = {
+constexpr std::array<std::string_view, 37> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
     "DiscreteIntersection", "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel",
-    "LineCollisionModel", "PointCollisionModel", "SphereCollisionModel",
+    "LineCollisionModel", "PointCollisionModel", "SphereCollisionModel", "SphereLoader",
     "VisualGrid", "LineAxis", "OglSceneFrame", "TetrahedronSetTopologyModifier",
     "TetrahedronSetGeometryAlgorithms", "TriangleSetTopologyContainer", "TriangleSetTopologyModifier",
     "TriangleSetGeometryAlgorithms", "Tetra2TriangleTopologicalMapping", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
@@ -292,11 +292,11 @@ bool is_ignored_component(std::string_view name) {
 std::span<const std::string_view> ignored_components() { return kIgnored; }
 
 bool is_collision_component(std::string_view name) {
-  static constexpr std::array<std::string_view, 15> kCollision = {
+  static constexpr std::array<std::string_view, 16> kCollision = {
       "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase", "BruteForceDetection",
       "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection", "DiscreteIntersection",
       "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel", "LineCollisionModel",
-      "PointCollisionModel", "SphereCollisionModel"};
+      "PointCollisionModel", "SphereCollisionModel", "SphereLoader"};
   return std::find(kCollision.begin(), kCollision.end(), name) != kCollision.end();
 }
 

@@ -66,6 +66,8 @@ class Parser {
         node.children.push_back(read_node(*child, file));
       } else if (tag == "include" || tag == "Include") {
         expand_include(*child, file, node);
+      } else if (tag == "BoxConstraint") {
+        expand_box_constraint(*child, file, node);
       } else {
         SceneObject object;
         object.type = tag;
@@ -122,8 +124,27 @@ class Parser {
       throw make_error(path.string(), ":", root->GetLineNum(), ": an included file's root must be a <Node> or <Group>");
     }
     files_.pop_back();
-    // The include's attributes: a name renames the included node; any other replaces the values of
-    // the attributes of that name in the included file (NODE__attribute: in the node NODE only).
+    add_included(element, std::move(included), node);
+  }
+
+  // SOFA's BoxConstraint, a scene element its XML loader replaces by SOFA's examples/Objects/
+  // BoxConstraint.xml: a BoxROI and a FixedProjectiveConstraint of the points in its box, with the
+  // element's attributes applied as an include's are.
+  void expand_box_constraint(const tinyxml2::XMLElement& element, const std::filesystem::path& file, SceneNode& node) {
+    SceneNode group;
+    group.name = "Group";
+    group.location = {file, element.GetLineNum()};
+    // SOFA's file names it box_roi and links it as the previous object; a node may hold several.
+    const std::string roi = "box_roi_" + std::to_string(element.GetLineNum());
+    group.objects.push_back({"BoxROI", {{"name", roi}, {"box", "0 0 0 1 1 1"}, {"drawBoxes", "0"}}, group.location});
+    group.objects.push_back({"FixedProjectiveConstraint", {{"indices", "@" + roi + ".indices"}}, group.location});
+    add_included(element, std::move(group), node);
+  }
+
+  // The include's attributes: a name renames the included node; any other replaces the values of
+  // the attributes of that name in the included nodes and objects (NODE__attribute: in the node or
+  // object NODE only); a node named Group joins the including node.
+  static void add_included(const tinyxml2::XMLElement& element, SceneNode included, SceneNode& node) {
     for (const auto* a = element.FirstAttribute(); a; a = a->Next()) {
       const std::string attribute = a->Name();
       if (attribute == "href") continue;

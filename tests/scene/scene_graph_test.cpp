@@ -108,6 +108,24 @@ TEST_F(SceneFiles, IncludeAttributesReplaceThoseOfTheIncludedObjectsAsInSofa) {
   EXPECT_EQ(root.children[0].objects[0].attributes.count("color"), 0u);
 }
 
+TEST(SceneGraph, BoxConstraintIsSofasBoxRoiAndFixedConstraint) {
+  const SceneNode root = parse_scene_text(R"(<Node name="root">
+  <BoxConstraint box="-1 -1 -1 1 1 1" fixAll="0"/>
+  <BoxConstraint box="2 2 2 3 3 3" drawBoxes="1"/>
+</Node>)",
+                                          "b.scn");
+  ASSERT_EQ(root.objects.size(), 4u);
+  EXPECT_EQ(root.objects[0].type, "BoxROI");
+  EXPECT_EQ(root.objects[0].attributes.at("box"), "-1 -1 -1 1 1 1");
+  EXPECT_EQ(root.objects[0].attributes.count("fixAll"), 0u);  // only attributes SOFA's file has are set
+  EXPECT_EQ(root.objects[1].type, "FixedProjectiveConstraint");
+  EXPECT_EQ(root.objects[1].attributes.at("indices"), "@" + root.objects[0].name() + ".indices");
+  EXPECT_EQ(root.objects[2].attributes.at("drawBoxes"), "1");
+  EXPECT_EQ(root.objects[3].attributes.at("indices"), "@" + root.objects[2].name() + ".indices");
+  EXPECT_NE(root.objects[0].name(), root.objects[2].name());
+  EXPECT_EQ(root.objects[2].location.line, 3);
+}
+
 TEST_F(SceneFiles, DataFilesAreFoundAsSofasRepositoriesFindThem) {
   // dir/share/mesh/m.obj, dir/examples/Objects/o.xml, the scene in dir/examples/Component/A.
   std::filesystem::create_directories(dir_ / "share/mesh");
