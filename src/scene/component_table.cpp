@@ -247,7 +247,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 37> kIgnored = {
+constexpr std::array<std::string_view, 45> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -256,7 +256,8 @@ constexpr std::array<std::string_view, 37> kIgnored = {
     "VisualGrid", "LineAxis", "OglSceneFrame", "TetrahedronSetTopologyModifier",
     "TetrahedronSetGeometryAlgorithms", "TriangleSetTopologyContainer", "TriangleSetTopologyModifier",
     "TriangleSetGeometryAlgorithms", "Tetra2TriangleTopologicalMapping", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
-    "PositionalLight", "BackgroundSetting", "Camera", "OglLabel"};
+    "PositionalLight", "BackgroundSetting", "Camera", "OglLabel", "ConstraintAttachButtonSetting",
+    "AttachBodyButtonSetting", "Visual3DText", "OglShader", "OglShadowShader", "VisualMesh", "WriteState", "MeshExporter"};
 
 std::string join_names(std::span<const AttributeSpec> attributes) {
   std::string list;

@@ -103,9 +103,40 @@ Numbers SceneData::parse_numbers(const Component& c, const std::string& name, co
   for (char& ch : cleaned) {
     if (ch == ',' || ch == '[' || ch == ']') ch = ' ';
   }
+  // Index lists take SOFA's ranges: "A-B" is A..B (either way), "A-B-S" every S-th from A to B.
+  bool indices = false;
+  if (c.spec) {
+    for (const auto& a : c.spec->attributes) indices = indices || (a.name == name && a.type == std::string_view("indices"));
+  }
   std::istringstream in(cleaned);
   std::string token;
   while (in >> token) {
+    if (const auto hyphen = token.find('-', 1); indices && hyphen != std::string::npos) {
+      const auto whole = [&](const std::string& part) {
+        std::size_t used = 0;
+        long long value = -1;
+        try {
+          value = std::stoll(part, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (part.empty() || used != part.size() || value < 0) {
+          throw make_error(c.where(), ": ", name, ": '", token, "' is not an index range (A-B or A-B-step)");
+        }
+        return value;
+      };
+      const auto second = token.find('-', hyphen + 2);
+      const long long from = whole(token.substr(0, hyphen));
+      const long long to = whole(second == std::string::npos ? token.substr(hyphen + 1)
+                                                             : token.substr(hyphen + 1, second - hyphen - 1));
+      long long step = second == std::string::npos ? 0 : std::stoll(token.substr(second + 1));
+      if (step == 0) step = from <= to ? 1 : -1;
+      const long long low = std::min(from, to), high = std::max(from, to);
+      if (high - low > 100000000) throw make_error(c.where(), ": ", name, ": range '", token, "' is too long");
+      const long long first = step > 0 ? low : high;
+      for (long long v = first; v >= low && v <= high; v += step) numbers.push_back(static_cast<double>(v));
+      continue;
+    }
     try {
       std::size_t used = 0;
       const double value = std::stod(token, &used);

@@ -232,6 +232,13 @@ TEST(SceneBuilder, ComponentsFastcorotDoesNotSimulateAreRefusedSayingWhy) {
             std::string::npos);
 }
 
+TEST(SceneBuilder, IndexListsTakeSofasRanges) {
+  const LoadedScene scene = build(kTet + "\n<UniformMass totalMass=\"1\"/><FixedProjectiveConstraint indices=\"4-3 0-2-2\"/>");
+  EXPECT_EQ(scene.simulation.objects[0].system.fixed, (std::vector<Index>{0, 2, 3, 4}));  // sorted
+  EXPECT_NE(error_of(kTet + "\n<FixedProjectiveConstraint indices=\"1-x\"/>").find("'1-x' is not an index range"),
+            std::string::npos);
+}
+
 TEST(SceneBuilder, UnknownComponentsSuggestTheClosestName) {
   const std::string message = error_of(kTet + "\n<TetrahedronFEMForcefield/>");
   EXPECT_NE(message.find("unknown component 'TetrahedronFEMForcefield' (did you mean 'TetrahedronFEMForceField'?)"),
