@@ -383,11 +383,19 @@ void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
   check_size(x, "x");
   check_size(f, "f");
   PhaseTimer timer(times_ ? &times_->add_force : nullptr);
+  // Forces and the element's blocks in one pass over the schedule: each block still receives its
+  // contributions in the schedule's order, as refresh_blocks adds them.
+  std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
+  std::fill(row_blocks_.begin(), row_blocks_.end(), Mat3<Real>::Zero());
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
-    for (Index i = begin; i < end; ++i) accumulate_element<true>(schedule_.order[static_cast<std::size_t>(i)], x, f);
+    for (Index i = begin; i < end; ++i) {
+      const Index t = schedule_.order[static_cast<std::size_t>(i)];
+      accumulate_element<true>(t, x, f);
+      add_element_blocks(t);
+    }
   });
   last_positions_.assign(x.begin(), x.end());
-  refresh_blocks();
+  stale_ = false;
 }
 
 template <class Real>
