@@ -7,6 +7,7 @@
 #include "fastcorot/sim/barycentric_mapping.h"
 #include "fastcorot/sim/visual_surface.h"
 #include "fastcorot/topology/regular_grid.h"
+#include "projective_constraints.h"
 #include "scene_data.h"
 #include "solver_builder.h"
 #include "topology_change_processor.h"
@@ -26,7 +27,9 @@ using scene_detail::transformed;
 
 namespace {
 
-bool is_integrator(const Component& c) { return c.type() == "EulerImplicitSolver" || c.type() == "StaticSolver"; }
+bool is_integrator(const Component& c) {
+  return c.spec && c.spec->category == "odesolver" && c.type() != "NewtonRaphsonSolver";
+}
 
 // A node whose state is mapped from its parent's (visual or collision models): it does not take
 // part in the mechanics here.
@@ -213,6 +216,7 @@ class Builder {
         if (type == "TetrahedronFEMForceField") add_tetrahedron_fem(*c, object);
         if (type == "ConstantForceField") add_constant_force(*c, system);
         if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
+        if (scene_detail::is_partial_projective_constraint(type)) scene_detail::add_projective_constraint(data_, *c, system);
         if (type == "BoxROI") add_boxes(*c, object);
         if (type == "TopologicalChangeProcessor") {
           object.topology_scripts.push_back(build_topology_script(data_, *c, mesh_of(*c, system.size())));
@@ -297,6 +301,11 @@ class Builder {
       surface.map = PointMapping<double>::identity(surface.rest_points.size());
       return surface;
     }
+    if (mapping.type() == "SubsetMapping") {
+      surface.mapping = "SubsetMapping";
+      surface.map = PointMapping<double>::subset(subset_indices(mapping, surface.rest_points, system.state.position));
+      return surface;
+    }
     // SOFA's BarycentricMapping takes the first topology of the object's node: a grid gives the
     // trilinear mapper, tetrahedra the tetrahedral one.
     const bool rest = data_.boolean(mapping, "useRestPosition", false);
@@ -316,6 +325,45 @@ class Builder {
         *object.mesh, map_onto_tetrahedra<double>(*object.mesh, x, surface.rest_points,
                                                   mesh_topology ? TetrahedronSearch::exhaustive : TetrahedronSearch::grid));
     return surface;
+  }
+
+  // SOFA's SubsetMapping::init: `indices`, else first..last (clamped into the input), else for each
+  // output point the input point within `radius` found last while the distance decreases.
+  std::vector<Index> subset_indices(Component& mapping, const std::vector<Vec3<double>>& out,
+                                    const std::vector<Vec3<double>>& in) {
+    const Index size = static_cast<Index>(in.size());
+    std::vector<Index> indices = data_.indices(mapping, "indices");
+    if (indices.empty() && mapping.has("first")) {
+      Index first = data_.whole_number(mapping, "first", 0), last = mapping.has("last") ? data_.whole_number(mapping, "last", 0) : size - 1;
+      if (first < 0 || first >= size) first = 0;
+      if (last < 0 || last >= size) last = size - 1;
+      for (Index i = first; i <= last; ++i) indices.push_back(i);
+    } else if (indices.empty()) {
+      const double radius = data_.real(mapping, "radius", 1e-5);
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        double best = radius;
+        Index found = -1;
+        for (Index j = 0; j < size; ++j) {
+          const double r = (out[i] - in[static_cast<std::size_t>(j)]).norm();
+          if (r < best) {
+            best = r;
+            found = j;
+          }
+        }
+        if (found < 0) {
+          throw make_error("SubsetMapping ", mapping.where(), ": point ", i, " of the visual model has no point of the object within radius ",
+                           radius);
+        }
+        indices.push_back(found);
+      }
+    }
+    for (Index i : indices) {
+      if (i < 0 || i >= size) throw make_error("SubsetMapping ", mapping.where(), ": index ", i, " out of range [0, ", size, ")");
+    }
+    if (indices.size() != out.size()) {
+      throw make_error("SubsetMapping ", mapping.where(), ": ", indices.size(), " indices for a visual model of ", out.size(), " points");
+    }
+    return indices;
   }
 
   // The first topology object of the node above a mapped node (the object's node), as SOFA's

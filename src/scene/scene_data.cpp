@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -263,11 +264,26 @@ Vec3<double> SceneData::placement(Component& c, const std::string& name) {
 
 RegularGrid SceneData::grid(Component& c) {
   RegularGrid grid;
-  const Numbers& n = data(c, "n");
-  if (n.size() != 3) throw make_error(c.where(), ": n needs 3 integers");
-  for (int k = 0; k < 3; ++k) grid.n[k] = static_cast<Index>(n[k]);
+  if (c.has("nx") && c.has("ny") && c.has("nz")) {
+    // SOFA's GridTopology::parse: nx, ny and nz (all three) replace n.
+    grid.n = {whole_number(c, "nx", 2), whole_number(c, "ny", 2), whole_number(c, "nz", 2)};
+  } else {
+    const Numbers& n = data(c, "n");
+    if (n.size() != 3) throw make_error(c.where(), ": n needs 3 integers");
+    for (int k = 0; k < 3; ++k) grid.n[k] = static_cast<Index>(n[k]);
+  }
   grid.min = vec3(c, "min", {0, 0, 0});
   grid.max = vec3(c, "max", {1, 1, 1});
+  // SOFA's parse reads xmin..zmax (all six, as float, times `scale`) over min and max.
+  static constexpr const char* kBounds[6] = {"xmin", "ymin", "zmin", "xmax", "ymax", "zmax"};
+  if (std::all_of(std::begin(kBounds), std::end(kBounds), [&](const char* b) { return c.has(b); })) {
+    const double scale = static_cast<float>(real(c, "scale", 1));
+    for (int a = 0; a < 3; ++a) {
+      grid.min[a] = static_cast<float>(real(c, kBounds[a], 0)) * scale;
+      grid.max[a] = static_cast<float>(real(c, kBounds[a + 3], 1)) * scale;
+    }
+  }
+  if (c.has("p0")) grid.p0 = vec3(c, "p0", {0, 0, 0});
   try {
     validate(grid);
   } catch (const Error& error) {

@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/sim/conjugate_gradient.h"
+#include "fastcorot/sim/explicit_solvers.h"
 #include "fastcorot/sim/ode_solver.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
@@ -11,6 +12,25 @@
 namespace fastcorot::scene_detail {
 
 namespace {
+
+bool is_explicit(const Component& integrator) {
+  return integrator.type() == "EulerExplicitSolver" || integrator.type() == "RungeKutta4Solver";
+}
+
+// An explicit solver's linear solver when its node has none: fine for a lumped mass, which is
+// inverted point by point; a consistent mass needs a solve, which is refused naming the solver.
+class MissingLinearSolver final : public LinearSolver<double> {
+ public:
+  explicit MissingLinearSolver(std::string integrator) : integrator_(std::move(integrator)) {}
+  LinearSolveReport solve(const MechanicalSystem<double>&, const MatrixFactors<double>&, std::span<const Vec3<double>>,
+                          std::span<Vec3<double>>) override {
+    throw make_error(integrator_, ": the mass is not diagonal (MeshMatrixMass without lumping), so it needs a linear "
+                     "solver to invert it, and its node has none (add SparseLDLSolver or CGLinearSolver)");
+  }
+
+ private:
+  std::string integrator_;
+};
 
 class SolverBuilder {
  public:
@@ -28,6 +48,8 @@ class SolverBuilder {
         p.trapezoidal = data.boolean(c, "trapezoidalScheme", false);
         return std::make_unique<ImplicitEulerSolver<double>>(p);
       }
+      if (c.type() == "EulerExplicitSolver") return std::make_unique<ExplicitEulerSolver<double>>(data.boolean(c, "symplectic", true));
+      if (c.type() == "RungeKutta4Solver") return std::make_unique<RungeKutta4Solver<double>>();
       StaticSolver<double>::NewtonParameters p;
       Component* newton = newton_of(c, nodes);
       if (newton) {
@@ -242,6 +264,10 @@ BuiltSolvers build_solvers(SceneData& data, std::vector<std::string>& info, Comp
   SolverBuilder builder(data, info);
   BuiltSolvers solvers;
   solvers.ode = builder.build_integrator(integrator, nodes);
+  if (is_explicit(integrator) && linear_solvers.empty() && !integrator.has("linearSolver")) {
+    solvers.linear = std::make_unique<MissingLinearSolver>(integrator.where());
+    return solvers;
+  }
   solvers.linear = builder.build_linear_solver(
       builder.linear_solver_of(integrator, nodes, linear_solvers), points, nodes);
   return solvers;

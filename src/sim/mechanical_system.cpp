@@ -17,6 +17,28 @@ void MechanicalSystem<Real>::finalize() {
   for (Index i : zero_velocity) {
     if (i < 0 || i >= n) throw make_error("zero-velocity point index ", i, " out of range [0, ", n, ")");
   }
+  for (const auto& p : projections) {
+    if (p.point < 0 || p.point >= n) throw make_error("projected point index ", p.point, " out of range [0, ", n, ")");
+    if (!p.projector.allFinite()) throw make_error("projected point ", p.point, ": the projection is not finite");
+  }
+  for (const auto& p : placements) {
+    if (p.point < 0 || p.point >= n) throw make_error("projected point index ", p.point, " out of range [0, ", n, ")");
+    if (!p.projector.allFinite() || !p.origin.allFinite() || !p.velocity_projector.allFinite()) {
+      throw make_error("projected point ", p.point, ": the projection is not finite");
+    }
+  }
+  // One entry per point: a stable sort keeps each point's projectors in the order given.
+  std::stable_sort(projections.begin(), projections.end(),
+                   [](const PointProjection<Real>& a, const PointProjection<Real>& b) { return a.point < b.point; });
+  std::vector<PointProjection<Real>> combined;
+  for (const auto& p : projections) {
+    if (!combined.empty() && combined.back().point == p.point) {
+      combined.back().projector = (p.projector * combined.back().projector).eval();
+    } else {
+      combined.push_back(p);
+    }
+  }
+  projections = std::move(combined);
   for (const auto& constant : constant_forces) {
     if (constant.forces.size() != constant.indices.size()) {
       throw make_error("constant force: ", constant.forces.size(), " forces for ", constant.indices.size(),
@@ -99,7 +121,32 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
   for (Index i : held) {
     for (Index c = 0; c < 3; ++c) triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
   }
-  return sink.to_sparse(3 * size());
+  Eigen::SparseMatrix<Real> matrix = sink.to_sparse(3 * size());
+  if (projections.empty()) return matrix;
+  // P A P + (I - P) with P block diagonal: identity but at the projected points (for a projector
+  // onto coordinate axes, SOFA's clearing of the rows and columns of the fixed directions).
+  std::vector<Eigen::Triplet<Real>> p_triplets, complement;
+  std::vector<bool> projected(static_cast<std::size_t>(size()), false);
+  for (const auto& p : projections) {
+    projected[static_cast<std::size_t>(p.point)] = true;
+    const Mat3<Real> rest = Mat3<Real>::Identity() - p.projector;
+    for (Index r = 0; r < 3; ++r) {
+      for (Index c = 0; c < 3; ++c) {
+        if (p.projector(r, c) != 0) p_triplets.emplace_back(3 * p.point + r, 3 * p.point + c, p.projector(r, c));
+        if (rest(r, c) != 0) complement.emplace_back(3 * p.point + r, 3 * p.point + c, rest(r, c));
+      }
+    }
+  }
+  for (Index i = 0; i < size(); ++i) {
+    if (projected[static_cast<std::size_t>(i)]) continue;
+    for (Index c = 0; c < 3; ++c) p_triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
+  }
+  Eigen::SparseMatrix<Real> p_matrix(3 * size(), 3 * size()), rest_matrix(3 * size(), 3 * size());
+  p_matrix.setFromTriplets(p_triplets.begin(), p_triplets.end());
+  rest_matrix.setFromTriplets(complement.begin(), complement.end());
+  Eigen::SparseMatrix<Real> projected_matrix = p_matrix * matrix * p_matrix;
+  projected_matrix += rest_matrix;
+  return projected_matrix;
 }
 
 template <class Real>
@@ -110,14 +157,32 @@ void MechanicalSystem<Real>::diagonal_blocks(const MatrixFactors<Real>& factors,
   for (auto& block : blocks) block.setZero();
   if (mass.size() != 0) mass.add_diagonal_blocks(blocks, factors.m);
   for (const auto& field : force_fields) field->add_diagonal_blocks(blocks, factors.k, factors.b);
+  for (const auto& p : projections) {
+    Mat3<Real>& block = blocks[static_cast<std::size_t>(p.point)];
+    block = (p.projector * block * p.projector + (Mat3<Real>::Identity() - p.projector)).eval();
+  }
   for (Index i : fixed) blocks[static_cast<std::size_t>(i)].setIdentity();
   for (Index i : isolated) blocks[static_cast<std::size_t>(i)].setIdentity();
 }
 
 template <class Real>
 void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
+  for (const auto& p : projections) {
+    Vec3<Real>& entry = v[static_cast<std::size_t>(p.point)];
+    entry = (p.projector * entry).eval();
+  }
   for (Index i : fixed) v[static_cast<std::size_t>(i)].setZero();
   for (Index i : isolated) v[static_cast<std::size_t>(i)].setZero();
+}
+
+template <class Real>
+void MechanicalSystem<Real>::apply_placements() {
+  for (const auto& p : placements) {
+    Vec3<Real>& x = state.position[static_cast<std::size_t>(p.point)];
+    x = (p.origin + p.projector * (x - p.origin)).eval();
+    Vec3<Real>& v = state.velocity[static_cast<std::size_t>(p.point)];
+    v = (p.velocity_projector * v).eval();
+  }
 }
 
 template <class Real>

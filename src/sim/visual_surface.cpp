@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 
 #include <cmath>
+#include <numeric>
 
 namespace fastcorot {
 
@@ -24,11 +25,18 @@ void PointMapping<Real>::apply(std::span<const Vec3<Real>> x, std::span<Vec3<Rea
 
 template <class Real>
 PointMapping<Real> PointMapping<Real>::identity(std::size_t count) {
+  std::vector<Index> all(count);
+  std::iota(all.begin(), all.end(), Index{0});
+  return subset(all);
+}
+
+template <class Real>
+PointMapping<Real> PointMapping<Real>::subset(std::span<const Index> indices) {
   PointMapping m;
-  m.vertices.assign(count, {});
-  m.weights.assign(count, {});
-  for (std::size_t i = 0; i < count; ++i) {
-    m.vertices[i][0] = static_cast<Index>(i);
+  m.vertices.assign(indices.size(), {});
+  m.weights.assign(indices.size(), {});
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    m.vertices[i][0] = indices[i];
     m.weights[i][0] = 1;
   }
   return m;
@@ -62,7 +70,7 @@ PointMapping<Real> PointMapping<Real>::trilinear(const RegularGrid& grid, std::s
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) throw make_error("BarycentricMapping: point ", i, " is not finite");
     // SOFA's findCube / findNearestCube: coordinates in cells from the grid's first corner.
-    const Vec3<double> p = points[i].template cast<double>() - grid.min;
+    const Vec3<double> p = points[i].template cast<double>() - grid.origin();
     std::array<double, 3> f{};
     std::array<Index, 3> cell{};
     for (int a = 0; a < 3; ++a) {

@@ -134,6 +134,10 @@ void validate(const RegularGrid& grid) {
     throw make_error("RegularGrid: max = (", hi.x(), ", ", hi.y(), ", ", hi.z(),
                      "): each coordinate must be finite");
   }
+  if (grid.p0 && !finite(*grid.p0)) {
+    throw make_error("RegularGrid: p0 = (", grid.p0->x(), ", ", grid.p0->y(), ", ", grid.p0->z(),
+                     "): each coordinate must be finite");
+  }
   // SOFA accepts max < min (a mirrored grid, tetrahedra of negative orientation) but a zero extent
   // makes every tetrahedron flat, which the force field cannot use.
   constexpr char kAxis[3] = {'x', 'y', 'z'};
@@ -151,8 +155,8 @@ std::vector<Vec3<Real>> grid_points(const RegularGrid& grid) {
   const auto& n = grid.n;
   // SOFA's computation in its own scalar: min and max are held in Real, the step is the extent
   // divided by the cell count, and a point is p0 + dx*i + dy*j + dz*k with steps as axis vectors.
-  const Vec3<Real> p0 = grid.min.template cast<Real>();
-  const Vec3<Real> extent = grid.max.template cast<Real>() - p0;
+  const Vec3<Real> p0 = grid.origin().template cast<Real>();
+  const Vec3<Real> extent = grid.max.template cast<Real>() - grid.min.template cast<Real>();
   const Vec3<Real> dx(extent.x() / Real(n[0] - 1), Real(0), Real(0));
   const Vec3<Real> dy(Real(0), extent.y() / Real(n[1] - 1), Real(0));
   const Vec3<Real> dz(Real(0), Real(0), extent.z() / Real(n[2] - 1));

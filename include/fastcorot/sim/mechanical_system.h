@@ -29,6 +29,25 @@ struct ConstantForce {
   std::vector<Vec3<Real>> forces;
 };
 
+// A point whose motion is restricted to a subspace (SOFA's PartialFixed-, FixedPlane-, Plane- and
+// LineProjectiveConstraint): its displacements, forces and right-hand sides are multiplied by
+// `projector` (SOFA's projectResponse), and assembled matrices become P A P + (I - P) blockwise.
+template <class Real>
+struct PointProjection {
+  Index point = 0;
+  Mat3<Real> projector = Mat3<Real>::Identity();
+};
+
+// What a projective constraint does to a point at the end of each step (SOFA's projectPosition and
+// projectVelocity): x <- origin + projector (x - origin), and v <- velocity_projector v.
+template <class Real>
+struct PointPlacement {
+  Index point = 0;
+  Mat3<Real> projector = Mat3<Real>::Identity();
+  Vec3<Real> origin = Vec3<Real>::Zero();
+  Mat3<Real> velocity_projector = Mat3<Real>::Identity();
+};
+
 // Factors of the system matrix m M + b B + k K.
 template <class Real>
 struct MatrixFactors {
@@ -47,6 +66,12 @@ class MechanicalSystem {
   // Points whose velocity is zeroed after each step (FixedProjectiveConstraint's
   // activate_projectVelocity); SOFA otherwise leaves their velocity alone.
   std::vector<Index> zero_velocity;
+  // Partial projections, one entry per point after finalize() (entries of one point are combined
+  // in the order given: the later projector applies after the earlier one). Points in `fixed`
+  // need none.
+  std::vector<PointProjection<Real>> projections;
+  // End-of-step placements, applied in the order given (apply_placements).
+  std::vector<PointPlacement<Real>> placements;
   std::vector<ConstantForce<Real>> constant_forces;
   Vec3<Real> gravity = Vec3<Real>::Zero();
   // Points that lost their last tetrahedron and have no mass (cutting): nothing determines their
@@ -78,8 +103,10 @@ class MechanicalSystem {
   // fixed and isolated points); overwrites `blocks` (#V blocks). For block-Jacobi preconditioning.
   void diagonal_blocks(const MatrixFactors<Real>& factors, std::span<Mat3<Real>> blocks) const;
 
-  // Zeroes the entries of fixed and isolated points.
+  // Zeroes the entries of fixed and isolated points and applies the partial projections.
   void project(std::span<Vec3<Real>> v) const;
+  // SOFA's projectPosition and projectVelocity after a step: the placements on the state.
+  void apply_placements();
 
   // Topological changes of `mesh` (the mesh of one or more of the force fields, or of the mass):
   // the mesh changes, and the force fields and the mass on it follow, at a cost proportional to

@@ -28,6 +28,8 @@ struct PointMapping {
   void apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> out) const;
 
   static PointMapping identity(std::size_t count);
+  // Point i is x[indices[i]] (SOFA's SubsetMapping).
+  static PointMapping subset(std::span<const Index> indices);
   // The weights (1 - f0 - f1 - f2, f0, f1, f2) of each point's tetrahedron.
   static PointMapping from_barycentric(const TetMesh& mesh, const BarycentricMapping<Real>& mapping);
   // SOFA's BarycentricMapperRegularGridTopology: each point in the cell of `grid` that contains it

@@ -7,17 +7,22 @@
 #include "fastcorot/core/types.h"
 
 #include <array>
+#include <optional>
 #include <vector>
 
 namespace fastcorot {
 
 // SOFA's RegularGridTopology: n = (nx, ny, nz) points per axis (each >= 2 for a grid of cells),
 // spanning the box [min, max]. Point (i, j, k) has index i + nx * (j + ny * k) and position
-// min + (i * (max-min).x / (nx-1), ...) per axis.
+// p0 + (i * (max-min).x / (nx-1), ...) per axis, where p0 (SOFA's attribute of that name: where
+// point 0 goes, the box keeping its size) defaults to min.
 struct RegularGrid {
   std::array<Index, 3> n{2, 2, 2};
   Vec3<double> min{0.0, 0.0, 0.0};
   Vec3<double> max{1.0, 1.0, 1.0};
+  std::optional<Vec3<double>> p0;
+
+  Vec3<double> origin() const { return p0 ? *p0 : min; }
 
   Index num_points() const { return n[0] * n[1] * n[2]; }
   Index num_cells() const { return (n[0] - 1) * (n[1] - 1) * (n[2] - 1); }

@@ -1,0 +1,96 @@
+#include "fastcorot/sim/explicit_solvers.h"
+
+#include "fastcorot/core/error.h"
+
+namespace fastcorot {
+
+template <class Real>
+StepReport explicit_acceleration(MechanicalSystem<Real>& system, LinearSolver<Real>& solver,
+                                 std::span<const Vec3<Real>> x, std::vector<Vec3<Real>>& force,
+                                 std::span<Vec3<Real>> acceleration) {
+  if (system.mass.size() == 0) throw make_error("an explicit solver needs a mass: the object has none");
+  force.resize(static_cast<std::size_t>(system.size()));
+  system.compute_force(x, force);
+  StepReport report;
+  if (system.mass.is_lumped()) {
+    // SOFA's accFromF, then projectResponse.
+    const auto masses = system.mass.vertex_masses();
+    for (std::size_t i = 0; i < force.size(); ++i) acceleration[i] = force[i] / masses[i];
+    system.project(acceleration);
+  } else {
+    // SOFA projects f, assembles M (projected) and solves M a = P f.
+    system.project(force);
+    const LinearSolveReport solved = solver.solve(system, {Real(1), Real(0), Real(0)}, force, acceleration);
+    report = {1, solved.iterations};
+  }
+  return report;
+}
+
+namespace {
+
+void add(StepReport& total, const StepReport& part) {
+  total.linear_solves += part.linear_solves;
+  total.linear_iterations += part.linear_iterations;
+}
+
+}  // namespace
+
+template <class Real>
+StepReport ExplicitEulerSolver<Real>::step(MechanicalSystem<Real>& system, LinearSolver<Real>& solver, Real dt) {
+  auto& x = system.state.position;
+  auto& v = system.state.velocity;
+  acceleration_.resize(x.size());
+  const StepReport report = explicit_acceleration<Real>(system, solver, x, force_, acceleration_);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (symplectic_) {
+      v[i] += dt * acceleration_[i];
+      x[i] += dt * v[i];
+    } else {
+      x[i] += dt * v[i];
+      v[i] += dt * acceleration_[i];
+    }
+  }
+  return report;
+}
+
+template <class Real>
+StepReport RungeKutta4Solver<Real>::step(MechanicalSystem<Real>& system, LinearSolver<Real>& solver, Real dt) {
+  auto& x = system.state.position;
+  auto& v = system.state.velocity;
+  const std::size_t n = x.size();
+  x0_ = x;
+  v0_ = v;
+  xs_.resize(n);
+  for (int k = 0; k < 4; ++k) k_acceleration_[k].resize(n);
+  // Stage k evaluates the acceleration at x0 + c h v_{k-1}, its velocity being v0 + c h a_{k-1}
+  // (c = 0, 1/2, 1/2, 1), as SOFA's RungeKutta4Solver (k1v is the velocity itself).
+  const Real c[4] = {Real(0), dt / 2, dt / 2, dt};
+  StepReport report;
+  k_velocity_[0] = v0_;
+  for (int k = 0; k < 4; ++k) {
+    if (k > 0) {
+      k_velocity_[k].resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        xs_[i] = x0_[i] + k_velocity_[k - 1][i] * c[k];
+        k_velocity_[k][i] = v0_[i] + k_acceleration_[k - 1][i] * c[k];
+      }
+    }
+    add(report, explicit_acceleration<Real>(system, solver, k == 0 ? std::span<const Vec3<Real>>(x0_) : xs_, force_,
+                                            k_acceleration_[k]));
+  }
+  const Real sixth = dt / 6, third = dt / 3;
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = x0_[i] + k_velocity_[0][i] * sixth + k_velocity_[1][i] * third + k_velocity_[2][i] * third +
+           k_velocity_[3][i] * sixth;
+    v[i] = v0_[i] + k_acceleration_[0][i] * sixth + k_acceleration_[1][i] * third + k_acceleration_[2][i] * third +
+           k_acceleration_[3][i] * sixth;
+  }
+  return report;
+}
+
+template class ExplicitEulerSolver<double>;
+template class ExplicitEulerSolver<float>;
+template class RungeKutta4Solver<double>;
+template class RungeKutta4Solver<float>;
+
+}  // namespace fastcorot
