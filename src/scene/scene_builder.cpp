@@ -7,6 +7,7 @@
 #include "fastcorot/sim/barycentric_mapping.h"
 #include "fastcorot/sim/visual_surface.h"
 #include "fastcorot/topology/regular_grid.h"
+#include "force_field_builders.h"
 #include "projective_constraints.h"
 #include "scene_data.h"
 #include "solver_builder.h"
@@ -214,6 +215,10 @@ class Builder {
         const std::string_view type = c->type();
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
         if (type == "TetrahedronFEMForceField") add_tetrahedron_fem(*c, object);
+        if (type == "MeshSpringForceField") {
+          auto mesh = mesh_of(*c, system.size());
+          add_field(scene_detail::build_mesh_springs(data_, *c, mesh, system.state.rest_position), mesh, *c, object);
+        }
         if (type == "ConstantForceField") add_constant_force(*c, system);
         if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
         if (scene_detail::is_partial_projective_constraint(type)) scene_detail::add_projective_constraint(data_, *c, system);
@@ -475,6 +480,16 @@ class Builder {
     } catch (const Error& error) {
       throw make_error(c.where(), ": ", error.what());
     }
+  }
+
+  // A force field with no drawing of its own; the object's mesh (for output) is its mesh if it has none.
+  void add_field(std::shared_ptr<ForceField<double>> field, const std::shared_ptr<TetMesh>& mesh, Component& c,
+                 SimulatedObject<double>& object) {
+    object.system.force_fields.push_back(std::move(field));
+    ForceFieldDrawing drawing;
+    drawing.drawing = data_.boolean(c, "drawing", false);
+    object.force_field_drawing.push_back(drawing);
+    if (!object.mesh) object.mesh = mesh;
   }
 
   void add_tetrahedron_fem(Component& c, SimulatedObject<double>& object) {

@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/sim/conjugate_gradient.h"
 #include "fastcorot/sim/explicit_solvers.h"
+#include "fastcorot/sim/newmark_solver.h"
 #include "fastcorot/sim/ode_solver.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
@@ -36,9 +37,17 @@ class SolverBuilder {
  public:
   SolverBuilder(SceneData& data, std::vector<std::string>& info) : data(data), info(info) {}
 
-  std::unique_ptr<OdeSolver<double>> build_integrator(Component& c,
-                                                      const std::vector<GraphNode*>& nodes) {
+  std::unique_ptr<OdeSolver<double>> build_integrator(Component& c, const std::vector<GraphNode*>& nodes, Index points) {
     try {
+      if (c.type() == "NewmarkImplicitSolver") {
+        NewmarkSolver<double>::Parameters p;
+        p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
+        p.rayleigh_mass = data.real(c, "rayleighMass", 0);
+        p.velocity_damping = data.real(c, "vdamping", 0);
+        p.gamma = data.real(c, "gamma", 0.5);
+        p.beta = data.real(c, "beta", 0.25);
+        return std::make_unique<NewmarkSolver<double>>(p, points);
+      }
       if (c.type() == "EulerImplicitSolver") {
         ImplicitEulerSolver<double>::Parameters p;
         p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
@@ -263,7 +272,7 @@ BuiltSolvers build_solvers(SceneData& data, std::vector<std::string>& info, Comp
   }
   SolverBuilder builder(data, info);
   BuiltSolvers solvers;
-  solvers.ode = builder.build_integrator(integrator, nodes);
+  solvers.ode = builder.build_integrator(integrator, nodes, points);
   if (is_explicit(integrator) && linear_solvers.empty() && !integrator.has("linearSolver")) {
     solvers.linear = std::make_unique<MissingLinearSolver>(integrator.where());
     return solvers;

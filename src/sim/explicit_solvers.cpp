@@ -6,11 +6,11 @@ namespace fastcorot {
 
 template <class Real>
 StepReport explicit_acceleration(MechanicalSystem<Real>& system, LinearSolver<Real>& solver,
-                                 std::span<const Vec3<Real>> x, std::vector<Vec3<Real>>& force,
-                                 std::span<Vec3<Real>> acceleration) {
+                                 std::span<const Vec3<Real>> x, std::span<const Vec3<Real>> v,
+                                 std::vector<Vec3<Real>>& force, std::span<Vec3<Real>> acceleration) {
   if (system.mass.size() == 0) throw make_error("an explicit solver needs a mass: the object has none");
   force.resize(static_cast<std::size_t>(system.size()));
-  system.compute_force(x, force);
+  system.compute_force(x, force, v);
   StepReport report;
   if (system.mass.is_lumped()) {
     // SOFA's accFromF, then projectResponse.
@@ -40,7 +40,7 @@ StepReport ExplicitEulerSolver<Real>::step(MechanicalSystem<Real>& system, Linea
   auto& x = system.state.position;
   auto& v = system.state.velocity;
   acceleration_.resize(x.size());
-  const StepReport report = explicit_acceleration<Real>(system, solver, x, force_, acceleration_);
+  const StepReport report = explicit_acceleration<Real>(system, solver, x, {}, force_, acceleration_);
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (symplectic_) {
       v[i] += dt * acceleration_[i];
@@ -75,8 +75,8 @@ StepReport RungeKutta4Solver<Real>::step(MechanicalSystem<Real>& system, LinearS
         k_velocity_[k][i] = v0_[i] + k_acceleration_[k - 1][i] * c[k];
       }
     }
-    add(report, explicit_acceleration<Real>(system, solver, k == 0 ? std::span<const Vec3<Real>>(x0_) : xs_, force_,
-                                            k_acceleration_[k]));
+    add(report, explicit_acceleration<Real>(system, solver, k == 0 ? std::span<const Vec3<Real>>(x0_) : xs_,
+                                            k_velocity_[k], force_, k_acceleration_[k]));
   }
   const Real sixth = dt / 6, third = dt / 3;
   for (std::size_t i = 0; i < n; ++i) {
@@ -88,6 +88,10 @@ StepReport RungeKutta4Solver<Real>::step(MechanicalSystem<Real>& system, LinearS
   return report;
 }
 
+template StepReport explicit_acceleration(MechanicalSystem<double>&, LinearSolver<double>&, std::span<const Vec3<double>>,
+                                          std::span<const Vec3<double>>, std::vector<Vec3<double>>&, std::span<Vec3<double>>);
+template StepReport explicit_acceleration(MechanicalSystem<float>&, LinearSolver<float>&, std::span<const Vec3<float>>,
+                                          std::span<const Vec3<float>>, std::vector<Vec3<float>>&, std::span<Vec3<float>>);
 template class ExplicitEulerSolver<double>;
 template class ExplicitEulerSolver<float>;
 template class RungeKutta4Solver<double>;

@@ -74,12 +74,18 @@ void MechanicalSystem<Real>::set_phase_times(PhaseTimes* times) {
 }
 
 template <class Real>
-void MechanicalSystem<Real>::compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
+void MechanicalSystem<Real>::compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f,
+                                           std::span<const Vec3<Real>> v) {
   {
     const PhaseTimer timer(timer_slot(&PhaseTimes::mass_constraints));
     set_zero(f);
   }
-  for (auto& field : force_fields) field->add_force(x, f);  // times itself (add_force)
+  const std::span<const Vec3<Real>> velocity = v.empty() ? std::span<const Vec3<Real>>(state.velocity) : v;
+  for (auto& field : force_fields) {
+    field->set_velocity(velocity);
+    field->add_force(x, f);  // times itself (add_force)
+    field->set_velocity({});
+  }
   const PhaseTimer timer(timer_slot(&PhaseTimes::mass_constraints));
   if (mass.size() != 0) mass.add_gravity(gravity, f);
   for (const auto& constant : constant_forces) {

@@ -33,6 +33,9 @@ class ForceField {
   virtual std::string method_name() const = 0;
   virtual const TetMesh& mesh() const = 0;
 
+  // Fields whose forces depend on velocities (spring damping) read `v` in the add_force calls that
+  // follow (the span must stay valid until then); the others ignore it.
+  virtual void set_velocity(std::span<const Vec3<Real>> /*v*/) {}
   virtual void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) = 0;
   // The forces alone: the linearisation stays that of the last add_force (explicit schemes, and
   // measuring what the linearisation costs).

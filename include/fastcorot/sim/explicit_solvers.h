@@ -34,12 +34,12 @@ class RungeKutta4Solver final : public OdeSolver<Real> {
   std::vector<Vec3<Real>> k_velocity_[4], k_acceleration_[4];
 };
 
-// a = M^-1 P f(x) for the system's positions set to x (what SOFA's computeAcc does); returns the
+// a = M^-1 P f(x, v) (what SOFA's computeAcc does; v empty: the state's velocities); returns the
 // linear solves' report (none for a lumped mass). Throws fastcorot::Error when the system has no
 // mass. `force` is a work vector.
 template <class Real>
 StepReport explicit_acceleration(MechanicalSystem<Real>& system, LinearSolver<Real>& solver,
-                                 std::span<const Vec3<Real>> x, std::vector<Vec3<Real>>& force,
-                                 std::span<Vec3<Real>> acceleration);
+                                 std::span<const Vec3<Real>> x, std::span<const Vec3<Real>> v,
+                                 std::vector<Vec3<Real>>& force, std::span<Vec3<Real>> acceleration);
 
 }  // namespace fastcorot

@@ -87,9 +87,9 @@ class MechanicalSystem {
   // match the state size. Call after filling the system.
   void finalize();
 
-  // f = total force at positions x (force fields, weight, constant forces); overwrites f. The force
-  // fields record their linearisation at x.
-  void compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+  // f = total force at positions x and velocities v (force fields, weight, constant forces;
+  // v empty: the state's velocities); overwrites f. The force fields record their linearisation at x.
+  void compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f, std::span<const Vec3<Real>> v = {});
 
   // out = (m M + b B + k K) dx, then projected (fixed entries zero).
   void multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,

@@ -1,0 +1,42 @@
+#include "force_field_builders.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/fem/spring_force_field.h"
+
+namespace fastcorot::scene_detail {
+
+namespace {
+
+// SOFA's attribute or its older alias (tetrasStiffness for tetrahedraStiffness, ...).
+double real_or_alias(SceneData& data, Component& c, const char* name, const char* alias) {
+  return c.has(name) || !c.has(alias) ? data.real(c, name, 0) : data.real(c, alias, 0);
+}
+
+}  // namespace
+
+std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh,
+                                                       std::span<const Vec3<double>> rest) {
+  try {
+    for (const char* kind : {"triangles", "quads", "cubes"}) {
+      const std::string stiffness = std::string(kind) + "Stiffness", damping = std::string(kind) + "Damping";
+      if (data.real(c, stiffness, 0) != 0 || data.real(c, damping, 0) != 0) {
+        throw make_error(stiffness, " / ", damping, ": springs along ", kind,
+                         " are not made by fastcorot (a tetrahedral mesh: use linesStiffness or tetrahedraStiffness)");
+      }
+    }
+    if (c.has("localRange")) throw make_error("localRange is not supported (every spring is kept)");
+    MeshSpringParameters<double> p;
+    p.lines_stiffness = data.real(c, "linesStiffness", 0);
+    p.lines_damping = data.real(c, "linesDamping", 0);
+    p.tetrahedra_stiffness = real_or_alias(data, c, "tetrahedraStiffness", "tetrasStiffness");
+    p.tetrahedra_damping = real_or_alias(data, c, "tetrahedraDamping", "tetrasDamping");
+    p.no_compression = data.boolean(c, "noCompression", false);
+    auto springs = mesh_springs<double>(*mesh, rest, p);
+    return std::make_shared<SpringForceField<double>>(std::move(mesh), std::move(springs),
+                                                      data.real(c, "rayleighStiffness", 0), "MeshSpringForceField");
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+}
+
+}  // namespace fastcorot::scene_detail

@@ -1,0 +1,17 @@
+// Force fields beyond the two tetrahedral FEM ones, built from their SOFA components:
+// MeshSpringForceField (the springs of a mesh), and the loads of SOFA's MechanicalLoad that act on
+// points. Internal to src/scene (scene_builder.cpp); errors name the component.
+#pragma once
+
+#include "fastcorot/fem/force_field.h"
+#include "scene_data.h"
+
+#include <memory>
+
+namespace fastcorot::scene_detail {
+
+// MeshSpringForceField over `mesh` (its topology's tetrahedra and edges), rest lengths from `rest`.
+std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh,
+                                                       std::span<const Vec3<double>> rest);
+
+}  // namespace fastcorot::scene_detail
