@@ -69,8 +69,9 @@ MeshData read_mesh_file(const std::filesystem::path& path) {
   if (extension == ".msh") return read_gmsh(path);
   if (extension == ".vtk") return read_vtk_legacy(path);
   if (extension == ".vtu") return read_vtu(path);
+  if (extension == ".gidmsh") return read_gid(path);
   throw make_error(path.string(), ": unknown mesh file extension '", path.extension().string(),
-                   "' (supported: .msh (Gmsh), .vtk (legacy VTK), .vtu (VTK XML))");
+                   "' (supported: .msh (Gmsh), .vtk (legacy VTK), .vtu (VTK XML), .gidmsh (GiD))");
 }
 
 }  // namespace fastcorot

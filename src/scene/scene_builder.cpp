@@ -211,6 +211,10 @@ class Builder {
 
     for (GraphNode* node : nodes) {
       for (const auto& c : node->components) {
+        if (!c->spec && c->object->type == "ReadState") {
+          throw make_error(c->where(), ": ReadState would drive the simulated object ", object.path,
+                           " from a recorded file: not supported (it is accepted in nodes without a solver, for replay display)");
+        }
         if (!c->spec) continue;
         const std::string_view type = c->type();
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);

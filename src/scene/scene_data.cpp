@@ -89,6 +89,12 @@ std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNo
                                " ignored: collisions and contacts are not simulated by fastcorot";
       if (!warnings_) throw make_error(line);
       warnings_->push_back(line);
+    } else if (!component->spec && is_unknown_to_sofa(object.type)) {
+      const std::string line = object.location.to_string() + ": " + object.type +
+                               " skipped: SOFA has no component of that name (its factory reports an error and SOFA "
+                               "runs the scene without it)";
+      if (!warnings_) throw make_error(line);
+      warnings_->push_back(line);
     } else if (!component->spec) {
       info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
     }
@@ -240,7 +246,8 @@ const MeshData& SceneData::mesh_file(Component& loader) {
   }
   MeshData mesh;
   try {
-    mesh = read_mesh_file(find_data_file(loader.object->location.file, filename->second));
+    const auto path = find_data_file(loader.object->location.file, filename->second);
+    mesh = loader.type() == "GIDMeshLoader" ? read_gid(path) : read_mesh_file(path);
   } catch (const Error& error) {
     throw make_error(loader.where(), ": ", error.what());
   }
@@ -311,7 +318,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   }
   if (type == "RegularGridTopology" && name == "position") return flatten(grid_points<double>(grid(c)));
   if (type == "RegularGridTopology" && name == "n") return {2, 2, 2};
-  if (type == "MeshGmshLoader" || type == "MeshVTKLoader") {
+  if (type == "MeshGmshLoader" || type == "MeshVTKLoader" || type == "GIDMeshLoader") {
     const MeshData& mesh = mesh_file(c);
     if (name == "position") return flatten(mesh.points);
     if (name == "tetrahedra") return flatten_indices(mesh.tetrahedra);

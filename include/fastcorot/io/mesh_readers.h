@@ -24,7 +24,7 @@ struct MeshData {
   std::vector<Triangle> triangles;  // triangles the file holds (often the boundary), may be empty
 };
 
-// Chooses the reader from the extension (.msh, .vtk, .vtu; case-insensitive). Throws
+// Chooses the reader from the extension (.msh, .vtk, .vtu, .gidmsh; case-insensitive). Throws
 // fastcorot::Error for an unknown extension, a missing or unreadable file, a corrupt or truncated
 // file, an unsupported format version or encoding, and indices out of range.
 MeshData read_mesh_file(const std::filesystem::path& path);
@@ -40,10 +40,14 @@ MeshData read_vtk_legacy(const std::filesystem::path& path);
 // or not, UInt32 or UInt64 headers, either byte order; all pieces, concatenated. Keeps VTK cell
 // types 10 and 5.
 MeshData read_vtu(const std::filesystem::path& path);
+// GiD's ASCII mesh (.gidmsh), as SOFA's GIDMeshLoader reads it (src/io/gid_reader.cpp): Tetrahedra
+// (4 or 10 nodes, the first 4 kept) or Triangle elements, node numbers from 1.
+MeshData read_gid(const std::filesystem::path& path);
 
 // The same readers on bytes already in memory; `name` stands for the file in messages.
 MeshData read_gmsh_bytes(std::string_view bytes, const std::string& name);
 MeshData read_vtk_legacy_bytes(std::string_view bytes, const std::string& name);
 MeshData read_vtu_bytes(std::string_view bytes, const std::string& name);
+MeshData read_gid_bytes(std::string_view bytes, const std::string& name);
 
 }  // namespace fastcorot

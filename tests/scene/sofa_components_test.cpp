@@ -1,0 +1,174 @@
+// SOFA components that scenes bring beyond our own (RegularGridTopology's nx/xmin forms and p0,
+// SubsetMapping, the partial projective constraints, MeshSpringForceField, the explicit and
+// Newmark integrators), fed as inline XML through the parser and builder; each expectation is
+// worked out by hand from SOFA's definition of the component.
+#include "fastcorot/scene/scene_builder.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/fem/spring_force_field.h"
+#include "fastcorot/sim/explicit_solvers.h"
+#include "fastcorot/sim/newmark_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace fastcorot {
+namespace {
+
+LoadedScene build(const std::string& body, const std::string& root_attributes = "") {
+  return build_scene(parse_scene_text("<Node name=\"root\" " + root_attributes + ">\n" + body + "\n</Node>", "test.scn"));
+}
+
+std::string error_of(const std::string& body) {
+  try {
+    build(body);
+  } catch (const Error& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// A 3×2×2 grid split into tetrahedra, under `solver`, with `extra` components in the node.
+std::string beam(const std::string& extra, const std::string& solver = "<EulerImplicitSolver/><CGLinearSolver iterations=\"25\"/>",
+                 const std::string& grid = "n=\"3 2 2\" min=\"0 0 0\" max=\"2 1 1\"") {
+  return "<Node name=\"beam\">" + solver + "<RegularGridTopology name=\"grid\" " + grid +
+         "/><MechanicalObject name=\"state\"/><TetrahedronSetTopologyContainer name=\"tets\"/>"
+         "<Hexa2TetraTopologicalMapping input=\"@grid\" output=\"@tets\"/><UniformMass totalMass=\"1\"/>"
+         "<TetrahedronFEMForceField youngModulus=\"100\" poissonRatio=\"0.3\"/>" + extra + "</Node>";
+}
+
+TEST(SofaGrid, NxNyNzAndTheSixBoundsReplaceNMinMaxAsSofaParsesThem) {
+  const LoadedScene scene = build(beam("", "<EulerImplicitSolver/><CGLinearSolver/>",
+                                       "n=\"2 2 2\" nx=\"4\" ny=\"2\" nz=\"2\" xmin=\"0\" xmax=\"0.3\" ymin=\"0\" ymax=\"1\" "
+                                       "zmin=\"0\" zmax=\"1\" scale=\"2\""));
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  ASSERT_EQ(x.size(), 16u);
+  // xmax read as a float, times the scale: 0.3f * 2, in steps of a third.
+  EXPECT_EQ(x[3].x(), static_cast<double>(0.3f) * 2);
+  EXPECT_EQ(x[1].x(), static_cast<double>(0.3f) * 2 / 3);
+  EXPECT_EQ(x[15], Vec3<double>(static_cast<double>(0.3f) * 2, 2, 2));
+  // nx alone (not all three) is ignored, as in SOFA.
+  EXPECT_EQ(build(beam("", "<EulerImplicitSolver/><CGLinearSolver/>", "nx=\"5\" n=\"3 2 2\"")).simulation.objects[0].system.size(), 12);
+}
+
+TEST(SofaGrid, P0MovesPointZeroAndKeepsTheSize) {
+  const LoadedScene scene = build(beam("", "<EulerImplicitSolver/><CGLinearSolver/>", "n=\"3 2 2\" min=\"0 0 0\" max=\"2 1 1\" p0=\"5 0 -1\""));
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  EXPECT_EQ(x[0], Vec3<double>(5, 0, -1));
+  EXPECT_EQ(x[11], Vec3<double>(7, 1, 0));
+  EXPECT_NE(error_of(beam("", "<EulerImplicitSolver/><CGLinearSolver/>", "n=\"3 2 2\" p0=\"1 nan 0\"")), "");
+}
+
+// A visual model with the grid's points 1, 2 and 5 (written into an OBJ file here), mapped by `mapping`.
+std::string subset_scene(const std::string& mapping) {
+  const auto folder = std::filesystem::temp_directory_path() / ("fastcorot_subset_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(folder);
+  std::ofstream(folder / "three.obj") << "v 1 0 0\nv 2 0 0\nv 2 1 0\nf 1 2 3\n";
+  return beam("<Node name=\"visual\"><OglModel name=\"model\" filename=\"" + (folder / "three.obj").string() + "\"/>" + mapping +
+              "</Node>");
+}
+
+TEST(SofaSubsetMapping, IndicesRangesAndSearchByRadius) {
+  for (const std::string& mapping : {std::string("<SubsetMapping indices=\"1 2 5\"/>"), std::string("<SubsetMapping/>")}) {
+    const LoadedScene scene = build(subset_scene(mapping));
+    const auto& surface = scene.simulation.objects[0].visual_surfaces.at(0);
+    EXPECT_EQ(surface.mapping, "SubsetMapping");
+    Points<double> x(12, Vec3<double>::Zero());
+    x[1] = {7, 0, 0};
+    x[2] = {8, 0, 0};
+    x[5] = {9, 0, 0};
+    const auto mapped = surface.points(x);
+    EXPECT_EQ(mapped[0], Vec3<double>(7, 0, 0));
+    EXPECT_EQ(mapped[2], Vec3<double>(9, 0, 0));
+  }
+  const LoadedScene ranged = build(subset_scene("<SubsetMapping first=\"3\" last=\"5\"/>"));
+  Points<double> x(12, Vec3<double>::Zero());
+  x[4] = {1, 1, 1};
+  EXPECT_EQ(ranged.simulation.objects[0].visual_surfaces.at(0).points(x)[1], Vec3<double>(1, 1, 1));
+  EXPECT_NE(error_of(subset_scene("<SubsetMapping indices=\"1 2 40\"/>")).find("index 40 out of range"), std::string::npos);
+  EXPECT_NE(error_of(subset_scene("<SubsetMapping indices=\"1 2\"/>")).find("2 indices for a visual model of 3 points"),
+            std::string::npos);
+  EXPECT_NE(error_of(subset_scene("<SubsetMapping radius=\"1e-9\" indices=\"\"/>")), "");
+}
+
+TEST(SofaProjectiveConstraints, PartialFixedHoldsTheChosenAxes) {
+  const LoadedScene scene = build(beam("<PartialFixedProjectiveConstraint indices=\"2 3\" fixedDirections=\"0 1 1\" projectVelocity=\"1\"/>"));
+  const auto& system = scene.simulation.objects[0].system;
+  ASSERT_EQ(system.projections.size(), 2u);
+  EXPECT_EQ(system.projections[0].projector, Mat3<double>(Vec3<double>(1, 0, 0).asDiagonal()));
+  ASSERT_EQ(system.placements.size(), 2u);
+  EXPECT_EQ(system.placements[1].velocity_projector, Mat3<double>(Vec3<double>(1, 0, 0).asDiagonal()));
+  EXPECT_NE(error_of(beam("<PartialFixedProjectiveConstraint indices=\"12\"/>")).find("index 12 out of range [0, 12)"),
+            std::string::npos);
+}
+
+TEST(SofaProjectiveConstraints, FixedPlaneSelectsBetweenDminAndDmaxStrictly) {
+  // x . (1, 0, 0) strictly inside (0.5, 2): the points at x = 1 (1, 4, 7, 10), not those at 2.
+  const LoadedScene scene = build(beam("<FixedPlaneProjectiveConstraint direction=\"1 0 0\" dmin=\"0.5\" dmax=\"2\"/>"));
+  const auto& system = scene.simulation.objects[0].system;
+  ASSERT_EQ(system.projections.size(), 4u);
+  EXPECT_EQ(system.projections[0].point, 1);
+  EXPECT_EQ(system.projections[3].point, 10);
+  EXPECT_EQ(system.projections[0].projector, Mat3<double>(Vec3<double>(0, 1, 1).asDiagonal()));
+  EXPECT_TRUE(system.placements.empty());
+}
+
+TEST(SofaProjectiveConstraints, PlaneAndLineProjectIncrementsAndPlacePoints) {
+  const LoadedScene scene = build(beam("<PlaneProjectiveConstraint indices=\"1\" normal=\"0 0 2\" origin=\"0 0 0.25\"/>"
+                                       "<LineProjectiveConstraint indices=\"2\" direction=\"0 3 0\" origin=\"2 0 0\"/>"));
+  const auto& system = scene.simulation.objects[0].system;
+  ASSERT_EQ(system.placements.size(), 2u);
+  EXPECT_EQ(system.placements[0].projector, Mat3<double>(Vec3<double>(1, 1, 0).asDiagonal()));
+  EXPECT_EQ(system.placements[0].origin, Vec3<double>(0, 0, 0.25));
+  EXPECT_EQ(system.placements[1].projector, Mat3<double>(Vec3<double>(0, 1, 0).asDiagonal()));
+  // A step keeps point 1 on z = 0.25 and point 2 on the line x = 2, z = 0, under gravity along z.
+  LoadedScene moving = build(beam("<PlaneProjectiveConstraint indices=\"1\" normal=\"0 0 2\" origin=\"0 0 0.25\"/>"
+                                  "<LineProjectiveConstraint indices=\"2\" direction=\"0 3 0\" origin=\"2 0 0\"/>"),
+                             "gravity=\"1 2 -9\"");
+  for (int s = 0; s < 3; ++s) moving.simulation.step();
+  const auto& x = moving.simulation.objects[0].system.state.position;
+  EXPECT_NEAR(x[1].z(), 0.25, 1e-15);
+  EXPECT_NEAR(x[2].x(), 2, 1e-15);
+  EXPECT_NEAR(x[2].z(), 0, 1e-15);
+}
+
+TEST(SofaMeshSpringForceField, SpringsFromTheTetrahedraAndRefusedKinds) {
+  const LoadedScene scene = build(beam("<MeshSpringForceField tetrasStiffness=\"30\" tetrasDamping=\"1\"/>"));
+  const auto& fields = scene.simulation.objects[0].system.force_fields;
+  ASSERT_EQ(fields.size(), 2u);
+  const auto* springs = dynamic_cast<const SpringForceField<double>*>(fields[1].get());
+  ASSERT_NE(springs, nullptr);
+  EXPECT_EQ(springs->component(), "MeshSpringForceField");
+  // One spring per distinct edge of the tetrahedra.
+  EXPECT_EQ(static_cast<Index>(springs->springs().size()), fields[1]->mesh().num_edges());
+  EXPECT_NE(error_of(beam("<MeshSpringForceField trianglesStiffness=\"3\"/>")).find("trianglesStiffness"), std::string::npos);
+}
+
+TEST(SofaIntegrators, ExplicitAndNewmarkSolversAreBuilt) {
+  const LoadedScene euler = build(beam("", "<EulerExplicitSolver symplectic=\"0\"/>"));
+  EXPECT_NE(dynamic_cast<ExplicitEulerSolver<double>*>(euler.simulation.objects[0].ode_solver.get()), nullptr);
+  const LoadedScene rk4 = build(beam("", "<RungeKutta4Solver/>"));
+  EXPECT_NE(dynamic_cast<RungeKutta4Solver<double>*>(rk4.simulation.objects[0].ode_solver.get()), nullptr);
+  LoadedScene newmark = build(beam("", "<NewmarkImplicitSolver rayleighStiffness=\"0.1\"/><SparseLDLSolver/>"));
+  EXPECT_NE(dynamic_cast<NewmarkSolver<double>*>(newmark.simulation.objects[0].ode_solver.get()), nullptr);
+  newmark.simulation.step();
+  EXPECT_EQ(newmark.simulation.objects[0].ode_solver->carried_state().size(), 1u + 3 * 12);
+  // A consistent mass with an explicit solver and no linear solver: refused at the first step.
+  std::string consistent = beam("", "<EulerExplicitSolver/>");
+  consistent.replace(consistent.find("<UniformMass totalMass=\"1\"/>"), 28, "<MeshMatrixMass totalMass=\"1\"/>");
+  LoadedScene scene = build(consistent);
+  try {
+    scene.simulation.step();
+    FAIL();
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("needs a linear solver"), std::string::npos);
+  }
+  EXPECT_NE(error_of(beam("", "<NewmarkImplicitSolver beta=\"-1\"/><SparseLDLSolver/>")).find("beta"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fastcorot

@@ -1,0 +1,101 @@
+// Partial projections and end-of-step placements of MechanicalSystem (the projective constraints
+// of SOFA beyond FixedProjectiveConstraint), against the dense P A P + (I - P) written out here.
+#include "fastcorot/sim/mechanical_system.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/fem/spring_force_field.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+namespace fastcorot {
+namespace {
+
+using Points = std::vector<Vec3<double>>;
+
+MechanicalSystem<double> make_system() {
+  auto mesh = std::make_shared<TetMesh>(4, std::vector<Tetrahedron>{{0, 1, 2, 3}});
+  const Points rest = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  MeshSpringParameters<double> p;
+  p.tetrahedra_stiffness = 10;
+  MechanicalSystem<double> system;
+  system.state.position = {{0, 0, 0}, {1.2, 0.1, 0}, {0.1, 0.9, 0.2}, {0, 0.1, 1.3}};
+  system.state.rest_position = rest;
+  system.force_fields.push_back(std::make_shared<SpringForceField<double>>(mesh, mesh_springs<double>(*mesh, rest, p)));
+  system.mass = Mass<double>::lumped({1, 2, 3, 4});
+  return system;
+}
+
+Mat3<double> plane_projector(const Vec3<double>& normal) {
+  const Vec3<double> n = normal.normalized();
+  return Mat3<double>::Identity() - n * n.transpose();
+}
+
+TEST(Projections, AssembledMatrixIsPAPPlusTheComplement) {
+  MechanicalSystem<double> system = make_system();
+  const Mat3<double> plane = plane_projector({1, 2, 2});
+  const Mat3<double> axis = Vec3<double>(1, 0, 1).asDiagonal();  // y held
+  system.projections = {{2, plane}, {1, axis}, {2, axis}};      // point 2: plane, then axis
+  system.fixed = {0};
+  system.finalize();
+  ASSERT_EQ(system.projections.size(), 2u);
+  EXPECT_EQ(system.projections[0].point, 1);
+  EXPECT_LT((system.projections[1].projector - axis * plane).norm(), 1e-15);
+  Points f(4, Vec3<double>::Zero());
+  system.compute_force(system.state.position, f);
+  const MatrixFactors<double> factors{1.0, 0.0, -0.5};
+  const Eigen::MatrixXd a(system.assemble(factors));
+
+  // Dense reference: A0 = M - 0.5 K, P block diagonal, fixed point 0 cleared with a unit diagonal.
+  Eigen::MatrixXd a0 = Eigen::MatrixXd::Zero(12, 12);
+  for (int i = 0; i < 4; ++i) a0.block<3, 3>(3 * i, 3 * i) = (i + 1.0) * Mat3<double>::Identity();
+  a0 += -0.5 * Eigen::MatrixXd(system.force_fields[0]->stiffness_matrix());
+  Eigen::MatrixXd p = Eigen::MatrixXd::Identity(12, 12);
+  p.block<3, 3>(0, 0).setZero();
+  p.block<3, 3>(3, 3) = axis;
+  p.block<3, 3>(6, 6) = axis * plane;
+  Eigen::MatrixXd expected = p * a0 * p + (Eigen::MatrixXd::Identity(12, 12) - p);
+  expected.block<3, 3>(0, 0).setIdentity();
+  EXPECT_LT((a - expected).cwiseAbs().maxCoeff(), 1e-12);
+
+  // The matrix-free product is P A0 dx (projected after the product).
+  Eigen::VectorXd dx(12);
+  for (int i = 0; i < 12; ++i) dx[i] = 0.1 * i - 0.4;
+  Points dxp(4), out(4);
+  for (int i = 0; i < 4; ++i) dxp[static_cast<std::size_t>(i)] = dx.segment<3>(3 * i);
+  system.multiply(factors, dxp, out);
+  Eigen::VectorXd product(12);
+  for (int i = 0; i < 4; ++i) product.segment<3>(3 * i) = out[static_cast<std::size_t>(i)];
+  EXPECT_LT((product - p * a0 * dx).cwiseAbs().maxCoeff(), 1e-12);
+  std::vector<Mat3<double>> blocks(4);
+  system.diagonal_blocks(factors, blocks);
+  for (int i = 0; i < 4; ++i) EXPECT_LT((blocks[static_cast<std::size_t>(i)] - expected.block<3, 3>(3 * i, 3 * i)).norm(), 1e-12);
+}
+
+TEST(Projections, PlacementsProjectPositionsAndVelocities) {
+  MechanicalSystem<double> system = make_system();
+  const Vec3<double> origin(0, 0, 0.5);
+  const Mat3<double> plane = plane_projector({0, 0, 1});
+  system.placements = {{3, plane, origin, plane}};
+  system.state.velocity = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 2, 3}};
+  system.finalize();
+  system.apply_placements();
+  EXPECT_EQ(system.state.position[3], Vec3<double>(0, 0.1, 0.5));
+  EXPECT_EQ(system.state.velocity[3], Vec3<double>(1, 2, 0));
+  EXPECT_EQ(system.state.position[2], Vec3<double>(0.1, 0.9, 0.2));
+}
+
+TEST(Projections, BadEntriesAreRefused) {
+  MechanicalSystem<double> system = make_system();
+  system.projections = {{4, Mat3<double>::Identity()}};
+  EXPECT_THROW(system.finalize(), Error);
+  MechanicalSystem<double> other = make_system();
+  other.placements = {{0, Mat3<double>::Identity() * std::numeric_limits<double>::quiet_NaN(), Vec3<double>::Zero(),
+                       Mat3<double>::Identity()}};
+  EXPECT_THROW(other.finalize(), Error);
+}
+
+}  // namespace
+}  // namespace fastcorot
