@@ -104,7 +104,7 @@ TEST(MeshFile, UnknownExtensionAndMissingFileAreErrors) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()),
               "mesh.stl: unknown mesh file extension '.stl' (supported: .msh (Gmsh), .vtk (legacy "
-              "VTK), .vtu (VTK XML))");
+              "VTK), .vtu (VTK XML), .gidmsh (GiD))");
   }
   for (const char* name : {"missing.msh", "missing.vtk", "missing.vtu"}) {
     const auto path = meshes_dir() / name;
