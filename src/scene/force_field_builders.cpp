@@ -1,6 +1,7 @@
 #include "force_field_builders.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/penalty_force_fields.h"
 #include "fastcorot/fem/spring_force_field.h"
 
 namespace fastcorot::scene_detail {
@@ -34,6 +35,35 @@ std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Componen
     auto springs = mesh_springs<double>(*mesh, rest, p);
     return std::make_shared<SpringForceField<double>>(std::move(mesh), std::move(springs),
                                                       data.real(c, "rayleighStiffness", 0), "MeshSpringForceField");
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+}
+
+bool is_penalty_force_field(std::string_view type) { return type == "PlaneForceField" || type == "ConicalForceField"; }
+
+std::shared_ptr<ForceField<double>> build_penalty_force_field(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh) {
+  try {
+    if (c.type() == "PlaneForceField") {
+      PlaneForceField<double>::Parameters p;
+      p.normal = data.vec3(c, "normal", {0, 1, 0});
+      p.d = data.real(c, "d", 0);
+      p.stiffness = data.real(c, "stiffness", 500);
+      p.damping = data.real(c, "damping", 5);
+      p.max_force = data.real(c, "maxForce", 0);
+      p.bilateral = data.boolean(c, "bilateral", false);
+      p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
+      if (c.has("localRange")) throw make_error("localRange is not supported (every point is tested)");
+      return std::make_shared<PlaneForceField<double>>(std::move(mesh), p);
+    }
+    ConicalForceField<double>::Parameters p;
+    p.center = data.vec3(c, "coneCenter", {0, 0, 0});
+    p.height = data.vec3(c, "coneHeight", {0, 0, 0});
+    p.angle = data.real(c, "coneAngle", 10);
+    p.stiffness = data.real(c, "stiffness", 500);
+    p.damping = data.real(c, "damping", 5);
+    p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
+    return std::make_shared<ConicalForceField<double>>(std::move(mesh), p);
   } catch (const Error& error) {
     throw make_error(c.where(), ": ", error.what());
   }

@@ -14,4 +14,9 @@ namespace fastcorot::scene_detail {
 std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh,
                                                        std::span<const Vec3<double>> rest);
 
+// PlaneForceField or ConicalForceField on the points of the object whose mesh is `mesh`.
+std::shared_ptr<ForceField<double>> build_penalty_force_field(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh);
+
+bool is_penalty_force_field(std::string_view type);
+
 }  // namespace fastcorot::scene_detail

@@ -219,6 +219,12 @@ class Builder {
         const std::string_view type = c->type();
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
         if (type == "TetrahedronFEMForceField") add_tetrahedron_fem(*c, object);
+        if (scene_detail::is_penalty_force_field(type)) {
+          // Points, not elements: the object's mesh (for output), or a mesh of its points alone.
+          auto mesh = object.mesh ? object.mesh : std::make_shared<TetMesh>(system.size(), std::vector<Tetrahedron>{});
+          object.system.force_fields.push_back(scene_detail::build_penalty_force_field(data_, *c, mesh));
+          object.force_field_drawing.push_back({});
+        }
         if (type == "MeshSpringForceField") {
           auto mesh = mesh_of(*c, system.size());
           add_field(scene_detail::build_mesh_springs(data_, *c, mesh, system.state.rest_position), mesh, *c, object);
