@@ -50,6 +50,16 @@ const std::vector<ComponentSpec>& table() {
        {{"input", "link", "", "the grid"},
         {"output", "link", "", "the TetrahedronSetTopologyContainer to fill"},
         {"swapping", "bool", "false", "alternate the split between neighbouring cells (conforming faces)"}}},
+      {"TriangleSetTopologyContainer", "trianglecontainer", "Triangles (inline, from src, or the boundary a Tetra2TriangleTopologicalMapping fills it with), for pressure loads and BoxROI.",
+       {{"position", "vec3s", "", "accepted (the points are the object's)"},
+        {"triangles", "indices", "", "3 indices per triangle"},
+        {"src", "link", "", "take triangles from this component"},
+        {"fileTopology", "file", "", "accepted when empty"}}},
+      {"Tetra2TriangleTopologicalMapping", "mapping", "Fills `output` (a TriangleSetTopologyContainer) with the boundary triangles of `input`'s tetrahedra, in SOFA's order.",
+       {{"input", "link", "", "the tetrahedral container"},
+        {"output", "link", "", "the TriangleSetTopologyContainer to fill"},
+        {"flipNormals", "bool", "false", "write each triangle (a, c, b)"},
+        {"noInitialTriangles", "bool", "false", "leave the output empty"}}},
       {"MeshGmshLoader", "loader", "Reads a Gmsh .msh file (2.2 or 4.1, ASCII or binary).",
        {{"filename", "file", "", "mesh file, relative to the scene's folder"},
         {"translation", "vec3", "0 0 0", "applied after rotation"},
@@ -187,6 +197,13 @@ const std::vector<ComponentSpec>& table() {
         {"damping", "real", "5", "penalty damping"},
         {"rayleighStiffness", "real", "0", "stiffness-proportional damping"},
         {"color", "string", "", "accepted (display)"}}},
+      {"TrianglePressureForceField", "forcefield", "A constant pressure vector on triangles: each gets pressure x its rest area, a third on each vertex (SOFA's useConstantForce).",
+       {{"pressure", "vec3", "0 0 0", "force per unit area"},
+        {"triangleList", "indices", "", "the triangles (of the node's triangle container, else of its topology)"},
+        {"useConstantForce", "bool", "true", "only true is supported"},
+        {"cauchyStress", "reals", "", "refused unless useConstantForce is true (then unused)"},
+        {"topology", "link", "", "the topology whose triangles are listed"},
+        {"showForces", "bool", "false", "accepted (display)"}}},
       {"DiagonalMass", "mass", "Lumped mass: each tetrahedron gives density |V| / 4 to each vertex.",
        {{"massDensity", "real", "", "density"},
         {"totalMass", "real", "", "total mass (wins over massDensity); 1 when neither is given"},
@@ -230,7 +247,8 @@ const std::vector<ComponentSpec>& table() {
       {"BoxROI", "engine", "Selects the points (and tetrahedra) inside axis-aligned boxes, bounds included.",
        {{"box", "reals", "0 0 0 1 1 1", "xmin ymin zmin xmax ymax zmax, 6 numbers per box"},
         {"position", "vec3s", "", "points to test (default: the node's rest positions)"},
-        {"strict", "bool", "true", "a tetrahedron is inside when all its vertices are (else its barycentre)"},
+        {"strict", "bool", "true", "a tetrahedron or triangle is inside when all its vertices are (else its barycentre)"},
+        {"triangles", "indices", "", "triangles to test for triangleIndices (default: the node's triangle container's, else its topology's)"},
         {"doUpdate", "bool", "true", "accepted; the selection is made at init"}}},
       {"ConstantForceField", "forcefield", "Constant forces on points (indices empty = every point).",
        {{"indices", "indices", "", "points receiving a force"},
@@ -341,19 +359,19 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 52> kIgnored = {
+constexpr std::array<std::string_view, 51> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
     "DiscreteIntersection", "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel",
     "LineCollisionModel", "PointCollisionModel", "SphereCollisionModel", "SphereLoader",
     "VisualGrid", "LineAxis", "OglSceneFrame", "TetrahedronSetTopologyModifier",
-    "TetrahedronSetGeometryAlgorithms", "TriangleSetTopologyContainer", "TriangleSetTopologyModifier",
-    "TriangleSetGeometryAlgorithms", "Tetra2TriangleTopologicalMapping", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
+    "TetrahedronSetGeometryAlgorithms", "TriangleSetTopologyModifier",
+    "TriangleSetGeometryAlgorithms", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
     "PositionalLight", "BackgroundSetting", "Camera", "OglLabel", "ConstraintAttachButtonSetting",
     "AttachBodyButtonSetting", "Visual3DText", "OglShader", "OglShadowShader", "VisualMesh", "WriteState", "MeshExporter",
     "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyContainer", "EdgeSetTopologyModifier",
-    "EdgeSetGeometryAlgorithms", "PlaneConstraint"};
+    "EdgeSetGeometryAlgorithms", "PlaneConstraint", "ValuesFromPositions"};
 
 std::string join_names(std::span<const AttributeSpec> attributes) {
   std::string list;

@@ -69,4 +69,41 @@ std::shared_ptr<ForceField<double>> build_penalty_force_field(SceneData& data, C
   }
 }
 
+ConstantForce<double> build_triangle_pressure(SceneData& data, Component& c, std::span<const Vec3<double>> rest) {
+  try {
+    if (!data.boolean(c, "useConstantForce", true)) {
+      throw make_error("useConstantForce=\"false\" (the Cauchy stress form) is not supported");
+    }
+    Component* topology = c.has("topology") ? &data.resolve_object(*c.node, c.object->attributes.at("topology"), c)
+                                            : data.triangle_container_of(*c.node);
+    if (!topology) topology = data.topology_of(*c.node);
+    if (!topology) throw make_error("no topology with triangles in its node or above");
+    const std::vector<Index> triangles = data.indices(*topology, "triangles");
+    const Vec3<double> pressure = data.vec3(c, "pressure", {0, 0, 0});
+    ConstantForce<double> load;
+    const auto count = static_cast<Index>(triangles.size() / 3);
+    for (Index t : data.indices(c, "triangleList")) {
+      if (t < 0 || t >= count) throw make_error("triangleList: triangle ", t, " out of range [0, ", count, ") of ", topology->where());
+      const auto at = static_cast<std::size_t>(3 * t);
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (triangles[at + k] < 0 || static_cast<std::size_t>(triangles[at + k]) >= rest.size()) {
+          throw make_error("triangle ", t, " has point ", triangles[at + k], " outside the object's ", rest.size(), " points");
+        }
+      }
+      const Vec3<double>& a = rest[static_cast<std::size_t>(triangles[at])];
+      const Vec3<double>& b = rest[static_cast<std::size_t>(triangles[at + 1])];
+      const Vec3<double>& d = rest[static_cast<std::size_t>(triangles[at + 2])];
+      const double area = (b - a).cross(d - a).norm() / 2;
+      const Vec3<double> force = pressure * area / 3;
+      for (std::size_t k = 0; k < 3; ++k) {
+        load.indices.push_back(triangles[at + k]);
+        load.forces.push_back(force);
+      }
+    }
+    return load;
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+}
+
 }  // namespace fastcorot::scene_detail

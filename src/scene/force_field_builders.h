@@ -4,6 +4,7 @@
 #pragma once
 
 #include "fastcorot/fem/force_field.h"
+#include "fastcorot/sim/mechanical_system.h"
 #include "scene_data.h"
 
 #include <memory>
@@ -18,5 +19,9 @@ std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Componen
 std::shared_ptr<ForceField<double>> build_penalty_force_field(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh);
 
 bool is_penalty_force_field(std::string_view type);
+
+// TrianglePressureForceField as the constant forces it is (pressure x rest area / 3 on each vertex
+// of each listed triangle), from the rest positions.
+ConstantForce<double> build_triangle_pressure(SceneData& data, Component& c, std::span<const Vec3<double>> rest);
 
 }  // namespace fastcorot::scene_detail

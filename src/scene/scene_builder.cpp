@@ -193,7 +193,14 @@ class Builder {
     SimulatedObject<double> object;
     object.path = state.node->path;
     auto& system = object.system;
+    // SOFA's context gravity: the nearest node at or above the solver's (the state's) that sets it.
     system.gravity = simulation_.gravity;
+    for (const GraphNode* scope = state.node; scope; scope = scope->parent) {
+      if (scope->scene->attributes.count("gravity")) {
+        system.gravity = node_vec3(*scope->scene, "gravity", simulation_.gravity);
+        break;
+      }
+    }
     system.state.position = data_.points(state, "position");
     system.state.rest_position = data_.points(state, "rest_position");
     const Index n = system.size();
@@ -230,6 +237,9 @@ class Builder {
           add_field(scene_detail::build_mesh_springs(data_, *c, mesh, system.state.rest_position), mesh, *c, object);
         }
         if (type == "ConstantForceField") add_constant_force(*c, system);
+        if (type == "TrianglePressureForceField") {
+          system.constant_forces.push_back(scene_detail::build_triangle_pressure(data_, *c, system.state.rest_position));
+        }
         if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
         if (scene_detail::is_partial_projective_constraint(type)) scene_detail::add_projective_constraint(data_, *c, system);
         if (type == "BoxROI") add_boxes(*c, object);

@@ -2,11 +2,13 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/topology/regular_grid.h"
+#include "fastcorot/topology/tetrahedron_faces.h"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -165,6 +167,17 @@ Component& SceneData::resolve_object(const GraphNode& from, const std::string& l
   };
   if (link.empty() || link[0] != '@') return fail("links start with @");
   std::string path = link.substr(1);
+  // SOFA's "@[-k]": the component k places before the user in its node (k = 0: the user).
+  if (path.size() > 2 && path.front() == '[' && path.back() == ']') {
+    char* end = nullptr;
+    const long offset = std::strtol(path.c_str() + 1, &end, 10);
+    if (end != path.c_str() + path.size() - 1 || offset > 0) return fail("expected [-k], k >= 0: the k-th component before this one");
+    const auto& components = user.node->components;
+    const auto at = std::find_if(components.begin(), components.end(), [&](const auto& c) { return c.get() == &user; });
+    const long index = static_cast<long>(at - components.begin()) + offset;
+    if (at == components.end() || index < 0) return fail("no component " + std::to_string(-offset) + " places before this one in its node");
+    return *components[static_cast<std::size_t>(index)];
+  }
   const GraphNode* node = &from;
   // Only the first name of a relative path is searched upward through the ancestors (SOFA).
   bool search_up = true;
@@ -299,6 +312,14 @@ RegularGrid SceneData::grid(Component& c) {
   return grid;
 }
 
+Component* SceneData::triangle_container_of(const GraphNode& node) {
+  for (const GraphNode* scope = &node; scope; scope = scope->parent) {
+    const auto containers = scope->of_category("trianglecontainer");
+    if (!containers.empty()) return containers.back();
+  }
+  return nullptr;
+}
+
 Component* SceneData::topology_of(const GraphNode& node) {
   for (const GraphNode* scope = &node; scope; scope = scope->parent) {
     const auto topologies = scope->of_category("topology");
@@ -307,13 +328,49 @@ Component* SceneData::topology_of(const GraphNode& node) {
   return nullptr;
 }
 
+Component* SceneData::mapping_into(Component& c, std::string_view mapping_type) {
+  std::vector<GraphNode*> stack = {root_.get()};
+  while (!stack.empty()) {
+    GraphNode* node = stack.back();
+    stack.pop_back();
+    for (auto& m : node->components) {
+      if (m->type() != mapping_type || !m->has("output")) continue;
+      if (&resolve_object(*node, m->object->attributes.at("output"), *m) == &c) return m.get();
+    }
+    for (auto& child : node->children) stack.push_back(child.get());
+  }
+  return nullptr;
+}
+
+std::vector<Tetrahedron> SceneData::tetrahedra_of(Component& topology) {
+  const std::vector<Index> flat = indices(topology, "tetrahedra");
+  if (flat.size() % 4 != 0) throw make_error(topology.where(), ": tetrahedra needs 4 indices per tetrahedron");
+  std::vector<Tetrahedron> tetrahedra(flat.size() / 4);
+  for (std::size_t t = 0; t < tetrahedra.size(); ++t) {
+    for (std::size_t j = 0; j < 4; ++j) tetrahedra[t][j] = flat[4 * t + j];
+  }
+  return tetrahedra;
+}
+
 Numbers SceneData::compute(Component& c, const std::string& name) {
   const std::string_view type = c.type();
+  if (type == "TriangleSetTopologyContainer" && name == "triangles") {
+    // Filled by a Tetra2TriangleTopologicalMapping that outputs to it: the boundary of its input.
+    if (Component* m = mapping_into(c, "Tetra2TriangleTopologicalMapping")) {
+      if (!m->has("input")) throw make_error(m->where(), ": no input given");
+      if (boolean(*m, "noInitialTriangles", false)) return {};
+      Component& input = resolve_object(*m->node, m->object->attributes.at("input"), *m);
+      return flatten_indices(boundary_triangles(tetrahedra_of(input), boolean(*m, "flipNormals", false)));
+    }
+  }
   // src="@loader": same-named data come from the source unless written here.
   if (const auto src = c.object->attributes.find("src"); src != c.object->attributes.end() &&
                                                          (name == "position" || name == "tetrahedra" || name == "triangles")) {
     Component& source = resolve_object(*c.node, src->second, c);
     if (type == "MechanicalObject" && name != "position") return {};
+    if (type == "TetrahedronSetTopologyContainer" && name == "triangles" && data(source, name).empty()) {
+      return flatten_indices(tetrahedron_set_triangles(tetrahedra_of(c)));
+    }
     if (type != "MechanicalObject") return data(source, name);
   }
   if (type == "RegularGridTopology" && name == "position") return flatten(grid_points<double>(grid(c)));
@@ -327,24 +384,17 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   }
   if (type == "TetrahedronSetTopologyContainer") {
     // Filled by a Hexa2TetraTopologicalMapping that names this container as its output.
-    std::vector<GraphNode*> stack = {root_.get()};
-    while (!stack.empty()) {
-      GraphNode* node = stack.back();
-      stack.pop_back();
-      for (auto& m : node->components) {
-        if (m->type() != "Hexa2TetraTopologicalMapping" || !m->has("output")) continue;
-        if (&resolve_object(*node, m->object->attributes.at("output"), *m) != &c) continue;
-        if (!m->has("input")) throw make_error(m->where(), ": no input given");
-        Component& grid = resolve_object(*node, m->object->attributes.at("input"), *m);
-        if (grid.type() != "RegularGridTopology") {
-          throw make_error(m->where(), ": input must be a RegularGridTopology, not ", grid.type());
-        }
-        if (name == "position") return data(grid, "position");
-        if (name == "tetrahedra") return flatten_indices(grid_tetrahedra(this->grid(grid), boolean(*m, "swapping", false)));
-        return {};
+    if (Component* m = mapping_into(c, "Hexa2TetraTopologicalMapping")) {
+      if (!m->has("input")) throw make_error(m->where(), ": no input given");
+      Component& grid = resolve_object(*m->node, m->object->attributes.at("input"), *m);
+      if (grid.type() != "RegularGridTopology") {
+        throw make_error(m->where(), ": input must be a RegularGridTopology, not ", grid.type());
       }
-      for (auto& child : node->children) stack.push_back(child.get());
+      if (name == "position") return data(grid, "position");
+      if (name == "tetrahedra") return flatten_indices(grid_tetrahedra(this->grid(grid), boolean(*m, "swapping", false)));
     }
+    // SOFA creates the triangle array from the tetrahedra when it is asked for and has none.
+    if (name == "triangles") return flatten_indices(tetrahedron_set_triangles(tetrahedra_of(c)));
     return {};
   }
   if (type == "MechanicalObject") {
@@ -409,6 +459,32 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
       Numbers out;
       for (std::size_t i = 0; i < positions.size(); ++i) {
         if (inside(positions[i])) out.push_back(static_cast<double>(i));
+      }
+      return out;
+    }
+    if (name == "triangleIndices") {
+      // The triangles given, else those of the node's triangle container, else of its topology.
+      Numbers triangles;
+      if (c.has("triangles")) {
+        triangles = data(c, "triangles");
+      } else if (Component* container = triangle_container_of(*c.node)) {
+        triangles = data(*container, "triangles");
+      } else if (Component* topology = topology_of(*c.node)) {
+        triangles = data(*topology, "triangles");
+      }
+      if (triangles.size() % 3 != 0) throw make_error(c.where(), ": triangles needs 3 indices per triangle");
+      const bool strict = boolean(c, "strict", true);
+      Numbers out;
+      for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+        bool all = true;
+        Vec3<double> centre = Vec3<double>::Zero();
+        for (int j = 0; j < 3; ++j) {
+          const auto v = static_cast<std::size_t>(triangles[t + j]);
+          if (v >= positions.size()) throw make_error(c.where(), ": triangle ", t / 3, " has a vertex out of range");
+          all = all && inside(positions[v]);
+          centre += positions[v] / 3;
+        }
+        if (strict ? all : inside(centre)) out.push_back(static_cast<double>(t / 3));
       }
       return out;
     }

@@ -85,6 +85,12 @@ class SceneData {
   // The node's topology slot (its last topology component, else the nearest ancestor's); nullptr
   // when there is none.
   Component* topology_of(const GraphNode& node);
+  // The nearest TriangleSetTopologyContainer at or above `node` (its last in a node); nullptr if none.
+  Component* triangle_container_of(const GraphNode& node);
+  // The component of type `mapping_type` whose output is c, searched over the whole scene.
+  Component* mapping_into(Component& c, std::string_view mapping_type);
+  // A topology's tetrahedra (4 indices each, checked).
+  std::vector<Tetrahedron> tetrahedra_of(Component& topology);
   // Translation, rotation or scale3d of c, or their short forms (dx dy dz, rx ry rz, scale or sx sy
   // sz) as SOFA's MechanicalObject and visual models read them.
   Vec3<double> placement(Component& c, const std::string& name);
