@@ -170,5 +170,49 @@ TEST(SofaIntegrators, ExplicitAndNewmarkSolversAreBuilt) {
   EXPECT_NE(error_of(beam("", "<NewmarkImplicitSolver beta=\"-1\"/><SparseLDLSolver/>")).find("beta"), std::string::npos);
 }
 
+TEST(SofaTrianglePressure, RestAreaTimesPressureOnTheBoundaryTrianglesInTheBox) {
+  // The grid's x = 2 face (4 points, 2 boundary triangles of area 1/2 each) under pressure (1, 2, 3).
+  const LoadedScene scene = build(beam(
+      "<Node name=\"surface\"><TriangleSetTopologyContainer name=\"triangles\"/>"
+      "<Tetra2TriangleTopologicalMapping input=\"@../tets\" output=\"@triangles\"/>"
+      "<BoxROI name=\"roi\" box=\"1.9 -1 -1 2.1 2 2\" triangles=\"@triangles.triangles\"/>"
+      "<TrianglePressureForceField pressure=\"1 2 3\" triangleList=\"@roi.triangleIndices\"/></Node>"));
+  const auto& loads = scene.simulation.objects[0].system.constant_forces;
+  ASSERT_EQ(loads.size(), 1u);
+  ASSERT_EQ(loads[0].indices.size(), 6u);
+  Vec3<double> total = Vec3<double>::Zero();
+  for (std::size_t i = 0; i < loads[0].indices.size(); ++i) {
+    EXPECT_EQ(static_cast<int>(loads[0].indices[i]) % 3, 2);  // points at x = 2
+    total += loads[0].forces[i];
+  }
+  EXPECT_NEAR((total - Vec3<double>(1, 2, 3)).norm(), 0, 1e-14);  // face area 1
+  EXPECT_NE(error_of(beam("<TrianglePressureForceField pressure=\"1 0 0\" triangleList=\"1000\"/>")).find("triangle 1000 out of range"),
+            std::string::npos);
+  EXPECT_NE(error_of(beam("<TrianglePressureForceField useConstantForce=\"0\"/>")).find("useConstantForce"), std::string::npos);
+}
+
+TEST(SofaLinks, RelativeIndexNamesAnEarlierComponentOfTheNode) {
+  const LoadedScene scene = build(beam("<BoxROI box=\"-0.1 -1 -1 0.1 2 2\"/><FixedProjectiveConstraint indices=\"@[-1].indices\"/>"));
+  EXPECT_EQ(scene.simulation.objects[0].system.fixed, (std::vector<Index>{0, 3, 6, 9}));
+  EXPECT_NE(error_of(beam("<FixedProjectiveConstraint indices=\"@[-40].indices\"/>")).find("no component 40 places before"),
+            std::string::npos);
+}
+
+TEST(SofaNodes, GravityOfTheNearestNodeThatSetsIt) {
+  const LoadedScene scene = build("<Node name=\"outer\" gravity=\"0 0 -3\">" + beam("") + "</Node>", "gravity=\"0 -10 0\"");
+  EXPECT_EQ(scene.simulation.objects[0].system.gravity, Vec3<double>(0, 0, -3));
+}
+
+TEST(SofaPenaltyForceFields, PlaneAndConeAreBuilt) {
+  const LoadedScene scene = build(beam("<PlaneForceField normal=\"0 0 1\" d=\"-1\" stiffness=\"10\"/>"
+                                       "<ConicalForceField coneCenter=\"0 0 -5\" coneHeight=\"0 0 20\" coneAngle=\"30\"/>"));
+  const auto& fields = scene.simulation.objects[0].system.force_fields;
+  ASSERT_EQ(fields.size(), 3u);
+  EXPECT_EQ(fields[1]->component(), "PlaneForceField");
+  EXPECT_EQ(fields[2]->component(), "ConicalForceField");
+  EXPECT_NE(error_of(beam("<ConicalForceField/>")).find("coneHeight is zero"), std::string::npos);
+  EXPECT_NE(error_of(beam("<PlaneForceField stiffness=\"-1\"/>")).find("stiffness = -1"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace fastcorot
