@@ -4,6 +4,7 @@
 #include "fastcorot/sim/conjugate_gradient.h"
 #include "fastcorot/sim/explicit_solvers.h"
 #include "fastcorot/sim/newmark_solver.h"
+#include "fastcorot/sim/variational_symplectic_solver.h"
 #include "fastcorot/sim/ode_solver.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
@@ -56,6 +57,18 @@ class SolverBuilder {
         p.first_order = data.boolean(c, "firstOrder", false);
         p.trapezoidal = data.boolean(c, "trapezoidalScheme", false);
         return std::make_unique<ImplicitEulerSolver<double>>(p);
+      }
+      if (c.type() == "VariationalSymplecticSolver") {
+        VariationalSymplecticSolver<double>::Parameters p;
+        p.newton_error = data.real(c, "newtonError", 0.01);
+        p.newton_steps = data.whole_number(c, "steps", 5);
+        p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
+        p.rayleigh_mass = data.real(c, "rayleighMass", 0);
+        p.explicit_integration = data.boolean(c, "explicitIntegration", false);
+        if (data.boolean(c, "saveEnergyInFile", false)) {
+          info.push_back(c.where() + ": saveEnergyInFile: the energies file is not written by fastcorot");
+        }
+        return std::make_unique<VariationalSymplecticSolver<double>>(p, points);
       }
       if (c.type() == "EulerExplicitSolver") return std::make_unique<ExplicitEulerSolver<double>>(data.boolean(c, "symplectic", true));
       if (c.type() == "RungeKutta4Solver") return std::make_unique<RungeKutta4Solver<double>>();

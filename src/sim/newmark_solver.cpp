@@ -2,9 +2,9 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/sim/explicit_solvers.h"
+#include "carried_vectors.h"
 
 #include <cmath>
-#include <cstring>
 
 namespace fastcorot {
 
@@ -65,32 +65,12 @@ StepReport NewmarkSolver<Real>::step(MechanicalSystem<Real>& system, LinearSolve
 
 template <class Real>
 std::vector<std::int64_t> NewmarkSolver<Real>::carried_state() const {
-  std::vector<std::int64_t> state{started_ ? 1 : 0};
-  for (const auto& a : acceleration_) {
-    for (int k = 0; k < 3; ++k) {
-      const double value = static_cast<double>(a[k]);
-      std::int64_t bits = 0;
-      std::memcpy(&bits, &value, sizeof bits);
-      state.push_back(bits);
-    }
-  }
-  return state;
+  return detail::encode_carried(started_, acceleration_);
 }
 
 template <class Real>
 void NewmarkSolver<Real>::restore_carried_state(const std::vector<std::int64_t>& state) {
-  if (state.size() != 1 + 3 * acceleration_.size() || (state[0] != 0 && state[0] != 1)) {
-    throw make_error("NewmarkImplicitSolver: expected a flag and 3 values for each of ", acceleration_.size(),
-                     " points, got ", state.size(), " values");
-  }
-  started_ = state[0] == 1;
-  for (std::size_t i = 0; i < acceleration_.size(); ++i) {
-    for (int k = 0; k < 3; ++k) {
-      double value = 0;
-      std::memcpy(&value, &state[1 + 3 * i + static_cast<std::size_t>(k)], sizeof value);
-      acceleration_[i][k] = static_cast<Real>(value);
-    }
-  }
+  started_ = detail::decode_carried(state, acceleration_, "NewmarkImplicitSolver");
 }
 
 template class NewmarkSolver<double>;

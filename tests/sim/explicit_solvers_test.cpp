@@ -4,6 +4,7 @@
 // forces of a separate spring force field, and the masses by hand.
 #include "fastcorot/sim/explicit_solvers.h"
 #include "fastcorot/sim/newmark_solver.h"
+#include "fastcorot/sim/variational_symplectic_solver.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/fem/spring_force_field.h"
@@ -189,6 +190,50 @@ TEST_P(Explicit, NewmarkStepsAsSofaWritesIt) {
   resumed.step(copy, solver, h);
   EXPECT_EQ(flat(system.state.position), flat(copy.state.position));
   EXPECT_THROW(resumed.restore_carried_state({1, 2}), Error);
+}
+
+TEST_P(Explicit, VariationalSymplecticStepsAsSofaWritesIt) {
+  const bool consistent = GetParam();
+  const Dense dense(consistent);
+  const double h = 0.01, rm = 0.1, rk = 0.02;
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(15, 15);
+  for (bool explicit_form : {false, true}) {
+    MechanicalSystem<double> system = make_system(consistent);
+    SparseDirectSolver<double> solver;
+    VariationalSymplecticSolver<double> variational({1e-12, 4, rk, rm, explicit_form}, 5);
+    Eigen::VectorXd x = flat(start_positions()), v = flat(start_velocities());
+    Eigen::VectorXd p = dense.m * v;
+    const auto solve = [&](const Eigen::MatrixXd& a, const Eigen::VectorXd& b) {
+      return Eigen::VectorXd(dense.p * (dense.p * a * dense.p + (identity - dense.p)).fullPivLu().solve(dense.p * b));
+    };
+    for (int step = 0; step < 3; ++step) {
+      variational.step(system, solver, h);
+      if (explicit_form) {
+        const Eigen::VectorXd a = dense.p * (solve(dense.m, dense.force(x, v) + p / h) - rm * v);
+        v = h * a;
+        x += h * v;
+        p = dense.m * v;
+        continue;
+      }
+      const Eigen::VectorXd x0 = x;
+      Eigen::VectorXd r = Eigen::VectorXd::Zero(15), previous = x0;
+      double error = 0;
+      for (int i = 0; (i < 4 && error > 1e-12) || i == 0; ++i) {
+        Eigen::MatrixXd k;
+        const Eigen::VectorXd f = dense.force(x0 + r, v, &k);
+        const Eigen::MatrixXd a = (4 / (h * h) + 4 * rm / h) * dense.m - (1 + 4 * rk / h) * k;
+        r = solve(a, f + (2 / h) * p - k * r);
+        error = (x0 + r - previous).norm() / x0.norm();
+        previous = x0 + r;
+      }
+      v = (2 / h) * r;
+      p = (h / 2) * dense.p * dense.force(x0 + (h / 2) * v, v) + dense.m * v;
+      x = x0 + h * v;
+    }
+    expect_close(system.state.position, x, 1e-11);
+    expect_close(system.state.velocity, v, 1e-11);
+    EXPECT_EQ(variational.carried_state().size(), 16u);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Masses, Explicit, ::testing::Values(false, true),
