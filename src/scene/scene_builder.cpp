@@ -225,7 +225,7 @@ class Builder {
         if (!c->spec) continue;
         const std::string_view type = c->type();
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
-        if (type == "TetrahedronFEMForceField") add_tetrahedron_fem(*c, object);
+        if (type == "TetrahedronFEMForceField" || type == "TetrahedralCorotationalFEMForceField") add_tetrahedron_fem(*c, object);
         if (scene_detail::is_penalty_force_field(type)) {
           // Points, not elements: the object's mesh (for output), or a mesh of its points alone.
           auto mesh = object.mesh ? object.mesh : std::make_shared<TetMesh>(system.size(), std::vector<Tetrahedron>{});
@@ -523,7 +523,22 @@ class Builder {
     try {
       if (parameters.young_modulus.empty()) throw make_error("youngModulus is empty");
       if (parameters.poisson_ratio.empty()) throw make_error("poissonRatio is empty");
-      parameters.method = parse_tetrahedron_fem_method(data_.text(c, "method", "large"));
+      if (c.type() == "TetrahedralCorotationalFEMForceField") {
+        // SOFA's older corotational tetrahedron: small, polar, and large for any other name.
+        parameters.component = "TetrahedralCorotationalFEMForceField";
+        const std::string method = data_.text(c, "method", "large");
+        parameters.method = method == "small" ? TetrahedronFEMMethod::small
+                            : method == "polar" ? TetrahedronFEMMethod::polar : TetrahedronFEMMethod::large;
+        if (method != "small" && method != "polar" && method != "large") {
+          info_.push_back(c.where() + ": method \"" + method + "\" is not small, large or polar: large is used, as SOFA does");
+        }
+        if (data_.boolean(c, "computeVonMisesStress", false)) {
+          info_.push_back(c.where() + ": computeVonMisesStress: not computed for TetrahedralCorotationalFEMForceField (display only)");
+        }
+        parameters.von_mises = 0;
+      } else {
+        parameters.method = parse_tetrahedron_fem_method(data_.text(c, "method", "large"));
+      }
       const bool assembling = data_.boolean(c, "computeGlobalMatrix", false) || data_.boolean(c, "assembling", false);
       if (assembling && (parameters.method == TetrahedronFEMMethod::polar || parameters.method == TetrahedronFEMMethod::svd)) {
         throw make_error("computeGlobalMatrix=\"true\" with method ", to_string(parameters.method),

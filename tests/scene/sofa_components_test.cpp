@@ -214,5 +214,25 @@ TEST(SofaPenaltyForceFields, PlaneAndConeAreBuilt) {
   EXPECT_NE(error_of(beam("<PlaneForceField stiffness=\"-1\"/>")).find("stiffness = -1"), std::string::npos);
 }
 
+TEST(SofaTetrahedralCorotational, TheSameElementAsTetrahedronFEMForceField) {
+  for (const std::string method : {"small", "large", "polar"}) {
+    std::string older = beam("", "<EulerImplicitSolver/><CGLinearSolver/>");
+    older.replace(older.find("TetrahedronFEMForceField"), 24, "TetrahedralCorotationalFEMForceField method=\"" + method + "\"");
+    std::string newer = beam("", "<EulerImplicitSolver/><CGLinearSolver/>");
+    newer.replace(newer.find("TetrahedronFEMForceField"), 24, "TetrahedronFEMForceField method=\"" + method + "\"");
+    LoadedScene a = build(older, "gravity=\"0 -3 1\""), b = build(newer, "gravity=\"0 -3 1\"");
+    EXPECT_EQ(a.simulation.objects[0].system.force_fields[0]->component(), "TetrahedralCorotationalFEMForceField");
+    for (int s = 0; s < 3; ++s) {
+      a.simulation.step();
+      b.simulation.step();
+    }
+    EXPECT_EQ(a.simulation.objects[0].system.state.position, b.simulation.objects[0].system.state.position) << method;
+  }
+  // Any other method name is large, as in SOFA (with an info line).
+  std::string other = beam("");
+  other.replace(other.find("TetrahedronFEMForceField"), 24, "TetrahedralCorotationalFEMForceField method=\"qr\"");
+  EXPECT_EQ(build(other).simulation.objects[0].system.force_fields[0]->method_name(), "large");
+}
+
 }  // namespace
 }  // namespace fastcorot

@@ -57,6 +57,10 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
     std::vector<Real> local_stiffness_factor;
     // computeVonMisesStress: 0 none, 1 from the corotational strain, 2 from the Green strain.
     int von_mises = 0;
+    // The SOFA component reproduced: TetrahedronFEMForceField, or TetrahedralCorotationalFEMForceField,
+    // SOFA's older corotational tetrahedron, whose small, large and polar methods compute the same
+    // element (the same J, K, rotations and tangent) in the same order of operations.
+    std::string component = "TetrahedronFEMForceField";
   };
 
   // What SOFA keeps per tetrahedron, compactly: J holds three distinct values per vertex
@@ -81,7 +85,7 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   TetrahedronFEMForceField(std::shared_ptr<TetMesh> mesh, std::span<const Vec3<Real>> rest_positions,
                            Parameters parameters);
 
-  std::string component() const override { return "TetrahedronFEMForceField"; }
+  std::string component() const override { return parameters_.component; }
   std::string method_name() const override { return to_string(parameters_.method); }
   const TetMesh& mesh() const override { return *mesh_; }
   const Parameters& parameters() const { return parameters_; }
