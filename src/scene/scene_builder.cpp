@@ -37,8 +37,7 @@ bool is_integrator(const Component& c) {
 bool is_mapped_node(const GraphNode& node) {
   for (const auto& c : node.components) {
     const std::string& type = c->object->type;
-    if (type.ends_with("Mapping") && type != "Hexa2TetraTopologicalMapping" &&
-        type != "Tetra2TriangleTopologicalMapping") {
+    if (type.ends_with("Mapping") && !type.ends_with("TopologicalMapping")) {
       return true;
     }
   }

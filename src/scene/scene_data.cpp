@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/topology/regular_grid.h"
 #include "fastcorot/topology/tetrahedron_faces.h"
+#include "fastcorot/topology/tetrahedron_subdivision.h"
 
 #include <Eigen/Geometry>
 
@@ -392,6 +393,20 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
       }
       if (name == "position") return data(grid, "position");
       if (name == "tetrahedra") return flatten_indices(grid_tetrahedra(this->grid(grid), boolean(*m, "swapping", false)));
+    }
+    // Filled by a SimpleTesselatedTetraTopologicalMapping: its input cut into 8 per tetrahedron.
+    if (Component* m = mapping_into(c, "SimpleTesselatedTetraTopologicalMapping")) {
+      if (!m->has("input")) throw make_error(m->where(), ": no input given");
+      Component& input = resolve_object(*m->node, m->object->attributes.at("input"), *m);
+      const auto input_points = points(input, "position");
+      try {
+        const TetMesh mesh(static_cast<Index>(input_points.size()), tetrahedra_of(input));
+        const Subdivision cut = subdivide_tetrahedra(mesh, input_points);
+        if (name == "position") return flatten(cut.points);
+        if (name == "tetrahedra") return flatten_indices(cut.tetrahedra);
+      } catch (const Error& error) {
+        throw make_error(m->where(), ": ", error.what());
+      }
     }
     // SOFA creates the triangle array from the tetrahedra when it is asked for and has none.
     if (name == "triangles") return flatten_indices(tetrahedron_set_triangles(tetrahedra_of(c)));
