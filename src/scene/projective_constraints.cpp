@@ -31,7 +31,8 @@ Vec3<double> unit_or(const Vec3<double>& v, const Vec3<double>& fallback) {
 
 bool is_partial_projective_constraint(std::string_view type) {
   return type == "PartialFixedProjectiveConstraint" || type == "FixedPlaneProjectiveConstraint" ||
-         type == "PlaneProjectiveConstraint" || type == "LineProjectiveConstraint";
+         type == "PlaneProjectiveConstraint" || type == "LineProjectiveConstraint" ||
+         type == "AffineMovementProjectiveConstraint";
 }
 
 void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system) {
@@ -67,6 +68,23 @@ void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<d
     }
     const Mat3<double> projector = Mat3<double>::Identity() - d * d.transpose();
     for (Index i : indices) system.projections.push_back({i, projector});
+    return;
+  }
+  if (type == "AffineMovementProjectiveConstraint") {
+    // The points go from where they start to rotation x + translation between the two times;
+    // SOFA's rotation has no default (a zero matrix) and its times default to 0 and 20.
+    const auto indices = constrained_points(data, c, size, false, {});
+    const Numbers& r = data.data(c, "rotation");
+    if (!r.empty() && r.size() != 9) throw make_error(c.where(), ": rotation needs 9 numbers (a 3x3 matrix, row by row)");
+    Mat3<double> rotation = Mat3<double>::Zero();
+    for (std::size_t k = 0; k < r.size(); ++k) rotation(static_cast<Index>(k / 3), static_cast<Index>(k % 3)) = r[k];
+    const Vec3<double> translation = data.vec3(c, "translation", {0, 0, 0});
+    const double begin = data.real(c, "beginConstraintTime", 0), end = data.real(c, "endConstraintTime", 20);
+    for (Index i : indices) {
+      const Vec3<double>& start = system.state.position[static_cast<std::size_t>(i)];
+      system.projections.push_back({i, Mat3<double>::Zero()});
+      system.motions.push_back({i, start, rotation * start + translation, begin, end});
+    }
     return;
   }
   // Plane and line: increments and velocities projected, positions projected after each step.

@@ -313,6 +313,18 @@ RegularGrid SceneData::grid(Component& c) {
   return grid;
 }
 
+Numbers SceneData::rest_positions_around(Component& c) {
+  for (const GraphNode* scope = c.node; scope; scope = scope->parent) {
+    const auto states = scope->of_category("state");
+    if (!states.empty()) return data(*states.front(), "rest_position");
+    if (scope == c.node) {
+      const auto loaders = scope->of_category("loader");
+      if (!loaders.empty()) return data(*loaders.front(), "position");
+    }
+  }
+  throw make_error(c.where(), ": no position given and no MechanicalObject in its node or above");
+}
+
 Component* SceneData::triangle_container_of(const GraphNode& node) {
   for (const GraphNode* scope = &node; scope; scope = scope->parent) {
     const auto containers = scope->of_category("trianglecontainer");
@@ -431,7 +443,9 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
           throw make_error(c.where(), ": no position given and no topology in node ", c.node->path,
                            " to take points from");
         }
-        base = points_from(data(*topology, "position"), *topology, "position");
+        // A grid whose position links back to this state (SOFA scenes write that) gives its own points.
+        base = topology->type() == "RegularGridTopology" ? grid_points<double>(grid(*topology))
+                                                         : points_from(data(*topology, "position"), *topology, "position");
       }
       return flatten(transformed(std::move(base), placement(c, "scale3d"), placement(c, "rotation"),
                                  placement(c, "translation")));
@@ -440,19 +454,39 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (name == "velocity") return {};
     return {};
   }
-  if (type == "BoxROI") {
-    if (name == "box") return {0, 0, 0, 1, 1, 1};
-    if (name == "position") {
-      for (const GraphNode* scope = c.node; scope; scope = scope->parent) {
-        const auto states = scope->of_category("state");
-        if (!states.empty()) return data(*states.front(), "rest_position");
-        if (scope == c.node) {
-          const auto loaders = scope->of_category("loader");
-          if (!loaders.empty()) return data(*loaders.front(), "position");
+  if (type == "PairBoxROI") {
+    // The points in inclusiveBox and not in includedBox, bounds included (SOFA's PairBoxROI).
+    if (name == "position") return rest_positions_around(c);
+    if (name == "indices" || name == "pointsInROI") {
+      Numbers outer = data(c, "inclusiveBox"), inner = data(c, "includedBox");
+      if (outer.size() != 6 || inner.size() != 6) throw make_error(c.where(), ": inclusiveBox and includedBox need 6 numbers each");
+      for (Numbers* box : {&outer, &inner}) {
+        for (int k = 0; k < 3; ++k) {
+          if ((*box)[static_cast<std::size_t>(k)] > (*box)[static_cast<std::size_t>(k + 3)]) {
+            std::swap((*box)[static_cast<std::size_t>(k)], (*box)[static_cast<std::size_t>(k + 3)]);
+          }
         }
       }
-      throw make_error(c.where(), ": no position given and no MechanicalObject in its node or above");
+      const auto in = [](const Vec3<double>& p, const Numbers& b) {
+        return p[0] >= b[0] && p[0] <= b[3] && p[1] >= b[1] && p[1] <= b[4] && p[2] >= b[2] && p[2] <= b[5];
+      };
+      Numbers out;
+      const auto positions = points(c, "position");
+      for (std::size_t i = 0; i < positions.size(); ++i) {
+        if (!in(positions[i], outer) || in(positions[i], inner)) continue;
+        if (name == "indices") {
+          out.push_back(static_cast<double>(i));
+        } else {
+          out.insert(out.end(), {positions[i].x(), positions[i].y(), positions[i].z()});
+        }
+      }
+      return out;
     }
+    return {};
+  }
+  if (type == "BoxROI") {
+    if (name == "box") return {0, 0, 0, 1, 1, 1};
+    if (name == "position") return rest_positions_around(c);
     const Numbers& box = data(c, "box");
     if (box.size() % 6 != 0 || box.empty()) {
       throw make_error(c.where(), ": box needs 6 numbers per box (xmin ymin zmin xmax ymax zmax), got ", box.size());

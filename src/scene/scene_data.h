@@ -89,6 +89,9 @@ class SceneData {
   Component* triangle_container_of(const GraphNode& node);
   // The component of type `mapping_type` whose output is c, searched over the whole scene.
   Component* mapping_into(Component& c, std::string_view mapping_type);
+  // What an ROI engine selects from by default: the rest positions of the nearest MechanicalObject
+  // at or above its node, else its node's loader's positions.
+  Numbers rest_positions_around(Component& c);
   // A topology's tetrahedra (4 indices each, checked).
   std::vector<Tetrahedron> tetrahedra_of(Component& topology);
   // Translation, rotation or scale3d of c, or their short forms (dx dy dz, rx ry rz, scale or sx sy

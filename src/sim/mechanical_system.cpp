@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace fastcorot {
 
@@ -20,6 +21,12 @@ void MechanicalSystem<Real>::finalize() {
   for (const auto& p : projections) {
     if (p.point < 0 || p.point >= n) throw make_error("projected point index ", p.point, " out of range [0, ", n, ")");
     if (!p.projector.allFinite()) throw make_error("projected point ", p.point, ": the projection is not finite");
+  }
+  for (const auto& m : motions) {
+    if (m.point < 0 || m.point >= n) throw make_error("moved point index ", m.point, " out of range [0, ", n, ")");
+    if (!m.start.allFinite() || !m.end.allFinite() || !std::isfinite(m.begin_time) || !std::isfinite(m.end_time)) {
+      throw make_error("moved point ", m.point, ": its motion is not finite");
+    }
   }
   for (const auto& p : placements) {
     if (p.point < 0 || p.point >= n) throw make_error("projected point index ", p.point, " out of range [0, ", n, ")");
@@ -182,12 +189,24 @@ void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
 }
 
 template <class Real>
-void MechanicalSystem<Real>::apply_placements() {
+void MechanicalSystem<Real>::apply_placements(double time) {
   for (const auto& p : placements) {
     Vec3<Real>& x = state.position[static_cast<std::size_t>(p.point)];
     x = (p.origin + p.projector * (x - p.origin)).eval();
     Vec3<Real>& v = state.velocity[static_cast<std::size_t>(p.point)];
     v = (p.velocity_projector * v).eval();
+  }
+  for (const auto& m : motions) {
+    const auto i = static_cast<std::size_t>(m.point);
+    const double total = m.end_time - m.begin_time;
+    if (time > m.begin_time && time <= m.end_time && total > 0) {
+      state.position[i] = ((m.end - m.start) * static_cast<Real>(time) +
+                           (m.start * static_cast<Real>(m.end_time) - m.end * static_cast<Real>(m.begin_time))) /
+                          static_cast<Real>(total);
+    } else if (time > m.end_time) {
+      state.position[i] = m.end;
+    }
+    state.velocity[i].setZero();
   }
 }
 

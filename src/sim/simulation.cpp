@@ -70,7 +70,7 @@ std::optional<std::string> find_divergence(const MechanicalState<Real>& state, R
 }
 
 template <class Real>
-StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number, Real bound,
+StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number, double clock, Real bound,
                        Real factor, Real scene_size) {
   StepReport report;
   const Real time = static_cast<Real>(step_number) * dt;
@@ -81,7 +81,7 @@ StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number,
         brief("diverged at step ", step_number, " (t = ", time, ") in ", object.path, ": ") +
         error.what());
   }
-  object.system.apply_placements();
+  object.system.apply_placements(clock);
   for (Index i : object.system.zero_velocity) object.system.state.velocity[static_cast<std::size_t>(i)].setZero();
   if (auto problem = find_divergence(object.system.state, dt, bound, factor, scene_size)) {
     throw Error(
@@ -156,7 +156,7 @@ StepReport Simulation<Real>::step() {
   auto work = [&](std::size_t first) {
     for (std::size_t o = first; o < objects.size(); o += workers) {
       try {
-        reports[o] = step_object(objects[o], dt, step_number, bound, divergence_factor, size);
+        reports[o] = step_object(objects[o], dt, step_number, clock_, bound, divergence_factor, size);
       } catch (...) {
         failures[o] = std::current_exception();
       }

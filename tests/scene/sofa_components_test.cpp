@@ -234,5 +234,28 @@ TEST(SofaTetrahedralCorotational, TheSameElementAsTetrahedronFEMForceField) {
   EXPECT_EQ(build(other).simulation.objects[0].system.force_fields[0]->method_name(), "large");
 }
 
+TEST(SofaProjectiveConstraints, AffineMovementOnThePairBoxShell) {
+  // The 3x2x2 grid: the shell between [-1, 3]^3 and the box around x = 1 holds the points at x = 0, 2.
+  const std::string body = beam(
+      "<PairBoxROI name=\"pair\" inclusiveBox=\"3 3 3 -1 -1 -1\" includedBox=\"0.5 -1 -1 1.5 2 2\"/>"
+      "<AffineMovementProjectiveConstraint indices=\"@pair.indices\" rotation=\"[0 -1 0, 1 0 0, 0 0 1]\" translation=\"1 0 0\" "
+      "endConstraintTime=\"0.02\"/>");
+  LoadedScene scene = build(body, "dt=\"0.01\"");
+  auto& system = scene.simulation.objects[0].system;
+  ASSERT_EQ(system.motions.size(), 8u);
+  EXPECT_EQ(system.motions[1].point, 2);
+  // Point 2 at (2, 0, 0) goes to R (2, 0, 0) + (1, 0, 0) = (1, 2, 0): half way after the second step
+  // (which starts at t = 0.01), there at the third.
+  scene.simulation.step();
+  EXPECT_EQ(system.state.position[2], Vec3<double>(2, 0, 0));
+  scene.simulation.step();
+  EXPECT_NEAR((system.state.position[2] - Vec3<double>(1.5, 1, 0)).norm(), 0, 1e-12);
+  scene.simulation.step();
+  EXPECT_NEAR((system.state.position[2] - Vec3<double>(1, 2, 0)).norm(), 0, 1e-12);
+  EXPECT_EQ(system.state.velocity[2], Vec3<double>::Zero());
+  EXPECT_NE(error_of(beam("<AffineMovementProjectiveConstraint indices=\"1\" rotation=\"1 0 0\"/>")).find("rotation needs 9 numbers"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace fastcorot

@@ -87,6 +87,21 @@ TEST(Projections, PlacementsProjectPositionsAndVelocities) {
   EXPECT_EQ(system.state.position[2], Vec3<double>(0.1, 0.9, 0.2));
 }
 
+TEST(Projections, MotionsFollowSofasLinearInterpolation) {
+  MechanicalSystem<double> system = make_system();
+  system.motions = {{1, Vec3<double>(1, 0, 0), Vec3<double>(3, 0, 0), 1.0, 3.0}};
+  system.state.velocity.assign(4, Vec3<double>(1, 1, 1));
+  system.finalize();
+  system.apply_placements(0.5);  // before the motion: left where it is
+  EXPECT_EQ(system.state.position[1], Vec3<double>(1.2, 0.1, 0));
+  EXPECT_EQ(system.state.velocity[1], Vec3<double>::Zero());
+  system.apply_placements(2.0);  // ((3 - 1) 2 + (1 * 3 - 3 * 1)) / 2
+  EXPECT_EQ(system.state.position[1], Vec3<double>(2, 0, 0));
+  system.apply_placements(5.0);
+  EXPECT_EQ(system.state.position[1], Vec3<double>(3, 0, 0));
+  EXPECT_EQ(system.state.velocity[0], Vec3<double>(1, 1, 1));
+}
+
 TEST(Projections, BadEntriesAreRefused) {
   MechanicalSystem<double> system = make_system();
   system.projections = {{4, Mat3<double>::Identity()}};

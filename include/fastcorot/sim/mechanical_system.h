@@ -48,6 +48,18 @@ struct PointPlacement {
   Mat3<Real> velocity_projector = Mat3<Real>::Identity();
 };
 
+// A point moved along a straight line in time (SOFA's AffineMovementProjectiveConstraint) at the end
+// of the step that starts at time t: x = ((end - start) t + start t1 - end t0) / (t1 - t0) for
+// t0 < t <= t1, x = end after t1; its increments and velocity are projected to zero.
+template <class Real>
+struct PointMotion {
+  Index point = 0;
+  Vec3<Real> start = Vec3<Real>::Zero();
+  Vec3<Real> end = Vec3<Real>::Zero();
+  double begin_time = 0;
+  double end_time = 0;
+};
+
 // Factors of the system matrix m M + b B + k K.
 template <class Real>
 struct MatrixFactors {
@@ -72,6 +84,7 @@ class MechanicalSystem {
   std::vector<PointProjection<Real>> projections;
   // End-of-step placements, applied in the order given (apply_placements).
   std::vector<PointPlacement<Real>> placements;
+  std::vector<PointMotion<Real>> motions;  // applied after the placements
   std::vector<ConstantForce<Real>> constant_forces;
   Vec3<Real> gravity = Vec3<Real>::Zero();
   // Points that lost their last tetrahedron and have no mass (cutting): nothing determines their
@@ -105,8 +118,9 @@ class MechanicalSystem {
 
   // Zeroes the entries of fixed and isolated points and applies the partial projections.
   void project(std::span<Vec3<Real>> v) const;
-  // SOFA's projectPosition and projectVelocity after a step: the placements on the state.
-  void apply_placements();
+  // SOFA's projectPosition and projectVelocity after the step that started at `time` (SOFA's
+  // context time): the placements, then the motions, on the state.
+  void apply_placements(double time = 0);
 
   // Topological changes of `mesh` (the mesh of one or more of the force fields, or of the mass):
   // the mesh changes, and the force fields and the mass on it follow, at a cost proportional to
