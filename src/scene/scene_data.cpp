@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/topology/regular_grid.h"
+#include "fastcorot/topology/cylinder_mesh.h"
 #include "fastcorot/topology/tetrahedron_faces.h"
 #include "fastcorot/topology/tetrahedron_subdivision.h"
 
@@ -452,6 +453,17 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     }
     if (name == "rest_position") return data(c, "position");
     if (name == "velocity") return {};
+    return {};
+  }
+  if (type == "GenerateCylinder") {
+    if (whole_number(c, "BezierTetrahedronDegree", 0) > 1 || whole_number(c, "BezierTriangleDegree", 0) > 1) {
+      throw make_error(c.where(), ": Bezier tetrahedra and triangles are not generated (linear tetrahedra only)");
+    }
+    const CylinderMesh mesh = generate_cylinder(real(c, "radius", 0.2), real(c, "height", 1), vec3(c, "origin", {0, 0, 0}),
+                                                whole_number(c, "resCircumferential", 6), whole_number(c, "resRadial", 3),
+                                                whole_number(c, "resHeight", 5));
+    if (name == "output_TetrahedraPosition" || name == "output_position" || name == "position") return flatten(mesh.points);
+    if (name == "tetrahedra") return flatten_indices(mesh.tetrahedra);
     return {};
   }
   if (type == "PairBoxROI") {
