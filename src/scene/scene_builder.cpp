@@ -117,7 +117,7 @@ class Builder {
     visit(data_.root(), false);
     if (simulation_.objects.empty()) {
       throw make_error(root.location.file.string(), ": the scene has no node with an ODE solver "
-                       "(EulerImplicitSolver or StaticSolver) and a MechanicalObject: nothing to simulate");
+                       "(EulerImplicitSolver, StaticSolver, ...) and a MechanicalObject: nothing to simulate");
     }
     std::map<const SceneObject*, std::size_t> rank;
     rank_objects(root, rank);
@@ -186,7 +186,8 @@ class Builder {
     }
     if (states.size() > 1) {
       throw make_error(states[1]->where(), ": a second MechanicalObject under the solver of node ",
-                       solver_node.path, "; fastcorot simulates one object per solver");
+                       solver_node.path, "; fastcorot simulates one object per solver (SOFA solves the objects under one "
+                       "solver as one system, which is not supported yet: give each object its own solver)");
     }
     Component& state = *states.front();
     SimulatedObject<double> object;

@@ -53,7 +53,21 @@ INSTANTIATE_TEST_SUITE_P(
                       "Component/SolidMechanics/FEM/FastTetrahedralCorotationalForceField.scn",
                       "Component/Topology/Mapping/Hexa2TetraTopologicalMapping.scn",
                       "Component/Topology/Container/Constant/MeshTopology.scn",
-                      "Component/Mapping/Linear/BarycentricTetraMapping.scn"),
+                      "Component/Mapping/Linear/BarycentricTetraMapping.scn",
+                      "Component/Playback/WriteState.scn", "Component/Playback/CompareState.scn",
+                      "Component/Collision/Geometry/SphereModel.scn",
+                      "Component/ODESolver/Forward/EulerSymplecticSolver_diagonal.scn",
+                      "Component/ODESolver/Forward/RungeKutta4Solver.scn",
+                      "Component/Constraint/Projective/PartialFixedProjectiveConstraint.scn",
+                      "Component/Constraint/Projective/FixedPlaneProjectiveConstraint.scn",
+                      "Component/Constraint/Projective/PlaneProjectiveConstraint.scn",
+                      "Component/Constraint/Projective/PlaneConstraint.scn",
+                      "Component/Constraint/Projective/AffineMovementProjectiveConstraint3D.scn",
+                      "Component/MechanicalLoad/ConicalForceField.scn",
+                      "Component/MechanicalLoad/TrianglePressureForceField.scn",
+                      "Component/Engine/Generate/GenerateCylinder.scn",
+                      "Component/Engine/Select/ValuesFromPositions_vectorField.scn",
+                      "Component/Topology/Container/Dynamic/TetrahedronForceFieldTopologyChangeHandling.scn"),
     [](const auto& info) { return std::filesystem::path(info.param).stem().string(); });
 
 TEST(SofaScenes, ASceneNeedingWhatIsMissingIsRefusedInOneLine) {
