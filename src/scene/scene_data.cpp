@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -314,6 +315,27 @@ RegularGrid SceneData::grid(Component& c) {
   return grid;
 }
 
+Numbers SceneData::cells_inside(Component& c, const Numbers& cells, int corners, const char* kind,
+                                const std::vector<Vec3<double>>& positions,
+                                const std::function<bool(const Vec3<double>&)>& inside) {
+  // SOFA's BoxROI: with `strict`, a cell whose corners are all inside; else one whose centre is.
+  const bool strict = boolean(c, "strict", true);
+  const auto n = static_cast<std::size_t>(corners);
+  Numbers out;
+  for (std::size_t t = 0; t + n - 1 < cells.size(); t += n) {
+    bool all = true;
+    Vec3<double> centre = Vec3<double>::Zero();
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto v = static_cast<std::size_t>(cells[t + j]);
+      if (v >= positions.size()) throw make_error(c.where(), ": ", kind, " ", t / n, " has a vertex out of range");
+      all = all && inside(positions[v]);
+      centre += positions[v] / static_cast<double>(corners);
+    }
+    if (strict ? all : inside(centre)) out.push_back(static_cast<double>(t / n));
+  }
+  return out;
+}
+
 Numbers SceneData::rest_positions_around(Component& c) {
   for (const GraphNode* scope = c.node; scope; scope = scope->parent) {
     const auto states = scope->of_category("state");
@@ -534,39 +556,12 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
         triangles = data(*topology, "triangles");
       }
       if (triangles.size() % 3 != 0) throw make_error(c.where(), ": triangles needs 3 indices per triangle");
-      const bool strict = boolean(c, "strict", true);
-      Numbers out;
-      for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
-        bool all = true;
-        Vec3<double> centre = Vec3<double>::Zero();
-        for (int j = 0; j < 3; ++j) {
-          const auto v = static_cast<std::size_t>(triangles[t + j]);
-          if (v >= positions.size()) throw make_error(c.where(), ": triangle ", t / 3, " has a vertex out of range");
-          all = all && inside(positions[v]);
-          centre += positions[v] / 3;
-        }
-        if (strict ? all : inside(centre)) out.push_back(static_cast<double>(t / 3));
-      }
-      return out;
+      return cells_inside(c, triangles, 3, "triangle", positions, inside);
     }
     if (name == "tetrahedronIndices") {
       Component* topology = topology_of(*c.node);
       if (!topology) return {};
-      const Numbers& tets = data(*topology, "tetrahedra");
-      const bool strict = boolean(c, "strict", true);
-      Numbers out;
-      for (std::size_t t = 0; t + 3 < tets.size(); t += 4) {
-        bool all = true;
-        Vec3<double> centre = Vec3<double>::Zero();
-        for (int j = 0; j < 4; ++j) {
-          const auto v = static_cast<std::size_t>(tets[t + j]);
-          if (v >= positions.size()) throw make_error(c.where(), ": tetrahedron ", t / 4, " has a vertex out of range");
-          all = all && inside(positions[v]);
-          centre += positions[v] / 4;
-        }
-        if (strict ? all : inside(centre)) out.push_back(static_cast<double>(t / 4));
-      }
-      return out;
+      return cells_inside(c, data(*topology, "tetrahedra"), 4, "tetrahedron", positions, inside);
     }
   }
   return {};

@@ -11,6 +11,7 @@
 #include "fastcorot/scene/scene_graph.h"
 #include "fastcorot/topology/regular_grid.h"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -92,6 +93,9 @@ class SceneData {
   // What an ROI engine selects from by default: the rest positions of the nearest MechanicalObject
   // at or above its node, else its node's loader's positions.
   Numbers rest_positions_around(Component& c);
+  // The indices of the cells (`corners` point indices each) that BoxROI c selects with `inside`.
+  Numbers cells_inside(Component& c, const Numbers& cells, int corners, const char* kind,
+                       const std::vector<Vec3<double>>& positions, const std::function<bool(const Vec3<double>&)>& inside);
   // A topology's tetrahedra (4 indices each, checked).
   std::vector<Tetrahedron> tetrahedra_of(Component& topology);
   // Translation, rotation or scale3d of c, or their short forms (dx dy dz, rx ry rz, scale or sx sy

@@ -9,6 +9,8 @@
 #include "fastcorot/sim/explicit_solvers.h"
 #include "fastcorot/sim/newmark_solver.h"
 
+#include "support/scene_text.h"
+
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -20,17 +22,9 @@ namespace fastcorot {
 namespace {
 
 LoadedScene build(const std::string& body, const std::string& root_attributes = "") {
-  return build_scene(parse_scene_text("<Node name=\"root\" " + root_attributes + ">\n" + body + "\n</Node>", "test.scn"));
+  return testing::build_scene_text(body, root_attributes);
 }
-
-std::string error_of(const std::string& body) {
-  try {
-    build(body);
-  } catch (const Error& error) {
-    return error.what();
-  }
-  return "";
-}
+std::string error_of(const std::string& body) { return testing::scene_error(body); }
 
 // A 3×2×2 grid split into tetrahedra, under `solver`, with `extra` components in the node.
 std::string beam(const std::string& extra, const std::string& solver = "<EulerImplicitSolver/><CGLinearSolver iterations=\"25\"/>",
