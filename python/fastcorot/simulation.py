@@ -28,6 +28,11 @@ class Simulation:
         objects = []
         core = _core.SimulationCore(root._tree(objects))
         core.threads = threads
+        for k, count in enumerate(core.state_counts):
+            if count > 1:
+                raise ValueError(
+                    f"Simulation: {count} MechanicalObjects under one ODE solver (object {k}): SOFA solves them as one "
+                    "system, which `fastcorot run` does and the Python module does not yet; give each its own solver")
         for node in walk(root):
             object.__setattr__(node, "_core", None)
             for obj in node._objects:

@@ -123,6 +123,7 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("steps_done", [](SimulationCore& c) { return c.simulation().steps_done(); })
       .def_property_readonly("info", [](SimulationCore& c) { return c.scene.info; })
       .def_property_readonly("state_objects", [](SimulationCore& c) { return c.scene.state_objects; })
+      .def_property_readonly("state_counts", [](SimulationCore& c) { return c.scene.state_counts; })
       .def_property_readonly("paths",
                              [](SimulationCore& c) {
                                std::vector<std::string> paths;

@@ -68,9 +68,16 @@ Mat3<Real> edge_rows(const TetPoints<Real>& p) {
 
 // F = J K J^T D for one element (SOFA's computeForce, in its order of operations): g are J's
 // values per vertex, k K's three values, D the twelve displacements.
+// SOFA's plasticity thresholds (TetrahedronFEMForceField's computeForce); max <= 0: off.
+template <class Real>
+struct Plasticity {
+  Real max = 0, yield = 0, creep = 0;
+};
+
 template <class Real>
 std::array<Vec3<Real>, 4> element_force(const std::array<Vec3<Real>, 4>& g, const Vec3<Real>& k,
-                                        const std::array<Vec3<Real>, 4>& d) {
+                                        const std::array<Vec3<Real>, 4>& d, std::array<Real, 6>* plastic = nullptr,
+                                        const Plasticity<Real>& plasticity = {}) {
   Real e[6] = {0, 0, 0, 0, 0, 0};
   for (int i = 0; i < 4; ++i) {
     e[0] += g[i].x() * d[i].x();
@@ -79,6 +86,25 @@ std::array<Vec3<Real>, 4> element_force(const std::array<Vec3<Real>, 4>& g, cons
     e[3] += g[i].y() * d[i].x() + g[i].x() * d[i].y();
     e[4] += g[i].z() * d[i].y() + g[i].y() * d[i].z();
     e[5] += g[i].z() * d[i].x() + g[i].x() * d[i].z();
+  }
+  if (plastic && plasticity.max > 0) {
+    // The strain's elastic part grows the plastic one by creep beyond the yield, which is then
+    // capped at max; the force is that of what remains.
+    std::array<Real, 6>& p = *plastic;
+    Real elastic[6], elastic_norm2 = 0;
+    for (int c = 0; c < 6; ++c) {
+      elastic[c] = e[c] - p[static_cast<std::size_t>(c)];
+      elastic_norm2 += elastic[c] * elastic[c];
+    }
+    if (elastic_norm2 > plasticity.yield * plasticity.yield) {
+      for (int c = 0; c < 6; ++c) p[static_cast<std::size_t>(c)] += plasticity.creep * elastic[c];
+    }
+    Real plastic_norm2 = 0;
+    for (Real v : p) plastic_norm2 += v * v;
+    if (plastic_norm2 > plasticity.max * plasticity.max) {
+      for (Real& v : p) v *= plasticity.max / std::sqrt(plastic_norm2);
+    }
+    for (int c = 0; c < 6; ++c) e[c] -= p[static_cast<std::size_t>(c)];
   }
   const Real s[6] = {k[0] * e[0] + k[1] * e[1] + k[1] * e[2], k[1] * e[0] + k[0] * e[1] + k[1] * e[2],
                      k[1] * e[0] + k[1] * e[1] + k[0] * e[2], k[2] * e[3],
@@ -106,6 +132,13 @@ TetrahedronFEMForceField<Real>::TetrahedronFEMForceField(std::shared_ptr<TetMesh
   }
   const Index n = mesh_->num_tetrahedra();
   detail::check_material_lists(parameters_.young_modulus, parameters_.poisson_ratio, parameters_.rayleigh_stiffness, n);
+  for (const Real value : {parameters_.plastic_max_threshold, parameters_.plastic_yield_threshold, parameters_.plastic_creep}) {
+    if (!std::isfinite(value) || value < 0) {
+      throw make_error("plasticMaxThreshold ", parameters_.plastic_max_threshold, ", plasticYieldThreshold ",
+                       parameters_.plastic_yield_threshold, ", plasticCreep ", parameters_.plastic_creep,
+                       ": each must be finite and >= 0");
+    }
+  }
   for (std::size_t i = 0; i < parameters_.local_stiffness_factor.size(); ++i) {
     const Real factor = parameters_.local_stiffness_factor[i];
     if (!(factor > 0) || !std::isfinite(factor)) {
@@ -321,7 +354,9 @@ void TetrahedronFEMForceField<Real>::accumulate_element(Index t, std::span<const
   const Tetrahedron& tet = mesh_->tetrahedron(t);
   Mat3<Real> frame;  // SOFA's R_0_2: world to the element's current frame
   const auto d = displacement(element, tetrahedron_points<Real>(tet, x), parameters_.method, frame);
-  const auto force = element_force(element.gradient, element.material, d);
+  const Plasticity<Real> plasticity{parameters_.plastic_max_threshold, parameters_.plastic_yield_threshold,
+                                    parameters_.plastic_creep};
+  const auto force = element_force(element.gradient, element.material, d, &element.plastic_strain, plasticity);
   if (parameters_.method == TetrahedronFEMMethod::small) {
     for (std::size_t i = 0; i < 4; ++i) f[static_cast<std::size_t>(tet[i])] += force[i];
     return;
@@ -525,6 +560,11 @@ std::vector<double> TetrahedronFEMForceField<Real>::model_values() const {
   values.insert(values.end(), parameters_.local_stiffness_factor.begin(), parameters_.local_stiffness_factor.end());
   values.push_back(static_cast<double>(parameters_.method));
   values.push_back(static_cast<double>(parameters_.rayleigh_stiffness));
+  if (parameters_.plastic_max_threshold > 0) {
+    values.insert(values.end(), {static_cast<double>(parameters_.plastic_max_threshold),
+                                 static_cast<double>(parameters_.plastic_yield_threshold),
+                                 static_cast<double>(parameters_.plastic_creep)});
+  }
   return values;
 }
 

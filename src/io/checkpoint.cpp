@@ -253,6 +253,14 @@ std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t hash) {
 
 void write_checkpoint(const std::filesystem::path& path, const Simulation<double>& simulation,
                       const std::string& scene_name) {
+  for (const auto& object : simulation.objects) {
+    for (const auto& field : object.system.force_fields) {
+      if (const std::string unsaved = field->unsaved_state(); !unsaved.empty()) {
+        throw make_error(path.string(), ": not written: ", object.path, "'s ", field->component(), " carries ", unsaved,
+                         ", which checkpoints do not save");
+      }
+    }
+  }
   ByteWriter out;
   out.bytes.append(kMagic);
   out.u32(kCheckpointVersion);

@@ -5,6 +5,7 @@
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/io/surface_readers.h"
 #include "fastcorot/sim/barycentric_mapping.h"
+#include "fastcorot/sim/merged_objects.h"
 #include "fastcorot/sim/visual_surface.h"
 #include "fastcorot/topology/regular_grid.h"
 #include "force_field_builders.h"
@@ -123,7 +124,7 @@ class Builder {
     rank_objects(root, rank);
     std::vector<std::size_t> state_objects;
     for (const SceneObject* state : states_) state_objects.push_back(rank.at(state));
-    return {std::move(simulation_), std::move(info_), std::move(warnings_), std::move(state_objects)};
+    return {std::move(simulation_), std::move(info_), std::move(warnings_), std::move(state_objects), std::move(state_counts_)};
   }
 
  private:
@@ -173,23 +174,19 @@ class Builder {
     for (auto& child : node.children) collect(*child, nodes);
   }
 
-  void build_object(GraphNode& solver_node, Component& integrator) {
-    std::vector<GraphNode*> nodes;
-    mapped_.clear();
-    collect(solver_node, nodes);
-    std::vector<Component*> states;
-    for (GraphNode* node : nodes) {
-      for (Component* c : node->of_category("state")) states.push_back(c);
+  // The nearest state at or above `node` among `states` (nullptr when none is).
+  static Component* owner(const GraphNode& node, const std::vector<Component*>& states) {
+    for (const GraphNode* scope = &node; scope; scope = scope->parent) {
+      for (Component* state : states) {
+        if (state->node == scope) return state;
+      }
     }
-    if (states.empty()) {
-      throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
-    }
-    if (states.size() > 1) {
-      throw make_error(states[1]->where(), ": a second MechanicalObject under the solver of node ",
-                       solver_node.path, "; fastcorot simulates one object per solver (SOFA solves the objects under one "
-                       "solver as one system, which is not supported yet: give each object its own solver)");
-    }
-    Component& state = *states.front();
+    return nullptr;
+  }
+
+  // One object: `state` with the components of `nodes` and the visual models of `visuals`.
+  SimulatedObject<double> build_part(Component& state, const std::vector<GraphNode*>& nodes,
+                                     const std::vector<GraphNode*>& visuals) {
     SimulatedObject<double> object;
     object.path = state.node->path;
     auto& system = object.system;
@@ -257,12 +254,60 @@ class Builder {
     } catch (const Error& error) {
       throw make_error(state.where(), ": ", error.what());
     }
-    for (GraphNode* visual_node : mapped_) add_visual_surfaces(*visual_node, object);
+    for (GraphNode* visual_node : visuals) add_visual_surfaces(*visual_node, object);
+    return object;
+  }
+
+  void build_object(GraphNode& solver_node, Component& integrator) {
+    std::vector<GraphNode*> nodes;
+    mapped_.clear();
+    collect(solver_node, nodes);
+    std::vector<Component*> states;
+    for (GraphNode* node : nodes) {
+      for (Component* c : node->of_category("state")) states.push_back(c);
+    }
+    if (states.empty()) {
+      throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
+    }
+    SimulatedObject<double> object;
+    if (states.size() == 1) {
+      object = build_part(*states.front(), nodes, mapped_);
+    } else {
+      // SOFA's solver integrates every object below it as one system: each object is built from the
+      // nodes whose nearest state is its own, then they are merged.
+      std::vector<SimulatedObject<double>> parts;
+      for (Component* state : states) {
+        std::vector<GraphNode*> own, visuals;
+        for (GraphNode* node : nodes) {
+          if (owner(*node, states) == state) own.push_back(node);
+        }
+        for (GraphNode* node : mapped_) {
+          if (owner(*node->parent, states) == state) visuals.push_back(node);
+        }
+        parts.push_back(build_part(*state, own, visuals));
+      }
+      for (GraphNode* node : nodes) {
+        if (owner(*node, states)) continue;
+        for (const auto& c : node->components) {
+          if (c->spec && (c->spec->category == "forcefield" || c->spec->category == "mass" || c->spec->category == "constraint")) {
+            throw make_error(c->where(), ": it is in node ", node->path, ", above the objects of the solver of node ",
+                             solver_node.path, ": which object it acts on is not defined");
+          }
+        }
+      }
+      try {
+        object = merge_objects(std::move(parts), solver_node.path);
+      } catch (const Error& error) {
+        throw make_error(integrator.where(), ": ", error.what());
+      }
+    }
+    const Index n = object.system.size();
     auto solvers = build_solvers(data_, info_, integrator, nodes, n);
     object.ode_solver = std::move(solvers.ode);
     object.linear_solver = std::move(solvers.linear);
     simulation_.objects.push_back(std::move(object));
-    states_.push_back(state.object);
+    states_.push_back(states.front()->object);
+    state_counts_.push_back(states.size());
   }
 
   // The visual models of a mapped child node, with their mapping onto the object.
@@ -549,8 +594,11 @@ class Builder {
       if (data_.boolean(c, "updateStiffnessMatrix", false)) {
         throw make_error("updateStiffnessMatrix=\"true\" is not supported (J is taken from the rest shape)");
       }
-      if (data_.real(c, "plasticMaxThreshold", 0.0) > 0) {
-        throw make_error("plasticMaxThreshold > 0: plasticity is not simulated by fastcorot");
+      parameters.plastic_max_threshold = data_.real(c, "plasticMaxThreshold", 0.0);
+      if (c.has("plasticYieldThreshold")) parameters.plastic_yield_threshold = data_.real(c, "plasticYieldThreshold", 0.0);
+      if (c.has("plasticCreep")) parameters.plastic_creep = data_.real(c, "plasticCreep", 0.0);
+      if (parameters.plastic_max_threshold > 0 && assembling) {
+        throw make_error("plasticity with computeGlobalMatrix=\"true\": SOFA does not support it either (its force is not computed)");
       }
       if (parameters.von_mises == 1 && parameters.method == TetrahedronFEMMethod::small) {
         info_.push_back(c.where() + ": computeVonMisesStress=\"1\" with method small: SOFA marks the component invalid and "
@@ -673,7 +721,8 @@ class Builder {
   std::vector<GraphNode*> mapped_;  // the mapped child nodes with visual models of the object being built
   SceneData data_;
   Simulation<double> simulation_;
-  std::vector<const SceneObject*> states_;  // the MechanicalObject of each simulated object
+  std::vector<const SceneObject*> states_;  // the (first) MechanicalObject of each simulated object
+  std::vector<std::size_t> state_counts_;   // how many MechanicalObjects each simulated object holds
   std::map<const Component*, std::shared_ptr<TetMesh>> meshes_;
 };
 

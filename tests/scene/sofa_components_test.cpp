@@ -6,6 +6,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/fem/spring_force_field.h"
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/sim/explicit_solvers.h"
 #include "fastcorot/sim/newmark_solver.h"
 
@@ -249,6 +250,57 @@ TEST(SofaProjectiveConstraints, AffineMovementOnThePairBoxShell) {
   EXPECT_EQ(system.state.velocity[2], Vec3<double>::Zero());
   EXPECT_NE(error_of(beam("<AffineMovementProjectiveConstraint indices=\"1\" rotation=\"1 0 0\"/>")).find("rotation needs 9 numbers"),
             std::string::npos);
+}
+
+// Two beams: under one solver (SOFA's one system), or each with its own.
+std::string two_beams(bool one_solver, const std::string& second_gravity = "") {
+  const std::string solver = "<EulerImplicitSolver rayleighMass=\"0.1\"/><EigenSimplicialLDLT/>";
+  auto object = [&](const std::string& name, const std::string& min, const std::string& extra) {
+    return "<Node name=\"" + name + "\"" + extra + ">" + (one_solver ? "" : solver) +
+           "<RegularGridTopology name=\"grid\" n=\"3 2 2\" min=\"" + min + "\" max=\"2 1 1\"/><MechanicalObject/>"
+           "<TetrahedronSetTopologyContainer name=\"tets\"/><Hexa2TetraTopologicalMapping input=\"@grid\" output=\"@tets\"/>"
+           "<UniformMass totalMass=\"1\"/><TetrahedronFEMForceField youngModulus=\"100\" poissonRatio=\"0.3\"/>"
+           "<FixedProjectiveConstraint indices=\"0 3\"/></Node>";
+  };
+  return "<Node name=\"group\">" + (one_solver ? solver : std::string()) + object("a", "0 0 0", "") +
+         object("b", "0 0 5", second_gravity) + "</Node>";
+}
+
+TEST(SofaSolvers, ObjectsUnderOneSolverAreOneSystem) {
+  LoadedScene together = build(two_beams(true), "gravity=\"0 -9.81 1\"");
+  LoadedScene apart = build(two_beams(false), "gravity=\"0 -9.81 1\"");
+  ASSERT_EQ(together.simulation.objects.size(), 1u);
+  ASSERT_EQ(apart.simulation.objects.size(), 2u);
+  EXPECT_EQ(together.state_counts, (std::vector<std::size_t>{2}));
+  const auto& merged = together.simulation.objects[0].system;
+  EXPECT_EQ(merged.size(), 24);
+  EXPECT_EQ(merged.fixed, (std::vector<Index>{0, 3, 12, 15}));
+  for (int s = 0; s < 5; ++s) {
+    together.simulation.step();
+    apart.simulation.step();
+  }
+  // A block-diagonal system: the joint direct solve is each object's, up to rounding.
+  for (std::size_t o = 0; o < 2; ++o) {
+    for (std::size_t i = 0; i < 12; ++i) {
+      EXPECT_LT((merged.state.position[12 * o + i] - apart.simulation.objects[o].system.state.position[i]).norm(), 1e-10);
+    }
+  }
+  EXPECT_NE(error_of(two_beams(true, " gravity=\"0 0 -1\"")).find("another gravity"), std::string::npos);
+}
+
+TEST(SofaPlasticity, TheSceneAttributesReachTheForceField) {
+  std::string plastic = beam("");
+  plastic.replace(plastic.find("TetrahedronFEMForceField"), 24,
+                  "TetrahedronFEMForceField plasticMaxThreshold=\"0.1\" plasticYieldThreshold=\"0.02\" plasticCreep=\"0.5\"");
+  const LoadedScene built = build(plastic);
+  const auto* field = dynamic_cast<const TetrahedronFEMForceField<double>*>(built.simulation.objects[0].system.force_fields[0].get());
+  ASSERT_NE(field, nullptr);
+  EXPECT_EQ(field->parameters().plastic_max_threshold, 0.1);
+  EXPECT_EQ(field->parameters().plastic_yield_threshold, 0.02);
+  EXPECT_EQ(field->parameters().plastic_creep, 0.5);
+  std::string assembled = plastic;
+  assembled.replace(assembled.find("plasticMaxThreshold"), 0, "computeGlobalMatrix=\"1\" ");
+  EXPECT_NE(error_of(assembled).find("plasticity with computeGlobalMatrix"), std::string::npos);
 }
 
 }  // namespace

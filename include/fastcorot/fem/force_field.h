@@ -69,6 +69,9 @@ class ForceField {
   virtual void check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const = 0;
   virtual void apply(const TopologyChange& change) = 0;
 
+  // What the field carries from step to step that checkpoints do not save ("" when nothing): a run
+  // with such a field is not checkpointed rather than resumed wrongly.
+  virtual std::string unsaved_state() const { return {}; }
   // Values that define the model (material, method, damping), for checkpoints' fingerprints.
   virtual std::vector<double> model_values() const = 0;
 

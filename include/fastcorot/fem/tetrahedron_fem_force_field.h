@@ -61,6 +61,12 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
     // SOFA's older corotational tetrahedron, whose small, large and polar methods compute the same
     // element (the same J, K, rotations and tangent) in the same order of operations.
     std::string component = "TetrahedronFEMForceField";
+    // SOFA's plasticity (on when plastic_max_threshold > 0): at each force evaluation the elastic
+    // strain e = J^T D - p grows p by creep e when |e| > yield, p is scaled back to norm max when
+    // larger, and the force is that of J^T D - p. Defaults as SOFA's (float constants).
+    Real plastic_max_threshold = 0;
+    Real plastic_yield_threshold = static_cast<Real>(0.0001f);
+    Real plastic_creep = static_cast<Real>(0.9f);
   };
 
   // What SOFA keeps per tetrahedron, compactly: J holds three distinct values per vertex
@@ -76,6 +82,9 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
     Mat3<Real> initial_rotation = Mat3<Real>::Identity();
     Mat3<Real> rotation = Mat3<Real>::Identity();  // at the last add_force
     Mat3<Real> initial_transformation = Mat3<Real>::Identity();  // svd: the rest edge matrix's inverse
+    // The plastic part of the strain J^T D (SOFA's _plasticStrains), updated by every force
+    // evaluation when plasticity is on.
+    std::array<Real, 6> plastic_strain{};
   };
 
   // Computes the rest data from `rest_positions`. Throws fastcorot::Error for an empty mesh, a list
@@ -86,6 +95,9 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
                            Parameters parameters);
 
   std::string component() const override { return parameters_.component; }
+  std::string unsaved_state() const override {
+    return parameters_.plastic_max_threshold > 0 ? "the plastic strains (plasticMaxThreshold > 0)" : "";
+  }
   std::string method_name() const override { return to_string(parameters_.method); }
   const TetMesh& mesh() const override { return *mesh_; }
   const Parameters& parameters() const { return parameters_; }

@@ -27,6 +27,9 @@ struct LoadedScene {
   // from, as its rank among all the scene's objects in document order (a node's objects, then its
   // child nodes' depth first). Front ends that keep the scene tree use it to find an object's state.
   std::vector<std::size_t> state_objects;
+  // For each simulated object, how many MechanicalObjects it holds: 1, or more where one solver
+  // integrates several objects as one system (their states one after the other, in document order).
+  std::vector<std::size_t> state_counts;
 };
 
 LoadedScene build_scene(const SceneNode& root, const SceneOptions& options = {});

@@ -28,6 +28,8 @@ class Mass {
   static Mass consistent(Eigen::SparseMatrix<Real> matrix);
 
   bool is_lumped() const { return matrix_.size() == 0; }
+  // The consistent matrix (empty when lumped).
+  const Eigen::SparseMatrix<Real, Eigen::RowMajor>& matrix() const { return matrix_; }
   Index size() const { return static_cast<Index>(vertex_masses_.size()); }
   // Lumped masses, or the row sums of the consistent matrix.
   std::span<const Real> vertex_masses() const { return vertex_masses_; }

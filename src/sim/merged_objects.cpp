@@ -1,0 +1,131 @@
+#include "fastcorot/sim/merged_objects.h"
+
+#include "fastcorot/core/error.h"
+
+namespace fastcorot {
+
+namespace {
+
+TetMesh shifted_mesh(const TetMesh& mesh, Index offset, Index total) {
+  std::vector<Tetrahedron> tetrahedra(mesh.tetrahedra().begin(), mesh.tetrahedra().end());
+  for (auto& t : tetrahedra) {
+    for (Index& v : t) v += offset;
+  }
+  return TetMesh(total, std::move(tetrahedra));
+}
+
+}  // namespace
+
+template <class Real>
+OffsetForceField<Real>::OffsetForceField(std::shared_ptr<ForceField<Real>> inner, Index offset, Index total)
+    : inner_(std::move(inner)), offset_(offset), count_(inner_->mesh().num_points()),
+      shifted_(shifted_mesh(inner_->mesh(), offset, total)) {
+  if (offset_ < 0 || offset_ + count_ > total) {
+    throw make_error(inner_->component(), ": points [", offset_, ", ", offset_ + count_, ") outside a state of ", total);
+  }
+}
+
+template <class Real>
+void OffsetForceField<Real>::check_new_tetrahedra(std::span<const Tetrahedron>) const {
+  throw make_error(inner_->component(), ": topological changes of objects solved together are not supported");
+}
+
+template <class Real>
+void OffsetForceField<Real>::apply(const TopologyChange&) {
+  throw make_error(inner_->component(), ": topological changes of objects solved together are not supported");
+}
+
+template <class Real>
+std::vector<double> OffsetForceField<Real>::model_values() const {
+  std::vector<double> values = inner_->model_values();
+  values.push_back(static_cast<double>(offset_));
+  return values;
+}
+
+template class OffsetForceField<double>;
+template class OffsetForceField<float>;
+
+SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts, const std::string& path) {
+  SimulatedObject<double> merged;
+  merged.path = path;
+  if (parts.empty()) throw make_error(path, ": no objects to merge");
+  auto& system = merged.system;
+  system.gravity = parts.front().system.gravity;
+  Index total = 0;
+  for (const auto& part : parts) total += part.system.size();
+  const bool massive = parts.front().system.mass.size() != 0;
+  bool lumped = true;
+  std::vector<Tetrahedron> all_tetrahedra;
+  Index offset = 0;
+  for (auto& part : parts) {
+    auto& s = part.system;
+    const auto shift = [offset](Index i) { return i + offset; };
+    if (s.gravity != system.gravity) throw make_error(part.path, ": another gravity than ", parts.front().path, " under the same solver");
+    if ((s.mass.size() != 0) != massive) throw make_error(part.path, ": a mass on some of the objects under one solver only");
+    if (!part.topology_scripts.empty()) {
+      throw make_error(part.path, ": scripted topological changes of objects solved together are not supported");
+    }
+    lumped = lumped && s.mass.is_lumped();
+    system.state.position.insert(system.state.position.end(), s.state.position.begin(), s.state.position.end());
+    system.state.velocity.insert(system.state.velocity.end(), s.state.velocity.begin(), s.state.velocity.end());
+    system.state.rest_position.insert(system.state.rest_position.end(), s.state.rest_position.begin(), s.state.rest_position.end());
+    for (auto& field : s.force_fields) system.force_fields.push_back(std::make_shared<OffsetForceField<double>>(field, offset, total));
+    for (Index i : s.fixed) system.fixed.push_back(shift(i));
+    for (Index i : s.zero_velocity) system.zero_velocity.push_back(shift(i));
+    for (auto constant : s.constant_forces) {
+      for (Index& i : constant.indices) i = shift(i);
+      system.constant_forces.push_back(std::move(constant));
+    }
+    for (auto p : s.projections) system.projections.push_back({shift(p.point), p.projector});
+    for (auto p : s.placements) system.placements.push_back({shift(p.point), p.projector, p.origin, p.velocity_projector});
+    for (auto m : s.motions) system.motions.push_back({shift(m.point), m.start, m.end, m.begin_time, m.end_time});
+    merged.force_field_drawing.insert(merged.force_field_drawing.end(), part.force_field_drawing.begin(), part.force_field_drawing.end());
+    merged.boxes.insert(merged.boxes.end(), part.boxes.begin(), part.boxes.end());
+    for (auto surface : part.visual_surfaces) {
+      for (auto& slots : surface.map.vertices) {
+        for (Index& v : slots) v = shift(v);
+      }
+      merged.visual_surfaces.push_back(std::move(surface));
+    }
+    if (part.mesh) {
+      for (Tetrahedron t : part.mesh->tetrahedra()) {
+        for (Index& v : t) v = shift(v);
+        all_tetrahedra.push_back(t);
+      }
+    }
+    offset += s.size();
+  }
+  if (massive) {
+    // Masses one after the other: lumped stays lumped, else a block-diagonal matrix.
+    if (lumped) {
+      std::vector<double> masses;
+      for (const auto& part : parts) masses.insert(masses.end(), part.system.mass.vertex_masses().begin(), part.system.mass.vertex_masses().end());
+      system.mass = Mass<double>::lumped(std::move(masses));
+    } else {
+      std::vector<Eigen::Triplet<double>> entries;
+      Index at = 0;
+      for (const auto& part : parts) {
+        const auto& mass = part.system.mass;
+        if (mass.is_lumped()) {
+          for (Index i = 0; i < mass.size(); ++i) entries.emplace_back(at + i, at + i, mass.vertex_masses()[static_cast<std::size_t>(i)]);
+        } else {
+          const auto& m = mass.matrix();
+          for (int r = 0; r < m.outerSize(); ++r) {
+            for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(m, r); it; ++it) {
+              entries.emplace_back(at + static_cast<Index>(it.row()), at + static_cast<Index>(it.col()), it.value());
+            }
+          }
+        }
+        at += part.system.size();
+      }
+      Eigen::SparseMatrix<double> matrix(total, total);
+      matrix.setFromTriplets(entries.begin(), entries.end());
+      system.mass = Mass<double>::consistent(matrix);
+    }
+  }
+  if (!all_tetrahedra.empty()) merged.mesh = std::make_shared<TetMesh>(total, std::move(all_tetrahedra));
+  system.finalize();
+  return merged;
+}
+
+}  // namespace fastcorot
