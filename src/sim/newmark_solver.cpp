@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/sim/explicit_solvers.h"
 #include "carried_vectors.h"
+#include "coefficient_checks.h"
 
 #include <cmath>
 
@@ -11,14 +12,11 @@ namespace fastcorot {
 template <class Real>
 NewmarkSolver<Real>::NewmarkSolver(Parameters parameters, Index points)
     : parameters_(parameters), acceleration_(static_cast<std::size_t>(points), Vec3<Real>::Zero()) {
-  const auto check = [](Real value, const char* name) {
-    if (!(value >= 0) || !std::isfinite(value)) throw make_error("NewmarkImplicitSolver: ", name, " = ", value, ": must be finite and >= 0");
-  };
-  check(parameters_.rayleigh_stiffness, "rayleighStiffness");
-  check(parameters_.rayleigh_mass, "rayleighMass");
-  check(parameters_.velocity_damping, "vdamping");
-  check(parameters_.gamma, "gamma");
-  check(parameters_.beta, "beta");
+  detail::check_coefficient(parameters_.rayleigh_stiffness, "NewmarkImplicitSolver: rayleighStiffness");
+  detail::check_coefficient(parameters_.rayleigh_mass, "NewmarkImplicitSolver: rayleighMass");
+  detail::check_coefficient(parameters_.velocity_damping, "NewmarkImplicitSolver: vdamping");
+  detail::check_coefficient(parameters_.gamma, "NewmarkImplicitSolver: gamma");
+  detail::check_coefficient(parameters_.beta, "NewmarkImplicitSolver: beta");
 }
 
 template <class Real>

@@ -1,5 +1,6 @@
 #include "fastcorot/sim/ode_solver.h"
 
+#include "coefficient_checks.h"
 #include "fastcorot/core/error.h"
 
 #include <cmath>
@@ -7,16 +8,7 @@
 
 namespace fastcorot {
 
-namespace {
-
-template <class Real>
-void check_coefficient(Real value, const char* name) {
-  if (!(value >= 0) || !std::isfinite(value)) {
-    throw make_error(name, " = ", value, ": must be finite and >= 0");
-  }
-}
-
-}  // namespace
+using detail::check_coefficient;
 
 template <class Real>
 ImplicitEulerSolver<Real>::ImplicitEulerSolver(Parameters parameters) : parameters_(parameters) {

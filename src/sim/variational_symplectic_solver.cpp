@@ -1,6 +1,7 @@
 #include "fastcorot/sim/variational_symplectic_solver.h"
 
 #include "carried_vectors.h"
+#include "coefficient_checks.h"
 #include "fastcorot/core/error.h"
 
 #include <cmath>
@@ -10,14 +11,9 @@ namespace fastcorot {
 template <class Real>
 VariationalSymplecticSolver<Real>::VariationalSymplecticSolver(Parameters parameters, Index points)
     : parameters_(parameters), momentum_(static_cast<std::size_t>(points), Vec3<Real>::Zero()) {
-  const auto check = [](Real value, const char* name) {
-    if (!(value >= 0) || !std::isfinite(value)) {
-      throw make_error("VariationalSymplecticSolver: ", name, " = ", value, ": must be finite and >= 0");
-    }
-  };
-  check(parameters_.newton_error, "newtonError");
-  check(parameters_.rayleigh_stiffness, "rayleighStiffness");
-  check(parameters_.rayleigh_mass, "rayleighMass");
+  detail::check_coefficient(parameters_.newton_error, "VariationalSymplecticSolver: newtonError");
+  detail::check_coefficient(parameters_.rayleigh_stiffness, "VariationalSymplecticSolver: rayleighStiffness");
+  detail::check_coefficient(parameters_.rayleigh_mass, "VariationalSymplecticSolver: rayleighMass");
   if (parameters_.newton_steps < 0) throw make_error("VariationalSymplecticSolver: steps = ", parameters_.newton_steps, ": must be >= 0");
 }
 
