@@ -105,4 +105,57 @@ void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<d
   }
 }
 
+void add_attach_constraint(SceneData& data, Component& c, const std::vector<Component*>& states,
+                           const std::vector<Index>& offsets, const std::vector<Index>& sizes,
+                           MechanicalSystem<double>& system) {
+  // Which of `states` a link designates; without the link, the nearest state at or above c (SOFA's
+  // context state).
+  auto object = [&](const char* name) -> std::size_t {
+    const Component* state = nullptr;
+    if (c.has(name)) {
+      state = &data.resolve_state(*c.node, c.object->attributes.at(name), c);
+    } else {
+      for (const GraphNode* scope = c.node; scope && !state; scope = scope->parent) {
+        for (const Component* s : states) {
+          if (s->node == scope) state = s;
+        }
+      }
+      if (!state) throw make_error(c.where(), ": ", name, " is not given and no MechanicalObject is at or above node ", c.node->path);
+    }
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      if (states[k] == state) return k;
+    }
+    throw make_error(c.where(), ": ", name, " ", state->where(), " is not integrated by the ODE solver of this constraint's objects");
+  };
+  const std::size_t first = object("object1"), second = object("object2");
+  const auto indices1 = data.indices(c, "indices1"), indices2 = data.indices(c, "indices2");
+  if (indices1.size() != indices2.size()) {
+    throw make_error(c.where(), ": indices1 has ", indices1.size(), " points, indices2 ", indices2.size(), " (one per pair)");
+  }
+  const Numbers& factors = data.data(c, "constraintFactor");
+  if (!factors.empty() && factors.size() != indices2.size()) {
+    throw make_error(c.where(), ": constraintFactor has ", factors.size(), " values for ", indices2.size(), " pairs");
+  }
+  if (data.real(c, "minDistance", -1) != -1) {
+    throw make_error(c.where(), ": minDistance (releasing pairs that drift apart) is not supported; only -1");
+  }
+  if (c.has("lastDir") && data.vec3(c, "lastDir", {0, 0, 0}).norm() > 1e-10) {
+    throw make_error(c.where(), ": lastDir and lastPos (releasing points past a plane) are not supported");
+  }
+  const bool two_way = data.boolean(c, "twoWay", false);
+  const double position = data.real(c, "positionFactor", 1), velocity = data.real(c, "velocityFactor", 1),
+               response = data.real(c, "responseFactor", 1);
+  auto point = [&](std::size_t object_index, Index i, const char* list) {
+    if (i < 0 || i >= sizes[object_index]) {
+      throw make_error(c.where(), ": ", list, " index ", i, " out of range [0, ", sizes[object_index], ")");
+    }
+    return offsets[object_index] + i;
+  };
+  for (std::size_t k = 0; k < indices1.size(); ++k) {
+    const double factor = factors.empty() ? 1.0 : factors[k];
+    system.couplings.push_back({point(first, indices1[k], "indices1"), point(second, indices2[k], "indices2"), two_way,
+                                0.5 * response * factor, 0.5 * position * factor, 0.5 * velocity * factor});
+  }
+}
+
 }  // namespace fastcorot::scene_detail

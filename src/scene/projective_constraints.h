@@ -1,6 +1,7 @@
 // The projective constraints beyond FixedProjectiveConstraint, built onto an object's
 // MechanicalSystem as partial projections and end-of-step placements (mechanical_system.h):
-// PartialFixed-, FixedPlane-, Plane- and LineProjectiveConstraint, each as SOFA defines it.
+// PartialFixed-, FixedPlane-, Plane-, Line-, AffineMovement- and AttachProjectiveConstraint, each
+// as SOFA defines it.
 // Internal to src/scene (scene_builder.cpp).
 #pragma once
 
@@ -15,5 +16,13 @@ bool is_partial_projective_constraint(std::string_view type);
 // Adds constraint c to `system` (whose positions are the state at init). Throws fastcorot::Error
 // naming c for an index out of range or a malformed attribute.
 void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system);
+
+// Adds AttachProjectiveConstraint c to `system`, whose points are those of `states` one after the
+// other (states[k]'s first point at offsets[k], sizes[k] points). Throws fastcorot::Error naming c
+// when an object is not among `states` (another solver's), for an index out of range, mismatched
+// lists, or the point-releasing options (minDistance, lastDir) that are not supported.
+void add_attach_constraint(SceneData& data, Component& c, const std::vector<Component*>& states,
+                           const std::vector<Index>& offsets, const std::vector<Index>& sizes,
+                           MechanicalSystem<double>& system);
 
 }  // namespace fastcorot::scene_detail

@@ -140,6 +140,14 @@ class Builder {
       build_object(node, *integrators.front());
       return;
     }
+    if (!under_solver) {
+      for (const auto& c : node.components) {
+        if (c->type() == "AttachProjectiveConstraint") {
+          throw make_error(c->where(), ": no ODE solver at or above node ", node.path,
+                           ": the objects it ties must be integrated by one solver above them (not supported otherwise)");
+        }
+      }
+    }
     if (!under_solver && !node.of_category("state").empty()) {
       info_.push_back(node.scene->location.to_string() + ": node " + node.path +
                       " has no ODE solver above it: it is not simulated (as in SOFA)");
@@ -270,8 +278,11 @@ class Builder {
       throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
     }
     SimulatedObject<double> object;
+    std::vector<Index> offsets, sizes;
     if (states.size() == 1) {
       object = build_part(*states.front(), nodes, mapped_);
+      offsets = {0};
+      sizes = {object.system.size()};
     } else {
       // SOFA's solver integrates every object below it as one system: each object is built from the
       // nodes whose nearest state is its own, then they are merged.
@@ -285,11 +296,14 @@ class Builder {
           if (owner(*node->parent, states) == state) visuals.push_back(node);
         }
         parts.push_back(build_part(*state, own, visuals));
+        offsets.push_back(sizes.empty() ? 0 : offsets.back() + sizes.back());
+        sizes.push_back(parts.back().system.size());
       }
       for (GraphNode* node : nodes) {
         if (owner(*node, states)) continue;
         for (const auto& c : node->components) {
-          if (c->spec && (c->spec->category == "forcefield" || c->spec->category == "mass" || c->spec->category == "constraint")) {
+          if (c->spec && c->type() != "AttachProjectiveConstraint" &&
+              (c->spec->category == "forcefield" || c->spec->category == "mass" || c->spec->category == "constraint")) {
             throw make_error(c->where(), ": it is in node ", node->path, ", above the objects of the solver of node ",
                              solver_node.path, ": which object it acts on is not defined");
           }
@@ -301,6 +315,7 @@ class Builder {
         throw make_error(integrator.where(), ": ", error.what());
       }
     }
+    add_attach_constraints(nodes, states, offsets, sizes, object.system);
     const Index n = object.system.size();
     auto solvers = build_solvers(data_, info_, integrator, nodes, n);
     object.ode_solver = std::move(solvers.ode);
@@ -308,6 +323,27 @@ class Builder {
     simulation_.objects.push_back(std::move(object));
     states_.push_back(states.front()->object);
     state_counts_.push_back(states.size());
+  }
+
+  // The pair constraints of the solver's nodes, which tie points of its objects (in any node:
+  // they name their objects).
+  void add_attach_constraints(const std::vector<GraphNode*>& nodes, const std::vector<Component*>& states,
+                              const std::vector<Index>& offsets, const std::vector<Index>& sizes,
+                              MechanicalSystem<double>& system) {
+    bool added = false;
+    for (GraphNode* node : nodes) {
+      for (const auto& c : node->components) {
+        if (c->type() != "AttachProjectiveConstraint") continue;
+        scene_detail::add_attach_constraint(data_, *c, states, offsets, sizes, system);
+        added = true;
+      }
+    }
+    if (!added) return;
+    try {
+      system.finalize();
+    } catch (const Error& error) {
+      throw make_error(states.front()->where(), ": ", error.what());
+    }
   }
 
   // The visual models of a mapped child node, with their mapping onto the object.

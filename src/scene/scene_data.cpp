@@ -165,6 +165,19 @@ Numbers SceneData::parse_numbers(const Component& c, const std::string& name, co
 
 Component& SceneData::resolve_object(const GraphNode& from, const std::string& link, const Component& user,
                                      const std::string& as_written) {
+  return resolve(from, link, user, as_written, false);
+}
+
+Component& SceneData::resolve_state(const GraphNode& from, const std::string& link, const Component& user) {
+  Component& target = resolve(from, link, user, "", true);
+  if (!target.spec || target.spec->category != "state") {
+    throw make_error(user.where(), ": link '", link, "' names ", target.where(), ", not a MechanicalObject");
+  }
+  return target;
+}
+
+Component& SceneData::resolve(const GraphNode& from, const std::string& link, const Component& user,
+                              const std::string& as_written, bool node_means_state) {
   auto fail = [&](const std::string& why) -> Component& {
     throw make_error(user.where(), ": broken link '", as_written.empty() ? link : as_written, "': ", why);
   };
@@ -214,6 +227,11 @@ Component& SceneData::resolve_object(const GraphNode& from, const std::string& l
       }
       for (const auto& child : scope->children) {
         if (child->scene->name == part) next = child.get();
+      }
+      if (next && last && node_means_state) {
+        const auto states = next->of_category("state");
+        if (states.empty()) return fail("node " + next->path + " has no MechanicalObject");
+        return *states.front();
       }
       if (next && last) return fail("'" + part + "' is a node, not a component");
     }

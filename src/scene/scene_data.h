@@ -82,6 +82,9 @@ class SceneData {
   // `as_written` is the attribute text shown in errors when it differs from `link`.
   Component& resolve_object(const GraphNode& from, const std::string& link, const Component& user,
                             const std::string& as_written = "");
+  // The MechanicalObject a link designates: the component itself, or, when the link names a node,
+  // that node's state (as SOFA resolves a link to a state given a node's path).
+  Component& resolve_state(const GraphNode& from, const std::string& link, const Component& user);
 
   // The node's topology slot (its last topology component, else the nearest ancestor's); nullptr
   // when there is none.
@@ -109,6 +112,8 @@ class SceneData {
 
  private:
   Numbers compute(Component& c, const std::string& name);
+  Component& resolve(const GraphNode& from, const std::string& link, const Component& user,
+                     const std::string& as_written, bool node_means_state);
   // The attribute as written: parsed numbers, or the data a link designates; nullopt when absent.
   std::optional<Numbers> written(Component& c, const std::string& name);
   Numbers parse_numbers(const Component& c, const std::string& name, const std::string& text) const;

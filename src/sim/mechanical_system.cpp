@@ -4,8 +4,51 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace fastcorot {
+
+namespace {
+
+// The couplings as an operator C (each of its 3×3 blocks a multiple of the identity): the rows of
+// the points they touch, each a list of (column point, weight); untouched points' rows are the
+// identity's. The couplings compose in order: C = C_k ... C_1.
+template <class Real>
+using CouplingRows = std::map<Index, std::vector<std::pair<Index, Real>>>;
+
+template <class Real>
+CouplingRows<Real> coupling_rows(const std::vector<PointCoupling<Real>>& couplings) {
+  CouplingRows<Real> rows;
+  auto row = [&rows](Index i) -> std::vector<std::pair<Index, Real>>& {
+    auto [at, inserted] = rows.try_emplace(i);
+    if (inserted) at->second.emplace_back(i, Real(1));
+    return at->second;
+  };
+  auto combine = [](const std::vector<std::pair<Index, Real>>& a, Real wa, const std::vector<std::pair<Index, Real>>& b,
+                    Real wb) {
+    std::map<Index, Real> sum;
+    for (const auto& [j, w] : a) sum[j] += wa * w;
+    for (const auto& [j, w] : b) sum[j] += wb * w;
+    std::vector<std::pair<Index, Real>> out;
+    for (const auto& [j, w] : sum) {
+      if (w != 0) out.emplace_back(j, w);
+    }
+    return out;
+  };
+  for (const auto& c : couplings) {
+    if (!c.two_way) {
+      row(c.second).clear();
+      continue;
+    }
+    const auto a = row(c.first), b = row(c.second);
+    row(c.first) = combine(a, 1 - c.response, b, c.response);
+    row(c.second) = combine(a, c.response, b, 1 - c.response);
+  }
+  return rows;
+}
+
+}  // namespace
 
 template <class Real>
 void MechanicalSystem<Real>::finalize() {
@@ -21,6 +64,14 @@ void MechanicalSystem<Real>::finalize() {
   for (const auto& p : projections) {
     if (p.point < 0 || p.point >= n) throw make_error("projected point index ", p.point, " out of range [0, ", n, ")");
     if (!p.projector.allFinite()) throw make_error("projected point ", p.point, ": the projection is not finite");
+  }
+  for (const auto& c : couplings) {
+    if (c.first < 0 || c.first >= n || c.second < 0 || c.second >= n) {
+      throw make_error("coupled points ", c.first, " and ", c.second, ": out of range [0, ", n, ")");
+    }
+    if (!std::isfinite(c.response) || !std::isfinite(c.position) || !std::isfinite(c.velocity)) {
+      throw make_error("coupled points ", c.first, " and ", c.second, ": a factor is not finite");
+    }
   }
   for (const auto& m : motions) {
     if (m.point < 0 || m.point >= n) throw make_error("moved point index ", m.point, " out of range [0, ", n, ")");
@@ -135,30 +186,55 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
     for (Index c = 0; c < 3; ++c) triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
   }
   Eigen::SparseMatrix<Real> matrix = sink.to_sparse(3 * size());
-  if (projections.empty()) return matrix;
-  // P A P + (I - P) with P block diagonal: identity but at the projected points (for a projector
-  // onto coordinate axes, SOFA's clearing of the rows and columns of the fixed directions).
+  if (projections.empty() && couplings.empty()) return matrix;
+  // P A P + (I - P) with P the operator project() applies: the couplings C, then the per-point
+  // projectors, then zero rows at fixed points (for a projector onto coordinate axes, SOFA's
+  // clearing of the rows and columns of the fixed directions).
+  const CouplingRows<Real> rows = coupling_rows(couplings);
+  std::vector<const Mat3<Real>*> projector(static_cast<std::size_t>(size()), nullptr);
+  for (const auto& p : projections) projector[static_cast<std::size_t>(p.point)] = &p.projector;
   std::vector<Eigen::Triplet<Real>> p_triplets, complement;
-  std::vector<bool> projected(static_cast<std::size_t>(size()), false);
-  for (const auto& p : projections) {
-    projected[static_cast<std::size_t>(p.point)] = true;
-    const Mat3<Real> rest = Mat3<Real>::Identity() - p.projector;
-    for (Index r = 0; r < 3; ++r) {
-      for (Index c = 0; c < 3; ++c) {
-        if (p.projector(r, c) != 0) p_triplets.emplace_back(3 * p.point + r, 3 * p.point + c, p.projector(r, c));
-        if (rest(r, c) != 0) complement.emplace_back(3 * p.point + r, 3 * p.point + c, rest(r, c));
+  const std::vector<std::pair<Index, Real>> unit_row = {{0, Real(1)}};
+  for (Index i = 0; i < size(); ++i) {
+    const auto at = rows.find(i);
+    const Mat3<Real> local = is_fixed[static_cast<std::size_t>(i)] ? Mat3<Real>::Zero()
+                             : projector[static_cast<std::size_t>(i)] ? *projector[static_cast<std::size_t>(i)]
+                                                                       : Mat3<Real>::Identity();
+    Mat3<Real> diagonal = Mat3<Real>::Zero();
+    if (at == rows.end()) {
+      diagonal = local;
+      for (Index r = 0; r < 3; ++r) {
+        for (Index c = 0; c < 3; ++c) {
+          if (local(r, c) != 0) p_triplets.emplace_back(3 * i + r, 3 * i + c, local(r, c));
+        }
+      }
+    } else {
+      for (const auto& [j, w] : at->second) {
+        const Mat3<Real> block = local * w;
+        if (j == i) diagonal = block;
+        for (Index r = 0; r < 3; ++r) {
+          for (Index c = 0; c < 3; ++c) {
+            if (block(r, c) != 0) p_triplets.emplace_back(3 * i + r, 3 * j + c, block(r, c));
+          }
+        }
       }
     }
-  }
-  for (Index i = 0; i < size(); ++i) {
-    if (projected[static_cast<std::size_t>(i)]) continue;
-    for (Index c = 0; c < 3; ++c) p_triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
+    const Mat3<Real> rest = Mat3<Real>::Identity() - diagonal;
+    for (Index r = 0; r < 3; ++r) {
+      for (Index c = 0; c < 3; ++c) {
+        if (rest(r, c) != 0) complement.emplace_back(3 * i + r, 3 * i + c, rest(r, c));
+      }
+    }
   }
   Eigen::SparseMatrix<Real> p_matrix(3 * size(), 3 * size()), rest_matrix(3 * size(), 3 * size());
   p_matrix.setFromTriplets(p_triplets.begin(), p_triplets.end());
   rest_matrix.setFromTriplets(complement.begin(), complement.end());
+  // Off the diagonal, (I - P) is -P's off-diagonal blocks.
+  Eigen::SparseMatrix<Real> off = p_matrix;
+  off.prune([](Index r, Index c, const Real&) { return r / 3 != c / 3; });
   Eigen::SparseMatrix<Real> projected_matrix = p_matrix * matrix * p_matrix;
   projected_matrix += rest_matrix;
+  projected_matrix -= off;
   return projected_matrix;
 }
 
@@ -170,7 +246,33 @@ void MechanicalSystem<Real>::diagonal_blocks(const MatrixFactors<Real>& factors,
   for (auto& block : blocks) block.setZero();
   if (mass.size() != 0) mass.add_diagonal_blocks(blocks, factors.m);
   for (const auto& field : force_fields) field->add_diagonal_blocks(blocks, factors.k, factors.b);
+  // Block i of P A P + (I - P) for P = Ppoints C (project()'s operator without the fixed points,
+  // whose blocks are the identity): sum_j P_ij A_jj P_ji + I - P_ii, with A's blocks between
+  // different points left out (exact when the only points P joins share no element).
+  std::vector<const Mat3<Real>*> projector(blocks.size(), nullptr);
+  for (const auto& p : projections) projector[static_cast<std::size_t>(p.point)] = &p.projector;
+  auto local = [&projector](Index i) -> Mat3<Real> {
+    const Mat3<Real>* p = projector[static_cast<std::size_t>(i)];
+    return p ? *p : Mat3<Real>::Identity();
+  };
+  const CouplingRows<Real> rows = coupling_rows(couplings);
+  auto weight = [&rows](Index i, Index j) {
+    const auto at = rows.find(i);
+    if (at == rows.end()) return Real(i == j ? 1 : 0);
+    for (const auto& [k, w] : at->second) {
+      if (k == j) return w;
+    }
+    return Real(0);
+  };
+  const std::vector<Mat3<Real>> original(blocks.begin(), blocks.end());
+  for (const auto& [i, row] : rows) {
+    const Mat3<Real> pi = local(i);
+    Mat3<Real> block = Mat3<Real>::Identity() - weight(i, i) * pi;
+    for (const auto& [j, w] : row) block += w * weight(j, i) * (pi * original[static_cast<std::size_t>(j)] * local(j));
+    blocks[static_cast<std::size_t>(i)] = block;
+  }
   for (const auto& p : projections) {
+    if (rows.count(p.point)) continue;
     Mat3<Real>& block = blocks[static_cast<std::size_t>(p.point)];
     block = (p.projector * block * p.projector + (Mat3<Real>::Identity() - p.projector)).eval();
   }
@@ -180,6 +282,17 @@ void MechanicalSystem<Real>::diagonal_blocks(const MatrixFactors<Real>& factors,
 
 template <class Real>
 void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
+  for (const auto& c : couplings) {
+    Vec3<Real>& second = v[static_cast<std::size_t>(c.second)];
+    if (!c.two_way) {
+      second.setZero();
+      continue;
+    }
+    Vec3<Real>& first = v[static_cast<std::size_t>(c.first)];
+    const Vec3<Real> correction = (second - first) * c.response;
+    first += correction;
+    second -= correction;
+  }
   for (const auto& p : projections) {
     Vec3<Real>& entry = v[static_cast<std::size_t>(p.point)];
     entry = (p.projector * entry).eval();
@@ -190,6 +303,13 @@ void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
 
 template <class Real>
 void MechanicalSystem<Real>::apply_placements(double time) {
+  for (const auto& c : couplings) {
+    const auto first = static_cast<std::size_t>(c.first), second = static_cast<std::size_t>(c.second);
+    state.position[second] -= ((state.position[second] - state.position[first]) * c.position).eval();
+    const Vec3<Real> correction = (state.velocity[second] - state.velocity[first]) * c.velocity;
+    state.velocity[first] += correction;
+    state.velocity[second] -= correction;
+  }
   for (const auto& p : placements) {
     Vec3<Real>& x = state.position[static_cast<std::size_t>(p.point)];
     x = (p.origin + p.projector * (x - p.origin)).eval();

@@ -77,6 +77,11 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
       system.constant_forces.push_back(std::move(constant));
     }
     for (auto p : s.projections) system.projections.push_back({shift(p.point), p.projector});
+    for (auto c : s.couplings) {
+      c.first = shift(c.first);
+      c.second = shift(c.second);
+      system.couplings.push_back(c);
+    }
     for (auto p : s.placements) system.placements.push_back({shift(p.point), p.projector, p.origin, p.velocity_projector});
     for (auto m : s.motions) system.motions.push_back({shift(m.point), m.start, m.end, m.begin_time, m.end_time});
     merged.force_field_drawing.insert(merged.force_field_drawing.end(), part.force_field_drawing.begin(), part.force_field_drawing.end());

@@ -1,6 +1,6 @@
 // SOFA components that scenes bring beyond our own (RegularGridTopology's nx/xmin forms and p0,
 // SubsetMapping, the partial projective constraints, MeshSpringForceField, the explicit and
-// Newmark integrators), fed as inline XML through the parser and builder; each expectation is
+// Newmark integrators, AttachProjectiveConstraint), fed as inline XML through the parser and builder; each expectation is
 // worked out by hand from SOFA's definition of the component.
 #include "fastcorot/scene/scene_builder.h"
 
@@ -286,6 +286,65 @@ TEST(SofaSolvers, ObjectsUnderOneSolverAreOneSystem) {
     }
   }
   EXPECT_NE(error_of(two_beams(true, " gravity=\"0 0 -1\"")).find("another gravity"), std::string::npos);
+}
+
+// two_beams(one_solver) with an AttachProjectiveConstraint in the group node.
+std::string attached_beams(const std::string& attach, bool one_solver = true) {
+  std::string scene = two_beams(one_solver);
+  scene.insert(scene.rfind("</Node>"), "<AttachProjectiveConstraint " + attach + "/>");
+  return scene;
+}
+
+TEST(SofaAttach, PairsOfTwoObjectsBecomeCouplingsOfTheMergedSystem) {
+  const LoadedScene scene = build(attached_beams(
+      "object1=\"@a\" object2=\"@b\" twoWay=\"1\" indices1=\"1 2\" indices2=\"4 5\" constraintFactor=\"1 0.5\" "
+      "positionFactor=\"0.8\" velocityFactor=\"0.6\" responseFactor=\"0.4\""));
+  const auto& couplings = scene.simulation.objects[0].system.couplings;
+  ASSERT_EQ(couplings.size(), 2u);
+  // b's points follow a's 12 in the merged state; each factor is SOFA's 0.5 factor constraintFactor.
+  EXPECT_EQ(couplings[1].first, 2);
+  EXPECT_EQ(couplings[1].second, 12 + 5);
+  EXPECT_TRUE(couplings[1].two_way);
+  EXPECT_EQ(couplings[1].response, 0.5 * 0.4 * 0.5);
+  EXPECT_EQ(couplings[1].position, 0.5 * 0.8 * 0.5);
+  EXPECT_EQ(couplings[1].velocity, 0.5 * 0.6 * 0.5);
+  const LoadedScene one_way = build(attached_beams("object1=\"@a\" object2=\"@b\" indices1=\"1\" indices2=\"4\""));
+  const auto& c = one_way.simulation.objects[0].system.couplings;
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_FALSE(c[0].two_way);
+  EXPECT_EQ(c[0].position, 0.5);
+}
+
+TEST(SofaAttach, TheSecondObjectHangsFromTheFirst) {
+  // b's corners 0 and 3 are fixed; a (not fixed) hangs by its far end (points 2, 5, 8, 11 at x = 2)
+  // from b's near face (0, 3, 6, 9 at x = 0, 5 further along z).
+  std::string scene = attached_beams("object1=\"@b\" object2=\"@a\" indices1=\"0 3 6 9\" indices2=\"2 5 8 11\"");
+  const std::string fixed = "<FixedProjectiveConstraint indices=\"0 3\"/>";
+  scene.replace(scene.find(fixed), fixed.size(), "");  // a's only
+  LoadedScene built = build(scene);
+  auto& system = built.simulation.objects[0].system;
+  for (int s = 0; s < 20; ++s) built.simulation.step();
+  // One way: every step a's point moves halfway to b's (5 away at first), so a follows b closely.
+  for (Index k = 0; k < 4; ++k) {
+    const Vec3<double> gap = system.state.position[static_cast<std::size_t>(3 * k + 2)] - system.state.position[static_cast<std::size_t>(12 + 3 * k)];
+    EXPECT_LT(gap.norm(), 0.02) << k;
+  }
+}
+
+TEST(SofaAttach, BadPairsAreRefused) {
+  EXPECT_NE(error_of(attached_beams("object1=\"@a\" object2=\"@b\" indices1=\"1\" indices2=\"12\"")).find("indices2 index 12 out of range"),
+            std::string::npos);
+  EXPECT_NE(error_of(attached_beams("object1=\"@a\" object2=\"@b\" indices1=\"1 2\" indices2=\"4\"")).find("one per pair"),
+            std::string::npos);
+  EXPECT_NE(error_of(attached_beams("object1=\"@a\" object2=\"@b\" indices1=\"1\" indices2=\"4\" constraintFactor=\"1 1\"")).find("constraintFactor"),
+            std::string::npos);
+  EXPECT_NE(error_of(attached_beams("object1=\"@a\" object2=\"@b\" indices1=\"1\" indices2=\"4\" minDistance=\"0.1\"")).find("minDistance"),
+            std::string::npos);
+  EXPECT_NE(error_of(attached_beams("object1=\"@a/grid\" object2=\"@b\" indices1=\"1\" indices2=\"4\"")).find("not a MechanicalObject"),
+            std::string::npos);
+  EXPECT_NE(error_of(attached_beams("object1=\"@a\" object2=\"@c\" indices1=\"1\" indices2=\"4\"")).find("broken link"), std::string::npos);
+  EXPECT_NE(error_of(attached_beams("object1=\"@a\" object2=\"@b\" indices1=\"1\" indices2=\"4\"", false)).find("no ODE solver"),
+            std::string::npos);
 }
 
 TEST(SofaPlasticity, TheSceneAttributesReachTheForceField) {

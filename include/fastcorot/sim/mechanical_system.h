@@ -60,6 +60,22 @@ struct PointMotion {
   double end_time = 0;
 };
 
+// Two points tied together (SOFA's AttachProjectiveConstraint on 3D points): `first` is object1's
+// point, `second` object2's. Increments and forces: one way, the second's are zeroed; two ways,
+// each moves towards the other by `response` (SOFA's 0.5 responseFactor constraintFactor) times
+// their difference. At the end of each step, the second point's position moves towards the first
+// by `position` times their difference (the first stays), and both velocities towards each other
+// by `velocity` times theirs, one way or two (SOFA's projectPosition and projectVelocity).
+template <class Real>
+struct PointCoupling {
+  Index first = 0;
+  Index second = 0;
+  bool two_way = false;
+  Real response = Real(0.5);
+  Real position = Real(0.5);
+  Real velocity = Real(0.5);
+};
+
 // Factors of the system matrix m M + b B + k K.
 template <class Real>
 struct MatrixFactors {
@@ -82,7 +98,10 @@ class MechanicalSystem {
   // in the order given: the later projector applies after the earlier one). Points in `fixed`
   // need none.
   std::vector<PointProjection<Real>> projections;
-  // End-of-step placements, applied in the order given (apply_placements).
+  // Coupled points, applied before the projections in the order given (SOFA applies the
+  // constraints of a parent node, where a pair constraint sits, before those of its children).
+  std::vector<PointCoupling<Real>> couplings;
+  // End-of-step placements, applied in the order given after the couplings' (apply_placements).
   std::vector<PointPlacement<Real>> placements;
   std::vector<PointMotion<Real>> motions;  // applied after the placements
   std::vector<ConstantForce<Real>> constant_forces;
@@ -114,12 +133,15 @@ class MechanicalSystem {
 
   // The 3×3 diagonal blocks of the same matrix, one per point, as assemble() has them (identity for
   // fixed and isolated points); overwrites `blocks` (#V blocks). For block-Jacobi preconditioning.
+  // At a point coupled two ways, the matrix blocks between the two points are left out (they are
+  // zero when no element joins them, as between two objects).
   void diagonal_blocks(const MatrixFactors<Real>& factors, std::span<Mat3<Real>> blocks) const;
 
-  // Zeroes the entries of fixed and isolated points and applies the partial projections.
+  // Applies the couplings and the partial projections and zeroes the entries of fixed and isolated
+  // points (SOFA's projectResponse).
   void project(std::span<Vec3<Real>> v) const;
   // SOFA's projectPosition and projectVelocity after the step that started at `time` (SOFA's
-  // context time): the placements, then the motions, on the state.
+  // context time): the couplings, the placements, then the motions, on the state.
   void apply_placements(double time = 0);
 
   // Topological changes of `mesh` (the mesh of one or more of the force fields, or of the mass):
