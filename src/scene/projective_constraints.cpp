@@ -2,6 +2,9 @@
 
 #include "fastcorot/core/error.h"
 
+#include <cmath>
+#include <string>
+
 namespace fastcorot::scene_detail {
 
 namespace {
@@ -27,12 +30,52 @@ Vec3<double> unit_or(const Vec3<double>& v, const Vec3<double>& fallback) {
   return norm == 0 ? fallback : Vec3<double>(v / norm);
 }
 
+// SOFA's PatchTestMovementProjectiveConstraint corners of `points`: four, or eight when the points
+// do not all share one z. Each is the last point that passes SOFA's test against the corner so
+// far (the tests are SOFA's as written, "or" of per-axis comparisons, corners 4 and 6 compared in
+// z with corners 0 and 2, corner 7 tried only when 5 is not taken).
+std::vector<Vec3<double>> patch_test_corners(const std::vector<Vec3<double>>& points) {
+  if (points.empty()) return {};
+  bool three_d = false;
+  for (const auto& p : points) three_d = three_d || p.z() != points.front().z();
+  std::vector<Vec3<double>> k(8, points.front());
+  for (const auto& p : points) {
+    if (p.x() < k[0].x() || p.y() < k[0].y() || p.z() < k[0].z()) k[0] = p;
+    if (p.x() > k[2].x() || p.y() > k[2].y() || p.z() < k[2].z()) k[2] = p;
+    if (p.y() < k[1].y() || p.x() > k[1].x() || p.z() < k[1].z()) k[1] = p;
+    if (p.x() < k[3].x() || p.y() > k[3].y() || p.z() < k[3].z()) k[3] = p;
+    if (three_d && (p.x() < k[4].x() || p.y() < k[4].y() || p.z() > k[0].z())) k[4] = p;
+    if (three_d && (p.x() > k[6].x() || p.y() > k[6].y() || p.z() > k[2].z())) k[6] = p;
+    if (three_d && (p.y() < k[5].y() || p.x() > k[5].x() || p.z() > k[5].z())) {
+      k[5] = p;
+    } else if (three_d && (p.x() < k[7].x() || p.y() > k[7].y() || p.z() > k[7].z())) {
+      k[7] = p;
+    }
+  }
+  if (!three_d) k.resize(4);
+  return k;
+}
+
+// The movement at point p: SOFA's weights alpha, beta (and gamma) from corners 0, 1, 3 (and 4).
+Vec3<double> patch_test_displacement(const std::vector<Vec3<double>>& k, const std::vector<Vec3<double>>& m,
+                                     const Vec3<double>& p) {
+  const double alpha = std::abs(p.x() - k[0].x()) / std::abs(k[1].x() - k[0].x());
+  const double beta = std::abs(p.y() - k[0].y()) / std::abs(k[3].y() - k[0].y());
+  auto face = [&](std::size_t o) {
+    return Vec3<double>(m[o] * (1 - alpha) * (1 - beta) + m[o + 1] * alpha * (1 - beta) + m[o + 2] * alpha * beta +
+                        m[o + 3] * (1 - alpha) * beta);
+  };
+  if (k.size() == 4) return face(0);
+  const double gamma = std::abs(p.z() - k[0].z()) / std::abs(k[4].z() - k[0].z());
+  return face(0) * (1 - gamma) + face(4) * gamma;
+}
+
 }  // namespace
 
 bool is_partial_projective_constraint(std::string_view type) {
   return type == "PartialFixedProjectiveConstraint" || type == "FixedPlaneProjectiveConstraint" ||
          type == "PlaneProjectiveConstraint" || type == "LineProjectiveConstraint" ||
-         type == "AffineMovementProjectiveConstraint";
+         type == "AffineMovementProjectiveConstraint" || type == "PatchTestMovementProjectiveConstraint";
 }
 
 void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system) {
@@ -84,6 +127,37 @@ void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<d
       const Vec3<double>& start = system.state.position[static_cast<std::size_t>(i)];
       system.projections.push_back({i, Mat3<double>::Zero()});
       system.motions.push_back({i, start, rotation * start + translation, begin, end});
+    }
+    return;
+  }
+  if (type == "PatchTestMovementProjectiveConstraint") {
+    // Each point goes from where it starts to start + the corners' movements interpolated at it,
+    // with SOFA's corners of the constrained points and its (bi/tri)linear weights.
+    const auto indices = constrained_points(data, c, size, false, {});
+    const auto corners = patch_test_corners(data.points(c, "constrainedPoints"));
+    // Read as SOFA reads a list of 3D vectors: whole triples, an incomplete last one dropped.
+    const Numbers& numbers = data.data(c, "cornerMovements");
+    std::vector<Vec3<double>> movements;
+    for (std::size_t k = 0; k + 3 <= numbers.size(); k += 3) movements.emplace_back(numbers[k], numbers[k + 1], numbers[k + 2]);
+    if (numbers.size() % 3 != 0) {
+      data.warn(c.where() + ": cornerMovements has " + std::to_string(numbers.size()) +
+                " numbers, not a multiple of 3: the incomplete last movement is dropped (as SOFA reads it)");
+    }
+    if (corners.empty()) {
+      if (!indices.empty()) throw make_error(c.where(), ": constrainedPoints is empty: no corners to move the points by");
+      return;
+    }
+    if (movements.size() < corners.size()) {
+      // SOFA reads past its list here (undefined): the missing movements are taken as zero.
+      data.warn(c.where() + ": cornerMovements has " + std::to_string(movements.size()) + " movements (3 numbers each) for " +
+                std::to_string(corners.size()) + " corners: the missing ones are taken as zero");
+      movements.resize(corners.size(), Vec3<double>::Zero());
+    }
+    const double begin = data.real(c, "beginConstraintTime", 0), end = data.real(c, "endConstraintTime", 20);
+    for (Index i : indices) {
+      const Vec3<double>& start = system.state.position[static_cast<std::size_t>(i)];
+      system.projections.push_back({i, Mat3<double>::Zero()});
+      system.motions.push_back({i, start, start + patch_test_displacement(corners, movements, start), begin, end});
     }
     return;
   }

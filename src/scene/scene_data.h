@@ -5,6 +5,8 @@
 // the node's rest positions, ...). Cycles and broken links are errors naming the file and line.
 #pragma once
 
+#include "fastcorot/core/error.h"
+
 #include "fastcorot/core/types.h"
 #include "fastcorot/scene/component_table.h"
 #include "fastcorot/io/mesh_readers.h"
@@ -63,6 +65,12 @@ class SceneData {
   SceneData(const SceneNode& root, std::vector<std::string>& info, std::vector<std::string>* warnings);
 
   GraphNode& root() { return *root_; }
+
+  // A warning about what a scene says (with --strict, an error).
+  void warn(const std::string& line) {
+    if (!warnings_) throw make_error(line);
+    warnings_->push_back(line);
+  }
 
   // Data `name` of component c: the attribute as written (a value, or a link to another
   // component's data), else what `src` provides, else what the component computes.

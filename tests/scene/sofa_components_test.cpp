@@ -252,6 +252,34 @@ TEST(SofaProjectiveConstraints, AffineMovementOnThePairBoxShell) {
             std::string::npos);
 }
 
+TEST(SofaProjectiveConstraints, PatchTestMovementInterpolatesTheCornerMovements) {
+  // The beam's 8 box corners (x = 0, 2) in grid order are the constrained points; SOFA's corner
+  // search gives corners 0, 1, 3, 4 at (0,0,0), (2,0,0), (0,1,0) and (2,1,1) (worked by hand from
+  // its tests), so alpha = x / 2, beta = y, gamma = z, and movement k belongs to the box corner
+  // (0,0,0), (2,0,0), (2,1,0), (0,1,0), then the same at z = 1.
+  const std::string corners = "0 0 0  2 0 0  0 1 0  2 1 0  0 0 1  2 0 1  0 1 1  2 1 1";
+  const std::string movements = "1 0 0  0 1 0  0 0 1  1 1 0  0 1 1  1 0 1  2 0 0  0 2 0";
+  LoadedScene scene = build(beam("<PatchTestMovementProjectiveConstraint indices=\"2 7 10\" constrainedPoints=\"" + corners +
+                                 "\" cornerMovements=\"" + movements + "\" endConstraintTime=\"0.01\"/>"),
+                            "dt=\"0.01\"");
+  const auto& motions = scene.simulation.objects[0].system.motions;
+  ASSERT_EQ(motions.size(), 3u);
+  const Vec3<double> m[8] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}, {2, 0, 0}, {0, 2, 0}};
+  // Point 2 = (2, 0, 0): movement 1. Point 7 = (1, 0, 1): half of movements 4 and 5. Point 10 =
+  // (1, 1, 1): half of movements 6 and 7.
+  EXPECT_LT((motions[0].end - (Vec3<double>(2, 0, 0) + m[1])).norm(), 1e-15);
+  EXPECT_LT((motions[1].end - (Vec3<double>(1, 0, 1) + 0.5 * (m[4] + m[5]))).norm(), 1e-15);
+  EXPECT_LT((motions[2].end - (Vec3<double>(1, 1, 1) + 0.5 * (m[6] + m[7]))).norm(), 1e-15);
+  EXPECT_TRUE(scene.warnings.empty());
+  // Planar constrained points: four corners, bilinear; a short list warns and moves by zero.
+  LoadedScene planar = build(beam("<PatchTestMovementProjectiveConstraint indices=\"1\" constrainedPoints=\"0 0 0 2 0 0 0 1 0 2 1 0\" "
+                                  "cornerMovements=\"0 0 0  4 0 0  0 0 0 .5\"/>"));
+  EXPECT_LT((planar.simulation.objects[0].system.motions[0].end - Vec3<double>(3, 0, 0)).norm(), 1e-15);
+  ASSERT_EQ(planar.warnings.size(), 2u);
+  EXPECT_NE(planar.warnings[0].find("not a multiple of 3"), std::string::npos);
+  EXPECT_NE(planar.warnings[1].find("3 movements"), std::string::npos);
+}
+
 // Two beams: under one solver (SOFA's one system), or each with its own.
 std::string two_beams(bool one_solver, const std::string& second_gravity = "") {
   const std::string solver = "<EulerImplicitSolver rayleighMass=\"0.1\"/><EigenSimplicialLDLT/>";
