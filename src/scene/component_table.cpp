@@ -433,6 +433,18 @@ const std::vector<ComponentSpec>& table() {
        "The inverse of the system matrix's diagonal (for PCGLinearSolver), built without assembling the matrix.",
        {{"verbose", "bool", "false", "accepted"},
         {"linearSystem", "link", "", "a MatrixLinearSystem (accepted)"}}},
+      {"PrecomputedWarpPreconditioner", "preconditioner",
+       "SOFA's R A0^-1 R^T (for PCGLinearSolver): A0 the system matrix of the first step, factorised once; R TetrahedronFEMForceField's point rotations (the mean of its elements' rotations around each point), taken whenever the preconditioner is rebuilt.",
+       {{"linearSystem", "link", "", "a PrecomputedMatrixSystem or MatrixLinearSystem (accepted)"},
+        {"linearSolver", "link", "", "SOFA's solver for the precomputation (accepted: A0 is factorised here)"},
+        {"use_rotations", "bool", "true", "false: P = A0^-1"},
+        {"use_file", "bool", "true", "accepted (SOFA caches A0^-1 in a file; nothing is written here)"},
+        {"share_matrix", "bool", "true", "accepted"},
+        {"jmjt_twostep", "bool", "true", "accepted (constraint corrections)"},
+        {"draw_rotations_scale", "real", "0", "accepted (display)"}}},
+      {"PrecomputedMatrixSystem", "linearsystem",
+       "The matrix SOFA's PrecomputedWarpPreconditioner assembles into; accepted for links to it.",
+       {}},
       {"EigenSimplicialLDLT", "linearsolver",
        "Sparse direct LDL^T solve of the assembled system; as a PCGLinearSolver's preconditioner, the factorisation it keeps for update_step solves.",
        {{"ordering", "string", "AMD", "accepted"},
@@ -442,7 +454,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 51> kIgnored = {
+constexpr std::array<std::string_view, 55> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -454,7 +466,8 @@ constexpr std::array<std::string_view, 51> kIgnored = {
     "PositionalLight", "BackgroundSetting", "Camera", "OglLabel", "ConstraintAttachButtonSetting",
     "AttachBodyButtonSetting", "Visual3DText", "OglShader", "OglShadowShader", "VisualMesh", "WriteState", "MeshExporter",
     "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyContainer", "EdgeSetTopologyModifier",
-    "EdgeSetGeometryAlgorithms", "PlaneConstraint", "ValuesFromPositions"};
+    "EdgeSetGeometryAlgorithms", "PlaneConstraint", "ValuesFromPositions", "NaturalOrderingMethod",
+    "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod"};
 
 std::string join_names(std::span<const AttributeSpec> attributes) {
   std::string list;

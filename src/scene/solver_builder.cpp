@@ -9,6 +9,7 @@
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace fastcorot::scene_detail {
@@ -154,12 +155,31 @@ class SolverBuilder {
                        " or below (add CGLinearSolver or EigenSimplicialLDLT)");
     }
     if (linear_solvers.size() > 1) {
+      // Solvers that a preconditioner or another solver links to (a PCG's preconditioner, a warp
+      // preconditioner's precomputation) are used, through that link.
+      std::vector<const Component*> linked;
+      for (GraphNode* node : nodes) {
+        for (const auto& c : node->components) {
+          for (const char* link : {"preconditioner", "linearSolver"}) {
+            if (c->spec && c->has(link) && c->object->attributes.at(link).rfind('@', 0) == 0) {
+              try {
+                linked.push_back(&data.resolve_object(*c->node, c->object->attributes.at(link), *c));
+              } catch (const Error&) {
+                // a broken link is reported where it is used
+              }
+            }
+          }
+        }
+      }
       std::string unused;
-      for (std::size_t i = 1; i < linear_solvers.size(); ++i)
-        unused += (i > 1 ? ", " : "") + linear_solvers[i]->where();
-      info.push_back(integrator.where() + ": uses the first linear solver, " +
-                     linear_solvers.front()->where() + "; not used: " + unused +
-                     " (choose one with linearSolver=\"@name\")");
+      for (std::size_t i = 1; i < linear_solvers.size(); ++i) {
+        if (std::find(linked.begin(), linked.end(), linear_solvers[i]) != linked.end()) continue;
+        unused += (unused.empty() ? "" : ", ") + linear_solvers[i]->where();
+      }
+      if (!unused.empty()) {
+        info.push_back(integrator.where() + ": uses the first linear solver, " + linear_solvers.front()->where() +
+                       "; not used: " + unused + " (choose one with linearSolver=\"@name\")");
+      }
     }
     return *linear_solvers.front();
   }
@@ -242,13 +262,26 @@ class SolverBuilder {
         p.preconditioner = Preconditioner::block_jacobi;
       } else if (preconditioner->type() == "JacobiPreconditioner") {
         p.preconditioner = Preconditioner::jacobi;
+      } else if (preconditioner->type() == "PrecomputedWarpPreconditioner") {
+        p.preconditioner = Preconditioner::precomputed_warp;
+        p.warp_rotations = data.boolean(*preconditioner, "use_rotations", true);
+        if (preconditioner->has("linearSolver")) {
+          Component& direct = data.resolve_object(*preconditioner->node, preconditioner->object->attributes.at("linearSolver"), *preconditioner);
+          if (direct.type() != "EigenSimplicialLDLT") {
+            throw make_error(preconditioner->where(), ": linearSolver must link a sparse direct solver, not ", direct.where());
+          }
+          link_to_matrix_system(direct, "linearSystem");
+        }
+        if (p.warp_rotations && !has_component(nodes, "TetrahedronFEMForceField")) {
+          info.push_back(preconditioner->where() + ": no TetrahedronFEMForceField reports rotations: R is the identity (as in SOFA)");
+        }
       } else if (preconditioner->type() == "EigenSimplicialLDLT") {
         // SparseLDLSolver, SparseCholeskySolver, ...: the factorisation of the assembled matrix.
         p.preconditioner = Preconditioner::sparse_ldlt;
       } else {
         throw make_error(c.where(), ": preconditioner ", preconditioner->where(),
                          " is not supported; supported: BlockJacobiPreconditioner, JacobiPreconditioner, "
-                         "a sparse direct solver (SparseLDLSolver, EigenSimplicialLDLT, ...)");
+                         "PrecomputedWarpPreconditioner, a sparse direct solver (SparseLDLSolver, EigenSimplicialLDLT, ...)");
       }
     }
     if (!preconditioner)
@@ -262,10 +295,19 @@ class SolverBuilder {
 
   // A link to the MatrixLinearSystem a preconditioner assembles into in SOFA: checked, nothing more
   // (the preconditioners here take their blocks from the force fields and the mass directly).
+  static bool has_component(const std::vector<GraphNode*>& nodes, std::string_view type) {
+    for (const GraphNode* node : nodes) {
+      for (const auto& c : node->components) {
+        if (c->type() == type) return true;
+      }
+    }
+    return false;
+  }
+
   void link_to_matrix_system(Component& c, const std::string& attribute) {
     if (!c.has(attribute)) return;
     Component& target = data.resolve_object(*c.node, c.object->attributes.at(attribute), c);
-    if (target.type() != "MatrixLinearSystem") {
+    if (target.type() != "MatrixLinearSystem" && target.type() != "PrecomputedMatrixSystem") {
       throw make_error(c.where(), ": ", attribute, " must link a MatrixLinearSystem, not ",
                        target.where());
     }

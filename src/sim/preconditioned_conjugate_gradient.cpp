@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/core/parallel.h"
+#include "fastcorot/fem/node_rotations.h"
 #include "solver_vectors.h"
 
 #include <algorithm>
@@ -17,6 +18,7 @@ std::string_view preconditioner_name(Preconditioner preconditioner) {
     case Preconditioner::jacobi: return "jacobi";
     case Preconditioner::block_jacobi: return "block_jacobi";
     case Preconditioner::sparse_ldlt: return "sparse_ldlt";
+    case Preconditioner::precomputed_warp: return "precomputed_warp";
   }
   return "?";
 }
@@ -59,9 +61,28 @@ PreconditionedConjugateGradientSolver<Real>::PreconditionedConjugateGradientSolv
   }
   if (points < 0) throw make_error("PCGLinearSolver: ", points, " points");
   previous_.assign(static_cast<std::size_t>(points), Vec3<Real>::Zero());
-  if (parameters_.preconditioner != Preconditioner::sparse_ldlt) {
-    inverse_.assign(static_cast<std::size_t>(points), Mat3<Real>::Zero());
+  const bool factorised = parameters_.preconditioner == Preconditioner::sparse_ldlt ||
+                          parameters_.preconditioner == Preconditioner::precomputed_warp;
+  if (!factorised) inverse_.assign(static_cast<std::size_t>(points), Mat3<Real>::Zero());
+  if (parameters_.preconditioner == Preconditioner::precomputed_warp) {
+    rotations_.assign(static_cast<std::size_t>(points), Mat3<Real>::Identity());
   }
+}
+
+template <class Real>
+bool PreconditionedConjugateGradientSolver<Real>::carries_matrix() const {
+  return parameters_.preconditioner == Preconditioner::precomputed_warp ||
+         (parameters_.update_step > 1 && parameters_.preconditioner == Preconditioner::sparse_ldlt);
+}
+
+template <class Real>
+bool PreconditionedConjugateGradientSolver<Real>::carries_rotations() const {
+  return parameters_.preconditioner == Preconditioner::precomputed_warp && parameters_.update_step > 1;
+}
+
+template <class Real>
+bool PreconditionedConjugateGradientSolver<Real>::carries_blocks() const {
+  return parameters_.update_step > 1 && !inverse_.empty();
 }
 
 namespace {
@@ -79,6 +100,23 @@ void factorise_or_throw(SparseFactorisation<Real>& factorisation, const Eigen::S
 template <class Real>
 void PreconditionedConjugateGradientSolver<Real>::build_preconditioner(const MechanicalSystem<Real>& system,
                                                                        const MatrixFactors<Real>& factors) {
+  if (parameters_.preconditioner == Preconditioner::precomputed_warp) {
+    // A0 once, at the first solve (SOFA precomputes its inverse then); R every time.
+    if (factorised_.nonZeros() == 0) {
+      Eigen::SparseMatrix<Real> matrix = system.assemble(factors);
+      matrix.makeCompressed();
+      factorise_or_throw(factorisation_, matrix);
+      factorised_ = std::move(matrix);
+    }
+    const auto field = std::find_if(system.force_fields.begin(), system.force_fields.end(),
+                                    [](const auto& f) { return f->component() == "TetrahedronFEMForceField"; });
+    if (parameters_.warp_rotations && field != system.force_fields.end()) {
+      rotations_ = node_rotations(**field, system.size());
+    } else {
+      rotations_.assign(rotations_.size(), Mat3<Real>::Identity());
+    }
+    return;
+  }
   if (parameters_.preconditioner == Preconditioner::sparse_ldlt) {
     Eigen::SparseMatrix<Real> matrix = system.assemble(factors);
     matrix.makeCompressed();
@@ -138,6 +176,8 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   q_.resize(n);
   s_.resize(n);
   std::copy(previous_.begin(), previous_.end(), x.begin());
+  const bool warp = parameters_.preconditioner == Preconditioner::precomputed_warp;
+  if (warp) t_.resize(n);
   system.multiply(factors, x, q_);  // A x0, even for x0 = 0, as SOFA does
 
   // The vectors as flat arrays of coordinates; passes that apply P run over chunks of points.
@@ -149,7 +189,7 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   Real* xs = flat<Real>(x);
   const Real* inverse = inverse_.empty() ? nullptr : inverse_.data()->data();  // nine values per point, column-major
   const Preconditioner kind = parameters_.preconditioner;
-  const bool direct = kind == Preconditioner::sparse_ldlt;
+  const bool direct = kind == Preconditioner::sparse_ldlt || warp;
   // z = P r for the points [begin, end) (already done for the direct preconditioner), returning
   // sum r . z over them: one partial sum per axis (three chains of additions instead of one), in
   // point order, then x + y + z.
@@ -185,7 +225,19 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   // points for the point-wise preconditioners; the direct one solves for the whole vector between
   // the pass and the sum.
   const auto update_and_precondition = [&](const auto& pass, Real* z) {
-    if (direct) {
+    if (warp) {
+      // z = R A0^-1 R^T r
+      parallel_ranges(threads, n, [&](std::size_t begin, std::size_t end) {
+        pass(begin, end);
+        for (std::size_t i = begin; i < end; ++i) t_[i] = rotations_[i].transpose() * r_[i];
+      });
+      Real* t = flat<Real>(std::span<Vec3<Real>>(t_));
+      factorisation_.solve(t, z, static_cast<Index>(3 * n));
+      Vec3<Real>* zv = reinterpret_cast<Vec3<Real>*>(z);
+      parallel_ranges(threads, n, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) zv[i] = (rotations_[i] * zv[i]).eval();
+      });
+    } else if (direct) {
       parallel_ranges(threads, n, pass);
       factorisation_.solve(r, z, static_cast<Index>(3 * n));
     }
@@ -239,11 +291,19 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
 
 template <class Real>
 std::vector<std::int64_t> PreconditionedConjugateGradientSolver<Real>::carried_state() const {
+  // Solve count, previous solution, then the blocks or the rotations, then the matrix.
   std::vector<std::int64_t> state{solves_};
   for (const auto& v : previous_) {
     for (int c = 0; c < 3; ++c) state.push_back(to_bits(v[c]));
   }
-  if (parameters_.update_step > 1 && parameters_.preconditioner == Preconditioner::sparse_ldlt) {
+  const auto push_blocks = [&state](const std::vector<Mat3<Real>>& blocks) {
+    for (const auto& block : blocks) {
+      for (int c = 0; c < 9; ++c) state.push_back(to_bits(block.data()[c]));
+    }
+  };
+  if (carries_blocks()) push_blocks(inverse_);
+  if (carries_rotations()) push_blocks(rotations_);
+  if (carries_matrix()) {
     // The factorised matrix (compressed columns: nonzero count, column starts, row indices, values);
     // none before the first solve.
     const Eigen::SparseMatrix<Real>& m = factorised_;
@@ -253,10 +313,6 @@ std::vector<std::int64_t> PreconditionedConjugateGradientSolver<Real>::carried_s
       state.insert(state.end(), m.innerIndexPtr(), m.innerIndexPtr() + m.nonZeros());
       for (Eigen::Index k = 0; k < m.nonZeros(); ++k) state.push_back(to_bits(m.valuePtr()[k]));
     }
-  } else if (parameters_.update_step > 1) {
-    for (const auto& block : inverse_) {
-      for (int c = 0; c < 9; ++c) state.push_back(to_bits(block.data()[c]));
-    }
   }
   return state;
 }
@@ -264,14 +320,14 @@ std::vector<std::int64_t> PreconditionedConjugateGradientSolver<Real>::carried_s
 template <class Real>
 void PreconditionedConjugateGradientSolver<Real>::check_carried_state(const std::vector<std::int64_t>& state) const {
   const std::size_t n = previous_.size();
-  const bool blocks = parameters_.update_step > 1 && parameters_.preconditioner != Preconditioner::sparse_ldlt;
-  const bool matrix = parameters_.update_step > 1 && parameters_.preconditioner == Preconditioner::sparse_ldlt;
+  const bool blocks = carries_blocks() || carries_rotations();
+  const bool matrix = carries_matrix();
   const std::size_t expected = 1 + 3 * n + (blocks ? 9 * n : 0);
   if ((matrix ? state.size() <= expected : state.size() != expected) || state[0] < 0) {
     throw make_error("PCGLinearSolver: expected ", matrix ? "more than " : "", expected,
                      " values to restore (solve count, ", n, " points' previous solution",
-                     blocks ? ", preconditioner blocks" : matrix ? ", factorised matrix" : "", "), got ",
-                     state.size());
+                     carries_blocks() ? ", preconditioner blocks" : "", carries_rotations() ? ", rotations" : "",
+                     matrix ? ", factorised matrix" : "", "), got ", state.size());
   }
   if (matrix) carried_matrix(std::span<const std::int64_t>(state).subspan(expected));
 }
@@ -279,18 +335,20 @@ void PreconditionedConjugateGradientSolver<Real>::check_carried_state(const std:
 template <class Real>
 void PreconditionedConjugateGradientSolver<Real>::restore_carried_state(const std::vector<std::int64_t>& state) {
   check_carried_state(state);
-  const std::size_t n = previous_.size();
   std::size_t k = 1;
   for (auto& v : previous_) {
     for (int c = 0; c < 3; ++c) v[c] = from_bits<Real>(state[k++]);
   }
-  if (parameters_.update_step > 1 && parameters_.preconditioner == Preconditioner::sparse_ldlt) {
-    factorised_ = carried_matrix(std::span<const std::int64_t>(state).subspan(1 + 3 * n));
-    if (factorised_.nonZeros() > 0) factorise_or_throw(factorisation_, factorised_);
-  } else if (parameters_.update_step > 1) {
-    for (auto& block : inverse_) {
+  const auto read_blocks = [&](std::vector<Mat3<Real>>& blocks) {
+    for (auto& block : blocks) {
       for (int c = 0; c < 9; ++c) block.data()[c] = from_bits<Real>(state[k++]);
     }
+  };
+  if (carries_blocks()) read_blocks(inverse_);
+  if (carries_rotations()) read_blocks(rotations_);
+  if (carries_matrix()) {
+    factorised_ = carried_matrix(std::span<const std::int64_t>(state).subspan(k));
+    if (factorised_.nonZeros() > 0) factorise_or_throw(factorisation_, factorised_);
   }
   solves_ = state[0];
 }

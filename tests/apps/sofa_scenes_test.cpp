@@ -65,6 +65,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "Component/Constraint/Projective/AffineMovementProjectiveConstraint3D.scn",
                       "Component/Constraint/Projective/AttachProjectiveConstraint.scn",
                       "Component/Constraint/Projective/BilinearConstraint3D.scn",
+                      "Component/LinearSolver/Preconditioner/FEMBAR_PCG_PrecomputedWarpPreconditioner.scn",
                       "Component/Constraint/Projective/AttachProjectiveConstraintMatrix.scn",
                       "Component/MechanicalLoad/ConicalForceField.scn",
                       "Component/MechanicalLoad/TrianglePressureForceField.scn",

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <limits>
 #include <string>
 
@@ -105,7 +107,7 @@ TEST(PcgScene, UnsupportedOrMissingPreconditionersAreNamed) {
       error_of(R"(<PCGLinearSolver preconditioner="@C"/><CGLinearSolver name="C"/>)");
   EXPECT_NE(unsupported.find("pcg.scn:2: PCGLinearSolver: preconditioner pcg.scn:2: CGLinearSolver 'C' is not supported"),
             std::string::npos) << unsupported;
-  EXPECT_NE(unsupported.find("supported: BlockJacobiPreconditioner, JacobiPreconditioner, a sparse direct solver"),
+  EXPECT_NE(unsupported.find("supported: BlockJacobiPreconditioner, JacobiPreconditioner, PrecomputedWarpPreconditioner, a sparse direct solver"),
             std::string::npos)
       << unsupported;
   const std::string missing = error_of(R"(<PCGLinearSolver preconditioner="@nothing"/>)");
@@ -136,6 +138,35 @@ TEST(PcgScene, ConvergedStepsMatchTheDirectSolver) {
   }
   EXPECT_GT(moved, 1e-4);
   EXPECT_LT(difference, 1e-9 * moved);
+}
+
+TEST(PcgScene, PrecomputedWarpPreconditionerIsBuiltAndConverges) {
+  const std::string warp = R"(<PCGLinearSolver iterations="200" tolerance="1e-26" preconditioner="@W"/>
+    <PrecomputedMatrixSystem name="PS"/><MatrixLinearSystem name="LS"/><NaturalOrderingMethod/>
+    <SparseLDLSolver name="init" linearSystem="@LS"/>
+    <PrecomputedWarpPreconditioner name="W" linearSystem="@PS" linearSolver="@init")";
+  LoadedScene pcg = build(warp + "/>");
+  EXPECT_EQ(pcg_of(pcg).parameters().preconditioner, Preconditioner::precomputed_warp);
+  EXPECT_TRUE(pcg_of(pcg).parameters().warp_rotations);
+  // Without a TetrahedronFEMForceField, R is the identity, and the info line says so.
+  EXPECT_NE(std::find_if(pcg.info.begin(), pcg.info.end(), [](const std::string& line) {
+              return line.find("R is the identity") != std::string::npos;
+            }), pcg.info.end());
+  EXPECT_FALSE(pcg_of(build(warp + " use_rotations=\"false\"/>")).parameters().warp_rotations);
+  LoadedScene direct = build("<EigenSimplicialLDLT/>");
+  for (int step = 0; step < 5; ++step) {
+    direct.simulation.step();
+    pcg.simulation.step();
+  }
+  double difference = 0;
+  for (std::size_t i = 0; i < 12; ++i) {
+    difference = std::max(difference, (direct.simulation.objects[0].system.state.position[i] -
+                                       pcg.simulation.objects[0].system.state.position[i]).norm());
+  }
+  EXPECT_LT(difference, 1e-10);
+  const std::string wrong = error_of(R"(<PCGLinearSolver preconditioner="@W"/><CGLinearSolver name="C"/>
+    <PrecomputedWarpPreconditioner name="W" linearSolver="@C"/>)");
+  EXPECT_NE(wrong.find("linearSolver must link a sparse direct solver"), std::string::npos) << wrong;
 }
 
 // SOFA master moves the rebuild period to the PCG's linear system, a PreconditionedMatrixFreeSystem

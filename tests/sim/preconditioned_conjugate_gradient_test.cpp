@@ -3,6 +3,7 @@
 // of the same iteration written here, on the matrix obtained column by column from the matrix-free
 // product, with P inverted from that matrix's own diagonal (or the whole matrix, densely).
 #include "fastcorot/fem/corotational_force_field.h"
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 
 #include "fastcorot/core/error.h"
@@ -10,6 +11,8 @@
 #include "support/mass_system.h"
 
 #include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
 
 #include <limits>
 #include <memory>
@@ -38,8 +41,9 @@ using testing::mass_system;
 constexpr MatrixFactors<double> kMassOnly{1.0, 0.0, 0.0};
 
 // A 4 x 3 x 3 grid of points (72 tetrahedra), deformed and linearised there, lumped masses, the
-// points of the face x = 0 fixed.
-MechanicalSystem<double> small_beam(unsigned seed) {
+// points of the face x = 0 fixed; with `turn`, TetrahedronFEMForceField (large) instead of ours and
+// the deformed positions turned by that rotation.
+MechanicalSystem<double> small_beam(unsigned seed, const Mat3<double>* turn = nullptr) {
   Points rest;
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < 3; ++j) {
@@ -64,9 +68,16 @@ MechanicalSystem<double> small_beam(unsigned seed) {
   p.young_modulus = {2000.0};
   p.poisson_ratio = {0.3};
   p.rayleigh_stiffness = 0.1;
-  auto field = std::make_shared<CorotationalForceField<double>>(mesh, rest, p);
+  std::shared_ptr<ForceField<double>> field = std::make_shared<CorotationalForceField<double>>(mesh, rest, p);
   std::mt19937 rng(seed);
-  const Points x = testing::perturbed(rest, 0.15, rng);
+  Points x = testing::perturbed(rest, 0.15, rng);
+  if (turn) {
+    TetrahedronFEMForceField<double>::Parameters q;
+    q.young_modulus = {2000.0};
+    q.poisson_ratio = {0.3};
+    field = std::make_shared<TetrahedronFEMForceField<double>>(mesh, rest, q);
+    for (auto& point : x) point = (*turn * point).eval();
+  }
   Points f(rest.size(), Vec3<double>::Zero());
   field->add_force(x, f);
   MechanicalSystem<double> system;
@@ -291,11 +302,67 @@ TEST(PreconditionedConjugateGradient, SparseDirectPreconditionerIsTheInverseOfTh
   EXPECT_LT((flatten(x) - exact3).norm() / exact3.norm(), 1e-12);
 }
 
+// The warp preconditioner's R, written here from the elements: per point, the mean of
+// rotation * initial_rotation^T over its tetrahedra.
+Eigen::MatrixXd dense_rotations(const MechanicalSystem<double>& system) {
+  const auto& field = dynamic_cast<const TetrahedronFEMForceField<double>&>(*system.force_fields[0]);
+  const auto n = static_cast<std::size_t>(system.size());
+  std::vector<Mat3<double>> sum(n, Mat3<double>::Zero());
+  std::vector<int> count(n, 0);
+  for (Index t = 0; t < field.mesh().num_tetrahedra(); ++t) {
+    const auto& e = field.element(t);
+    for (Index v : field.mesh().tetrahedra()[static_cast<std::size_t>(t)]) {
+      sum[static_cast<std::size_t>(v)] += e.rotation * e.initial_rotation.transpose();
+      ++count[static_cast<std::size_t>(v)];
+    }
+  }
+  Eigen::MatrixXd r = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(3 * n), static_cast<Eigen::Index>(3 * n));
+  for (std::size_t i = 0; i < n; ++i) r.block<3, 3>(static_cast<Eigen::Index>(3 * i), static_cast<Eigen::Index>(3 * i)) = sum[i] / count[i];
+  return r;
+}
+
+TEST(PreconditionedConjugateGradient, PrecomputedWarpIsRTimesTheFirstInverseTimesRTransposed) {
+  const Mat3<double> turn = Eigen::AngleAxisd(0.6, Vec3<double>(1, 1, 0).normalized()).toRotationMatrix();
+  auto system = small_beam(9, &turn);
+  const Points b = projected_rhs(system, 4);
+  const Eigen::MatrixXd a0 = dense_matrix(system, kEuler);
+  const Eigen::MatrixXd r1 = dense_rotations(system);
+  PCG solver(parameters(Preconditioner::precomputed_warp, 3, 0.0), system.size());
+  Points x(static_cast<std::size_t>(system.size()));
+  EXPECT_EQ(solver.solve(system, kEuler, b, x).iterations, 3);
+  Eigen::VectorXd reference = Eigen::VectorXd::Zero(3 * system.size());
+  EXPECT_EQ(dense_pcg(a0, r1 * a0.inverse() * r1.transpose(), flatten(b), reference, 3, 0.0), 3);
+  EXPECT_LT((flatten(x) - reference).norm() / reference.norm(), 1e-10);
+  // Moved and linearised elsewhere, with other factors: still A0's inverse, turned by the new R.
+  const Mat3<double> more = Eigen::AngleAxisd(-0.9, Vec3<double>(0, 0.3, 1).normalized()).toRotationMatrix();
+  for (auto& point : system.state.position) point = (more * point).eval();
+  Points f(x.size(), Vec3<double>::Zero());
+  system.compute_force(system.state.position, f);
+  const MatrixFactors<double> later{1.3, -0.05, -0.03};
+  const Points b2 = projected_rhs(system, 5);
+  const Eigen::MatrixXd r2 = dense_rotations(system);
+  ASSERT_GT((r2 - r1).norm(), 1.0);
+  solver.solve(system, later, b2, x);
+  EXPECT_EQ(dense_pcg(dense_matrix(system, later), r2 * a0.inverse() * r2.transpose(), flatten(b2), reference, 3, 0.0), 3);
+  EXPECT_LT((flatten(x) - reference).norm() / reference.norm(), 1e-10);
+  // use_rotations false: A0^-1 alone.
+  auto plain_parameters = parameters(Preconditioner::precomputed_warp, 3, 0.0);
+  plain_parameters.warp_rotations = false;
+  auto turned = small_beam(9, &turn);
+  PCG plain(plain_parameters, turned.size());
+  Points y(x.size());
+  plain.solve(turned, kEuler, b, y);
+  reference.setZero();
+  dense_pcg(a0, a0.inverse(), flatten(b), reference, 3, 0.0);
+  EXPECT_LT((flatten(y) - reference).norm() / reference.norm(), 1e-10);
+}
+
 TEST(PreconditionedConjugateGradient, CarriedStateResumesBitwise) {
+  const Mat3<double> turn = Eigen::AngleAxisd(0.3, Vec3<double>(0, 0, 1)).toRotationMatrix();
   for (const auto& [preconditioner, update_step] : std::vector<std::pair<Preconditioner, int>>{
            {Preconditioner::block_jacobi, 1}, {Preconditioner::block_jacobi, 3}, {Preconditioner::sparse_ldlt, 1},
-           {Preconditioner::sparse_ldlt, 3}}) {
-    auto system = small_beam(6);
+           {Preconditioner::sparse_ldlt, 3}, {Preconditioner::precomputed_warp, 1}, {Preconditioner::precomputed_warp, 3}}) {
+    auto system = small_beam(6, preconditioner == Preconditioner::precomputed_warp ? &turn : nullptr);
     const auto p = parameters(preconditioner, 4, 1e-12, update_step);
     PCG first(p, system.size());
     Points x(static_cast<std::size_t>(system.size()));
@@ -304,8 +371,11 @@ TEST(PreconditionedConjugateGradient, CarriedStateResumesBitwise) {
     const auto state = first.carried_state();
     const std::size_t matrix_values =
         1 + (3 * x.size() + 1) + 2 * static_cast<std::size_t>(system.assemble(kEuler).nonZeros());
-    const std::size_t kept = preconditioner == Preconditioner::sparse_ldlt ? matrix_values : 9 * x.size();
-    EXPECT_EQ(state.size(), 1 + 3 * x.size() + (update_step > 1 ? kept : 0));
+    const bool warp = preconditioner == Preconditioner::precomputed_warp;
+    const std::size_t kept = preconditioner == Preconditioner::sparse_ldlt ? matrix_values
+                             : warp                                        ? matrix_values + 9 * x.size()
+                                                                           : 9 * x.size();
+    EXPECT_EQ(state.size(), 1 + 3 * x.size() + (update_step > 1 ? kept : warp ? matrix_values : 0));
     PCG resumed(p, system.size());
     resumed.restore_carried_state(state);
     Points y(x.size());

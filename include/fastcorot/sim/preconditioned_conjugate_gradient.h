@@ -3,7 +3,10 @@
 // diagonal) and BlockJacobiPreconditioner (the inverses of its 3×3 diagonal blocks), built from the
 // matrix of the current step without assembling it, or a sparse direct solver (SparseLDLSolver and
 // the others as preconditioner: the LDL^T factorisation of the assembled matrix, P = A^-1 at the
-// step it was built, reused for update_step solves):
+// step it was built, reused for update_step solves), or SOFA's PrecomputedWarpPreconditioner
+// (P = R A0^-1 R^T: A0 the assembled matrix of the first solve, factorised once, R the block
+// diagonal of TetrahedronFEMForceField's point rotations, node_rotations.h, taken again every
+// update_step solves; the identity without such a force field):
 //   r = b - A x0, z = P r, rho = r . z; while iteration <= iterations and rho > tolerance · b . b:
 //   q = A w, alpha = rho / w . q, x += alpha w, r -= alpha q, z = P r, beta = (r . z) / rho, w = z + beta w
 // with w = z first. Unlike CGLinearSolver it starts from its previous solution x0 (zero before the
@@ -19,9 +22,9 @@
 
 namespace fastcorot {
 
-enum class Preconditioner { none, jacobi, block_jacobi, sparse_ldlt };
+enum class Preconditioner { none, jacobi, block_jacobi, sparse_ldlt, precomputed_warp };
 
-// "none", "jacobi", "block_jacobi", "sparse_ldlt".
+// "none", "jacobi", "block_jacobi", "sparse_ldlt", "precomputed_warp".
 std::string_view preconditioner_name(Preconditioner preconditioner);
 
 template <class Real>
@@ -34,6 +37,8 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
     // The preconditioner is rebuilt at the first solve and then every `update_step` solves (SOFA's
     // update_step / assemblingRate); in between it keeps the blocks of an earlier matrix.
     int update_step = 1;
+    // precomputed_warp: false leaves R out (P = A0^-1), SOFA's use_rotations.
+    bool warp_rotations = true;
   };
 
   // For systems of `points` points. Throws fastcorot::Error for iterations < 1, update_step < 1, a
@@ -42,7 +47,8 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
 
   // Throws fastcorot::Error when the system does not have the solver's point count, when a
   // diagonal block (block_jacobi) or entry (jacobi) of the system matrix is singular or not finite,
-  // naming the point, or when the assembled matrix cannot be factorised (sparse_ldlt). A point whose
+  // naming the point, or when the assembled matrix cannot be factorised (sparse_ldlt,
+  // precomputed_warp). A point whose
   // diagonal block is all zero (no mass, no element: its row of the matrix is zero) gets the
   // identity.
   LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
@@ -53,8 +59,9 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
   std::span<const Mat3<Real>> preconditioner_blocks() const { return inverse_; }
 
   // The solve count, the previous solution and, when the preconditioner outlives a solve
-  // (update_step > 1), its blocks or the assembled matrix it factorised, all as bit patterns: a
-  // resumed run continues bitwise (the factorisation of the same matrix is the same).
+  // (update_step > 1, or always for precomputed_warp), its blocks or the assembled matrix it
+  // factorised (and the warp's rotations), all as bit patterns: a resumed run continues bitwise
+  // (the factorisation of the same matrix is the same).
   std::vector<std::int64_t> carried_state() const override;
   void restore_carried_state(const std::vector<std::int64_t>& state) override;
   // Its length depends on whether a matrix has been factorised yet (sparse_ldlt, update_step > 1).
@@ -62,6 +69,10 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
 
  private:
   void build_preconditioner(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors);
+  // Whether the carried state holds the factorised matrix, the warp's rotations, the blocks.
+  bool carries_matrix() const;
+  bool carries_rotations() const;
+  bool carries_blocks() const;
   // The factorised matrix in carried state (what follows the previous solution), checked; an empty
   // matrix when none had been factorised.
   Eigen::SparseMatrix<Real> carried_matrix(std::span<const std::int64_t> state) const;
@@ -71,8 +82,9 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
   std::vector<Vec3<Real>> previous_;  // the last solution: the next solve's start
   std::vector<Mat3<Real>> inverse_;   // P, one block per point (Jacobi, block-Jacobi)
   SparseFactorisation<Real> factorisation_;  // P = A^-1 (sparse_ldlt)
-  Eigen::SparseMatrix<Real> factorised_;     // its A, kept for checkpoints when update_step > 1
-  std::vector<Vec3<Real>> r_, w_, q_, s_;
+  Eigen::SparseMatrix<Real> factorised_;     // its A, kept for checkpoints when it outlives a solve
+  std::vector<Mat3<Real>> rotations_;        // R (precomputed_warp), one block per point
+  std::vector<Vec3<Real>> r_, w_, q_, s_, t_;
 };
 
 }  // namespace fastcorot
