@@ -106,4 +106,33 @@ ConstantForce<double> build_triangle_pressure(SceneData& data, Component& c, std
   }
 }
 
+ConstantForce<double> build_constant_force(SceneData& data, std::vector<std::string>& info, Component& c, Index size) {
+  ConstantForce<double> constant;
+  constant.indices = data.indices(c, "indices");
+  if (constant.indices.empty()) {
+    for (Index i = 0; i < size; ++i) constant.indices.push_back(i);
+  }
+  const auto count = constant.indices.size();
+  if (data.boolean(c, "indexFromEnd", false)) {
+    for (Index& i : constant.indices) i = size - 1 - i;
+  }
+  for (Index i : constant.indices) {
+    if (i < 0 || i >= size) throw make_error(c.where(), ": index out of range [0, ", size, ")");
+  }
+  if (c.has("forces")) {
+    constant.forces = data.points(c, "forces");
+    if (constant.forces.size() != count) {
+      throw make_error(c.where(), ": forces has ", constant.forces.size(), " entries for ", count, " indices");
+    }
+  } else if (c.has("force")) {
+    constant.forces.assign(count, data.vec3(c, "force", {0, 0, 0}));
+  } else if (c.has("totalForce")) {
+    constant.forces.assign(count, data.vec3(c, "totalForce", {0, 0, 0}) / static_cast<double>(count));
+  } else {
+    info.push_back(c.where() + ": no forces, force or totalForce given: no load");
+    constant.forces.assign(count, Vec3<double>::Zero());
+  }
+  return constant;
+}
+
 }  // namespace fastcorot::scene_detail

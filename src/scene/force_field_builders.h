@@ -1,6 +1,6 @@
 // Force fields beyond the two tetrahedral FEM ones, built from their SOFA components:
 // MeshSpringForceField (the springs of a mesh), and the loads of SOFA's MechanicalLoad that act on
-// points. Internal to src/scene (scene_builder.cpp); errors name the component.
+// points (and ConstantForceField). Internal to src/scene (scene_builder.cpp); errors name the component.
 #pragma once
 
 #include "fastcorot/fem/force_field.h"
@@ -8,6 +8,8 @@
 #include "scene_data.h"
 
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace fastcorot::scene_detail {
 
@@ -23,5 +25,10 @@ bool is_penalty_force_field(std::string_view type);
 // TrianglePressureForceField as the constant forces it is (pressure x rest area / 3 on each vertex
 // of each listed triangle), from the rest positions.
 ConstantForce<double> build_triangle_pressure(SceneData& data, Component& c, std::span<const Vec3<double>> rest);
+
+// ConstantForceField's forces on a state of `size` points: `forces` (one per index), or `force` on
+// each, or `totalForce` shared out; indices default to every point (indexFromEnd counts from the
+// last). Without any force, an info line and no load.
+ConstantForce<double> build_constant_force(SceneData& data, std::vector<std::string>& info, Component& c, Index size);
 
 }  // namespace fastcorot::scene_detail

@@ -232,4 +232,20 @@ void add_attach_constraint(SceneData& data, Component& c, const std::vector<Comp
   }
 }
 
+void add_fixed_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system) {
+  std::vector<Index> indices;
+  if (data.boolean(c, "fixAll", false)) {
+    for (Index i = 0; i < system.size(); ++i) indices.push_back(i);
+  } else {
+    indices = c.has("indices") ? data.indices(c, "indices") : std::vector<Index>{0};  // SOFA's default
+  }
+  for (Index i : indices) {
+    if (i >= system.size()) throw make_error(c.where(), ": index ", i, " out of range [0, ", system.size(), ")");
+  }
+  system.fixed.insert(system.fixed.end(), indices.begin(), indices.end());
+  if (data.boolean(c, "activate_projectVelocity", false)) {
+    system.zero_velocity.insert(system.zero_velocity.end(), indices.begin(), indices.end());
+  }
+}
+
 }  // namespace fastcorot::scene_detail

@@ -17,6 +17,11 @@ bool is_partial_projective_constraint(std::string_view type);
 // naming c for an index out of range or a malformed attribute.
 void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system);
 
+// FixedProjectiveConstraint c: its indices (SOFA's default: point 0; fixAll: every point) held,
+// their velocities zeroed after each step with activate_projectVelocity. Throws fastcorot::Error
+// naming c for an index out of range.
+void add_fixed_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system);
+
 // Adds AttachProjectiveConstraint c to `system`, whose points are those of `states` one after the
 // other (states[k]'s first point at offsets[k], sizes[k] points). Throws fastcorot::Error naming c
 // when an object is not among `states` (another solver's), for an index out of range, mismatched

@@ -3,16 +3,14 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
-#include "fastcorot/io/surface_readers.h"
-#include "fastcorot/sim/barycentric_mapping.h"
 #include "fastcorot/sim/merged_objects.h"
-#include "fastcorot/sim/visual_surface.h"
 #include "fastcorot/topology/regular_grid.h"
 #include "force_field_builders.h"
 #include "projective_constraints.h"
 #include "scene_data.h"
 #include "solver_builder.h"
 #include "topology_change_processor.h"
+#include "visual_surface_builder.h"
 
 #include <cmath>
 #include <map>
@@ -55,48 +53,6 @@ Vec3<double> node_vec3(const SceneNode& node, const std::string& name, const Vec
                      "\": expected 3 finite numbers");
   }
   return v;
-}
-
-// SOFA's RGBAColor syntax: "r g b [a]", "#rgb", "#rgba", "#rrggbb", "#rrggbbaa", or one of the
-// names SOFA knows. We refuse what SOFA would refuse, and components outside [0, 1].
-Rgba parse_color(const std::string& attribute, const std::string& text) {
-  auto fail = [&](const char* why) {
-    return make_error(attribute, " = \"", text, "\": ", why,
-                      " (expected \"r g b [a]\" in [0, 1], #rrggbb[aa], #rgb[a] or a colour name)");
-  };
-  static const std::map<std::string, Rgba> names = {
-      {"white", {1, 1, 1, 1}}, {"black", {0, 0, 0, 1}},  {"red", {1, 0, 0, 1}},     {"green", {0, 1, 0, 1}},
-      {"blue", {0, 0, 1, 1}},  {"cyan", {0, 1, 1, 1}},   {"magenta", {1, 0, 1, 1}}, {"yellow", {1, 1, 0, 1}},
-      {"gray", {0.5f, 0.5f, 0.5f, 1}}};
-  std::istringstream in(text);
-  std::string first;
-  in >> first;
-  if (first.empty()) throw fail("empty");
-  Rgba color{0, 0, 0, 1};
-  if (first[0] == '#') {
-    const std::string hex = first.substr(1);
-    const bool digits = hex.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos;
-    if (!digits || (hex.size() != 3 && hex.size() != 4 && hex.size() != 6 && hex.size() != 8)) throw fail("bad hex colour");
-    const std::size_t width = hex.size() <= 4 ? 1 : 2;
-    for (std::size_t k = 0; k * width < hex.size(); ++k) {
-      const int value = std::stoi(hex.substr(k * width, width), nullptr, 16);
-      color[k] = static_cast<float>(width == 1 ? value * 17 : value) / 255.0f;
-    }
-  } else if (const auto named = names.find(first); named != names.end()) {
-    color = named->second;
-  } else {
-    std::istringstream numbers(text);
-    std::vector<double> values;
-    for (double v; numbers >> v;) values.push_back(v);
-    if (!numbers.eof() || (values.size() != 3 && values.size() != 4)) throw fail("not a colour");
-    for (std::size_t k = 0; k < values.size(); ++k) {
-      if (!(values[k] >= 0 && values[k] <= 1)) throw fail("a component is outside [0, 1]");
-      color[k] = static_cast<float>(values[k]);
-    }
-    return color;
-  }
-  if (std::string rest; in >> rest) throw fail("unexpected text after the colour");
-  return color;
 }
 
 class Builder {
@@ -241,11 +197,11 @@ class Builder {
           auto mesh = mesh_of(*c, system.size());
           add_field(scene_detail::build_mesh_springs(data_, *c, mesh, system.state.rest_position), mesh, *c, object);
         }
-        if (type == "ConstantForceField") add_constant_force(*c, system);
+        if (type == "ConstantForceField") system.constant_forces.push_back(scene_detail::build_constant_force(data_, info_, *c, system.size()));
         if (type == "TrianglePressureForceField") {
           system.constant_forces.push_back(scene_detail::build_triangle_pressure(data_, *c, system.state.rest_position));
         }
-        if (type == "FixedProjectiveConstraint") add_fixed(*c, system);
+        if (type == "FixedProjectiveConstraint") scene_detail::add_fixed_constraint(data_, *c, system);
         if (scene_detail::is_partial_projective_constraint(type)) scene_detail::add_projective_constraint(data_, *c, system);
         if (type == "BoxROI") add_boxes(*c, object);
         if (type == "TopologicalChangeProcessor") {
@@ -262,7 +218,7 @@ class Builder {
     } catch (const Error& error) {
       throw make_error(state.where(), ": ", error.what());
     }
-    for (GraphNode* visual_node : visuals) add_visual_surfaces(*visual_node, object);
+    for (GraphNode* visual_node : visuals) scene_detail::add_visual_surfaces(data_, info_, *visual_node, object);
     return object;
   }
 
@@ -346,178 +302,6 @@ class Builder {
     }
   }
 
-  // The visual models of a mapped child node, with their mapping onto the object.
-  void add_visual_surfaces(GraphNode& node, SimulatedObject<double>& object) {
-    const auto mappings = node.of_category("visualmapping");
-    for (Component* model : node.of_category("visual")) {
-      Component* mapping = nullptr;
-      for (Component* m : mappings) {
-        const auto output = m->object->attributes.find("output");
-        if (output == m->object->attributes.end() || &data_.resolve_object(node, output->second, *m) == model) {
-          mapping = m;
-          break;
-        }
-      }
-      if (!model->has("src") && !model->has("filename") && !model->has("fileMesh")) {
-        info_.push_back(model->where() + ": " + std::string(model->type()) + " of mapped node " + node.path +
-                        " has no src (a surface loader) or filename: nothing to draw");
-        continue;
-      }
-      if (!mapping) {
-        info_.push_back(model->where() + ": " + std::string(model->type()) + " of mapped node " + node.path +
-                        " is not mapped (its mapping is none fastcorot draws): not drawn");
-        continue;
-      }
-      try {
-        object.visual_surfaces.push_back(build_surface(node, *model, *mapping, object));
-      } catch (const Error& error) {
-        throw make_error(model->where(), ": ", error.what());
-      }
-    }
-  }
-
-  VisualSurface build_surface(GraphNode& node, Component& model, Component& mapping, SimulatedObject<double>& object) {
-    VisualSurface surface;
-    surface.path = node.path + "/" + (model.object->name().empty() ? std::string(model.type()) : model.object->name());
-    SurfaceData data;
-    if (const auto src = model.object->attributes.find("src"); src != model.object->attributes.end()) {
-      Component& loader = data_.resolve_object(node, src->second, model);
-      if (loader.spec == nullptr || loader.spec->category != "surfaceloader") {
-        throw make_error("src ", src->second, " is a ", loader.type(), ", not a surface loader (MeshOBJLoader, MeshSTLLoader)");
-      }
-      data = load_surface(loader, "filename");
-    } else if (model.has("filename") || model.has("fileMesh")) {
-      data = load_surface(model, model.has("filename") ? "filename" : "fileMesh");
-    } else {
-      throw make_error("no src (a surface loader) or filename: fastcorot cannot tell what to draw");
-    }
-    // The model's own placement (SOFA's VisualModelImpl: scale, then rotation, then translation).
-    data.points = transformed(std::move(data.points), data_.placement(model, "scale3d"),
-                              data_.placement(model, "rotation"), data_.placement(model, "translation"));
-    surface.rest_points = data.points;
-    surface.triangles = data.all_triangles();
-    surface.color = visual_color(model);
-    const auto& system = object.system;
-    if (mapping.type() == "IdentityMapping") {
-      if (surface.rest_points.size() != system.state.position.size()) {
-        throw make_error("IdentityMapping ", mapping.where(), ": the visual model has ", surface.rest_points.size(),
-                         " points, the object ", system.state.position.size());
-      }
-      surface.mapping = "IdentityMapping";
-      surface.map = PointMapping<double>::identity(surface.rest_points.size());
-      return surface;
-    }
-    if (mapping.type() == "SubsetMapping") {
-      surface.mapping = "SubsetMapping";
-      surface.map = PointMapping<double>::subset(subset_indices(mapping, surface.rest_points, system.state.position));
-      return surface;
-    }
-    // SOFA's BarycentricMapping takes the first topology of the object's node: a grid gives the
-    // trilinear mapper, tetrahedra the tetrahedral one.
-    const bool rest = data_.boolean(mapping, "useRestPosition", false);
-    const auto& x = rest ? system.state.rest_position : system.state.position;
-    Component* topology = first_topology(node);
-    if (topology && topology->type() == "RegularGridTopology") {
-      surface.mapping = "BarycentricMapping (trilinear, RegularGridTopology)";
-      surface.map = PointMapping<double>::trilinear(data_.grid(*topology), surface.rest_points);
-      return surface;
-    }
-    if (!object.mesh) throw make_error("BarycentricMapping ", mapping.where(), ": the object has no tetrahedra to map onto");
-    // A MeshTopology gets SOFA's MeshMapper, which tries every tetrahedron; a dynamic container its
-    // TetrahedronSetMapper, which searches a grid.
-    const bool mesh_topology = topology && topology->object->type == "MeshTopology";
-    surface.mapping = mesh_topology ? "BarycentricMapping (tetrahedra, every one tried)" : "BarycentricMapping (tetrahedra)";
-    surface.map = PointMapping<double>::from_barycentric(
-        *object.mesh, map_onto_tetrahedra<double>(*object.mesh, x, surface.rest_points,
-                                                  mesh_topology ? TetrahedronSearch::exhaustive : TetrahedronSearch::grid));
-    return surface;
-  }
-
-  // SOFA's SubsetMapping::init: `indices`, else first..last (clamped into the input), else for each
-  // output point the input point within `radius` found last while the distance decreases.
-  std::vector<Index> subset_indices(Component& mapping, const std::vector<Vec3<double>>& out,
-                                    const std::vector<Vec3<double>>& in) {
-    const Index size = static_cast<Index>(in.size());
-    std::vector<Index> indices = data_.indices(mapping, "indices");
-    if (indices.empty() && mapping.has("first")) {
-      Index first = data_.whole_number(mapping, "first", 0), last = mapping.has("last") ? data_.whole_number(mapping, "last", 0) : size - 1;
-      if (first < 0 || first >= size) first = 0;
-      if (last < 0 || last >= size) last = size - 1;
-      for (Index i = first; i <= last; ++i) indices.push_back(i);
-    } else if (indices.empty()) {
-      const double radius = data_.real(mapping, "radius", 1e-5);
-      for (std::size_t i = 0; i < out.size(); ++i) {
-        double best = radius;
-        Index found = -1;
-        for (Index j = 0; j < size; ++j) {
-          const double r = (out[i] - in[static_cast<std::size_t>(j)]).norm();
-          if (r < best) {
-            best = r;
-            found = j;
-          }
-        }
-        if (found < 0) {
-          throw make_error("SubsetMapping ", mapping.where(), ": point ", i, " of the visual model has no point of the object within radius ",
-                           radius);
-        }
-        indices.push_back(found);
-      }
-    }
-    for (Index i : indices) {
-      if (i < 0 || i >= size) throw make_error("SubsetMapping ", mapping.where(), ": index ", i, " out of range [0, ", size, ")");
-    }
-    if (indices.size() != out.size()) {
-      throw make_error("SubsetMapping ", mapping.where(), ": ", indices.size(), " indices for a visual model of ", out.size(), " points");
-    }
-    return indices;
-  }
-
-  // The first topology object of the node above a mapped node (the object's node), as SOFA's
-  // BarycentricMapping finds its input topology.
-  static Component* first_topology(const GraphNode& mapped) {
-    for (const GraphNode* scope = mapped.parent; scope; scope = scope->parent) {
-      const auto topologies = scope->of_category("topology");
-      if (!topologies.empty()) return topologies.front();
-    }
-    return nullptr;
-  }
-
-  SurfaceData load_surface(Component& c, const std::string& attribute) {
-    const std::string name = data_.text(c, attribute, "");
-    if (name.empty()) throw make_error(c.where(), ": no ", attribute, " given");
-    SurfaceData surface;
-    try {
-      surface = read_surface_file(find_data_file(c.object->location.file, name));
-    } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
-    }
-    if (c.spec && c.spec->category == "surfaceloader") {
-      Vec3<double> scale = data_.vec3(c, "scale3d", {1, 1, 1});
-      if (c.has("scale")) scale *= data_.real(c, "scale", 1);
-      surface.points = transformed(std::move(surface.points), scale, data_.vec3(c, "rotation", {0, 0, 0}),
-                                   data_.vec3(c, "translation", {0, 0, 0}));
-    }
-    return surface;
-  }
-
-  // The model's colour: `color` (a name or r g b [a]), else the Diffuse colour of `material`, else
-  // SOFA's default white.
-  Rgba visual_color(Component& model) {
-    if (model.has("color")) return parse_color("color", data_.text(model, "color", ""));
-    if (model.has("material")) {
-      std::istringstream in(data_.text(model, "material", ""));
-      std::string word;
-      while (in >> word) {
-        if (word == "Diffuse") {
-          int enabled = 0;
-          Rgba rgba{1, 1, 1, 1};
-          if (in >> enabled >> rgba[0] >> rgba[1] >> rgba[2] >> rgba[3]) return rgba;
-          break;
-        }
-      }
-    }
-    return {1, 1, 1, 1};
-  }
 
   std::shared_ptr<TetMesh> mesh_of(Component& user, Index num_points) {
     Component* topology = user.has("topology") ? &data_.resolve_object(*user.node, user.object->attributes.at("topology"), user)
@@ -572,7 +356,7 @@ class Builder {
       drawing.drawing = data_.boolean(c, "drawing", false);
       for (int k = 0; k < 4; ++k) {
         const std::string name = "drawColor" + std::to_string(k + 1);
-        if (c.has(name)) drawing.colors[static_cast<std::size_t>(k)] = parse_color(name, data_.text(c, name, ""));
+        if (c.has(name)) drawing.colors[static_cast<std::size_t>(k)] = scene_detail::parse_color(name, data_.text(c, name, ""));
       }
       system.force_fields.push_back(
           std::make_shared<CorotationalForceField<double>>(mesh, system.state.rest_position, parameters));
@@ -695,22 +479,6 @@ class Builder {
     }
   }
 
-  void add_fixed(Component& c, MechanicalSystem<double>& system) {
-    std::vector<Index> indices;
-    if (data_.boolean(c, "fixAll", false)) {
-      for (Index i = 0; i < system.size(); ++i) indices.push_back(i);
-    } else {
-      indices = c.has("indices") ? data_.indices(c, "indices") : std::vector<Index>{0};  // SOFA's default
-    }
-    for (Index i : indices) {
-      if (i >= system.size()) throw make_error(c.where(), ": index ", i, " out of range [0, ", system.size(), ")");
-    }
-    system.fixed.insert(system.fixed.end(), indices.begin(), indices.end());
-    if (data_.boolean(c, "activate_projectVelocity", false)) {
-      system.zero_velocity.insert(system.zero_velocity.end(), indices.begin(), indices.end());
-    }
-  }
-
   // The boxes are kept for drawing only; the selection itself is BoxROI's `indices` data.
   void add_boxes(Component& c, SimulatedObject<double>& object) {
     const Numbers& box = data_.data(c, "box");
@@ -721,35 +489,6 @@ class Builder {
       const Vec3<double> a(box[b], box[b + 1], box[b + 2]), z(box[b + 3], box[b + 4], box[b + 5]);
       object.boxes.push_back({a.cwiseMin(z), a.cwiseMax(z)});
     }
-  }
-
-  void add_constant_force(Component& c, MechanicalSystem<double>& system) {
-    ConstantForce<double> constant;
-    constant.indices = data_.indices(c, "indices");
-    if (constant.indices.empty()) {
-      for (Index i = 0; i < system.size(); ++i) constant.indices.push_back(i);
-    }
-    const auto count = constant.indices.size();
-    if (data_.boolean(c, "indexFromEnd", false)) {
-      for (Index& i : constant.indices) i = system.size() - 1 - i;
-    }
-    for (Index i : constant.indices) {
-      if (i < 0 || i >= system.size()) throw make_error(c.where(), ": index out of range [0, ", system.size(), ")");
-    }
-    if (c.has("forces")) {
-      constant.forces = data_.points(c, "forces");
-      if (constant.forces.size() != count) {
-        throw make_error(c.where(), ": forces has ", constant.forces.size(), " entries for ", count, " indices");
-      }
-    } else if (c.has("force")) {
-      constant.forces.assign(count, data_.vec3(c, "force", {0, 0, 0}));
-    } else if (c.has("totalForce")) {
-      constant.forces.assign(count, data_.vec3(c, "totalForce", {0, 0, 0}) / static_cast<double>(count));
-    } else {
-      info_.push_back(c.where() + ": no forces, force or totalForce given: no load");
-      constant.forces.assign(count, Vec3<double>::Zero());
-    }
-    system.constant_forces.push_back(std::move(constant));
   }
 
   std::vector<std::string> info_;
