@@ -56,8 +56,9 @@ int main(int argc, char** argv) {
   run->add_option("SCENE", run_options.scene, "scene or mesh file");
   run->add_option("--steps", run_options.steps, "number of time steps")->capture_default_str();
   auto* dt_option = run->add_option("--dt", dt, "time step (default: the scene's)");
-  run->add_option("--out", run_options.out_dir, "folder for --vtu output")->capture_default_str();
+  run->add_option("--out", run_options.out_dir, "folder for --vtu and --obj output")->capture_default_str();
   run->add_flag("--vtu", run_options.vtu, "write a ParaView time series (.vtu per frame and a .pvd)");
+  run->add_flag("--obj", run_options.obj, "write the visual surfaces (or each object's boundary) as .obj per frame");
   run->add_option("--every", run_options.every, "write a frame every K steps (and the last)")->capture_default_str();
   run->add_option("--dump-state", run_options.dump_state, "write positions as JSON to FILE");
   run->add_option("--dump-steps", dump_steps, "steps to dump, e.g. 0,1,10,100 (default; the last step is always dumped)");

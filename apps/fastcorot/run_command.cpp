@@ -9,7 +9,9 @@
 #include "fastcorot/render/drawing_vtu.h"
 #include "fastcorot/io/checkpoint.h"
 #include "fastcorot/io/mesh_readers.h"
+#include "fastcorot/io/obj_writer.h"
 #include "fastcorot/io/vtu_writer.h"
+#include "fastcorot/topology/tetrahedron_faces.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include <unistd.h>
@@ -211,6 +213,48 @@ class VtuSeries {
   std::vector<std::vector<std::vector<std::pair<double, std::string>>>> surface_frames_;
 };
 
+// The surfaces as OBJ files, one per frame: each visual surface (an OglModel mapped onto its
+// object) as `<object>_<model>_<step>.obj`, and an object without one as its boundary triangles,
+// `<object>_<step>.obj` (SOFA's VisualModelOBJExporter writes the visual models the same way).
+class ObjSeries {
+ public:
+  ObjSeries(const std::string& dir, const Simulation<double>& simulation) : dir_(dir) {
+    make_output_folder(dir_, "--out");
+    for (const auto& object : simulation.objects) {
+      const std::string name = file_stem(object.path);
+      std::vector<std::string> stems;
+      for (const VisualSurface& surface : object.visual_surfaces) {
+        stems.push_back(name + "_" + file_stem(surface.path.substr(object.path.size() + 1)));
+      }
+      if (stems.empty()) stems.push_back(name);
+      stems_.push_back(std::move(stems));
+      boundaries_.push_back(object.visual_surfaces.empty() && object.mesh
+                                ? boundary_triangles(object.mesh->tetrahedra())
+                                : std::vector<Triangle>{});
+    }
+  }
+
+  void write(const Simulation<double>& simulation) const {
+    const std::string step = "_" + std::to_string(simulation.steps_done()) + ".obj";
+    for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
+      const auto& object = simulation.objects[o];
+      const auto& x = object.system.state.position;
+      for (std::size_t s = 0; s < object.visual_surfaces.size(); ++s) {
+        const VisualSurface& surface = object.visual_surfaces[s];
+        write_obj(std::filesystem::path(dir_) / (stems_[o][s] + step), surface.points(x), surface.triangles, surface.path);
+      }
+      if (object.visual_surfaces.empty()) {
+        write_obj(std::filesystem::path(dir_) / (stems_[o][0] + step), x, boundaries_[o], object.path + " (boundary)");
+      }
+    }
+  }
+
+ private:
+  std::string dir_;
+  std::vector<std::vector<std::string>> stems_;
+  std::vector<std::vector<Triangle>> boundaries_;
+};
+
 void record(json& steps, const Simulation<double>& simulation) {
   json frame = json::object();
   for (const auto& object : simulation.objects) frame[object.path] = points_to_json(object.system.state.position);
@@ -271,6 +315,8 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   // resuming, so that a resumed run writes what the uninterrupted one would have.
   std::optional<VtuSeries> vtu;
   if (options.vtu) vtu.emplace(options.out_dir, simulation, drawing);
+  std::optional<ObjSeries> obj;
+  if (options.obj) obj.emplace(options.out_dir, simulation);
   std::optional<PictureSeries> pictures;
   if (!options.png_dir.empty()) pictures.emplace(options.png_dir, options.picture, simulation, options.steps);
   const bool dump_last = !options.dump_state.empty();
@@ -289,6 +335,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   } else {
     if (options.dump_steps.count(0) || (dump_last && options.steps == 0)) record(steps, simulation);
     if (vtu) vtu->write(simulation);
+    if (obj) obj->write(simulation);
     if (pictures) pictures->write(simulation);
   }
   const long first_step = simulation.steps_done() + 1;
@@ -306,6 +353,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       if (options.dump_steps.count(step) || (dump_last && step == options.steps)) record(steps, simulation);
       const bool frame = step % options.every == 0 || step == options.steps;
       if (vtu && frame) vtu->write(simulation);
+      if (obj && frame) obj->write(simulation);
       if (pictures && frame) pictures->write(simulation);
       // After the frames, so that a run resumed here finds them in the folder.
       if (options.checkpoint_every > 0 && step % options.checkpoint_every == 0) {

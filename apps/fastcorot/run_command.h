@@ -1,4 +1,4 @@
-// `fastcorot run [SCENE] [--steps N] [--dt DT] [--out DIR] [--vtu] [--every K]
+// `fastcorot run [SCENE] [--steps N] [--dt DT] [--out DIR] [--vtu] [--obj] [--every K]
 //                [--dump-state FILE --dump-steps 0,1,10,100] [--threads N] [--quiet]
 //                [--png DIR [--size WxH] [--drawing scene|on|off] [--camera-...]]
 //                [--checkpoint-every K [--checkpoint FILE]] [--resume FILE] [--divergence-factor
@@ -24,6 +24,7 @@ struct RunOptions {
   std::optional<double> dt;
   std::string out_dir = "out";
   bool vtu = false;
+  bool obj = false;  // write each visual surface (or each object's boundary) as OBJ per frame
   long every = 1;  // write VTU frames every K steps (and the last)
   std::string dump_state;
   std::set<long> dump_steps = {0, 1, 10, 100};

@@ -3,6 +3,7 @@
 #include "support/sofa_reference.h"
 
 #include "fastcorot/io/mesh_readers.h"
+#include "fastcorot/io/surface_readers.h"
 
 #include "support/command.h"
 
@@ -169,6 +170,41 @@ TEST(Run, VisualSurfacesGetVtuSeriesOfTheirOwn) {
   // The free fall moves the triangle with the tetrahedron.
   const MeshData first = read_vtu(out / "root_body_Visu_V_0.vtu"), last = read_vtu(out / "root_body_Visu_V_2.vtu");
   EXPECT_LT(last.points[0].y(), first.points[0].y());
+}
+
+TEST(Run, ObjFramesHoldTheVisualSurfacesOrTheBoundary) {
+  const auto dir = output_dir("run_obj");
+  std::ofstream(dir / "tri.obj") << "v 0.2 0.2 0.2\nv 0.8 0.2 0.2\nv 0.2 0.8 0.2\nf 1 2 3\n";
+  const std::string body = R"(
+    <EulerImplicitSolver/><CGLinearSolver/>
+    <MechanicalObject position="0 0 0  1 0 0  0 1 0  0 0 1"/>
+    <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/>
+    <UniformMass totalMass="1"/>
+    <TetrahedronFEMForceField/>)";
+  const std::string scene = write_scene(dir, R"(<Node name="root"><Node name="body">)" + body + R"(
+    <Node name="Visu">
+      <MeshOBJLoader name="l" filename="tri.obj"/>
+      <OglModel name="V" src="@l"/>
+      <BarycentricMapping input="@.." output="@V"/>
+    </Node>
+  </Node><Node name="bare">)" + body + "</Node></Node>");
+  const auto out = dir / "frames";
+  const auto result = run_fastcorot("run " + scene + " --steps 3 --every 2 --obj --vtu --quiet --out " + out.string());
+  ASSERT_EQ(result.status, 0) << result.output;
+  for (const char* step : {"0", "2", "3"}) {
+    // The mapped triangle, point for point the VTU frame's (17 digits read back exactly).
+    const SurfaceData surface = read_obj(out / (std::string("root_body_Visu_V_") + step + ".obj"));
+    const MeshData vtu = read_vtu(out / (std::string("root_body_Visu_V_") + step + ".vtu"));
+    ASSERT_EQ(surface.points.size(), 3u);
+    EXPECT_EQ(surface.points, vtu.points);
+    EXPECT_EQ(surface.triangles, vtu.triangles);
+    // Without a visual model: the tetrahedron's four boundary triangles on its points.
+    const SurfaceData boundary = read_obj(out / (std::string("root_bare_") + step + ".obj"));
+    EXPECT_EQ(boundary.points, read_vtu(out / (std::string("root_bare_") + step + ".vtu")).points);
+    EXPECT_EQ(boundary.triangles.size(), 4u);
+  }
+  EXPECT_FALSE(std::filesystem::exists(out / "root_bare_1.obj"));
+  EXPECT_NE(read_obj(out / "root_bare_3.obj").points, read_obj(out / "root_bare_0.obj").points);
 }
 
 TEST(Run, BadScenesExitWith2AndAClearMessage) {
