@@ -139,6 +139,10 @@ TetrahedronFEMForceField<Real>::TetrahedronFEMForceField(std::shared_ptr<TetMesh
                        ": each must be finite and >= 0");
     }
   }
+  if (parameters_.update_stiffness_matrix && parameters_.method == TetrahedronFEMMethod::large) {
+    throw make_error("updateStiffnessMatrix with method large is not supported (SOFA updates only some entries of J "
+                     "there, leaving the others at the rest shape's); polar and svd are");
+  }
   for (std::size_t i = 0; i < parameters_.local_stiffness_factor.size(); ++i) {
     const Real factor = parameters_.local_stiffness_factor[i];
     if (!(factor > 0) || !std::isfinite(factor)) {
@@ -353,10 +357,17 @@ void TetrahedronFEMForceField<Real>::accumulate_element(Index t, std::span<const
   Element& element = elements_[static_cast<std::size_t>(t)];
   const Tetrahedron& tet = mesh_->tetrahedron(t);
   Mat3<Real> frame;  // SOFA's R_0_2: world to the element's current frame
-  const auto d = displacement(element, tetrahedron_points<Real>(tet, x), parameters_.method, frame);
+  const TetPoints<Real> p = tetrahedron_points<Real>(tet, x);
+  const auto d = displacement(element, p, parameters_.method, frame);
   const Plasticity<Real> plasticity{parameters_.plastic_max_threshold, parameters_.plastic_yield_threshold,
                                     parameters_.plastic_creep};
-  const auto force = element_force(element.gradient, element.material, d, &element.plastic_strain, plasticity);
+  std::array<Vec3<Real>, 4> gradient = element.gradient;
+  if (parameters_.update_stiffness_matrix && parameters_.method != TetrahedronFEMMethod::small) {
+    // SOFA's updateStiffnessMatrix (polar, svd): J of the current positions in the element's frame.
+    gradient = strain_gradients<Real>(frame * p[0], frame * p[1], frame * p[2], frame * p[3]);
+    if constexpr (kLinearise) element.gradient = gradient;
+  }
+  const auto force = element_force(gradient, element.material, d, &element.plastic_strain, plasticity);
   if (parameters_.method == TetrahedronFEMMethod::small) {
     for (std::size_t i = 0; i < 4; ++i) f[static_cast<std::size_t>(tet[i])] += force[i];
     return;
@@ -560,6 +571,7 @@ std::vector<double> TetrahedronFEMForceField<Real>::model_values() const {
   values.insert(values.end(), parameters_.local_stiffness_factor.begin(), parameters_.local_stiffness_factor.end());
   values.push_back(static_cast<double>(parameters_.method));
   values.push_back(static_cast<double>(parameters_.rayleigh_stiffness));
+  if (parameters_.update_stiffness_matrix) values.push_back(1);
   if (parameters_.plastic_max_threshold > 0) {
     values.insert(values.end(), {static_cast<double>(parameters_.plastic_max_threshold),
                                  static_cast<double>(parameters_.plastic_yield_threshold),

@@ -26,7 +26,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 55> kIgnored = {
+constexpr std::array<std::string_view, 59> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -39,7 +39,8 @@ constexpr std::array<std::string_view, 55> kIgnored = {
     "AttachBodyButtonSetting", "Visual3DText", "OglShader", "OglShadowShader", "VisualMesh", "WriteState", "MeshExporter",
     "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyContainer", "EdgeSetTopologyModifier",
     "EdgeSetGeometryAlgorithms", "PlaneConstraint", "ValuesFromPositions", "NaturalOrderingMethod",
-    "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod"};
+    "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod", "TaskSchedulerSettings",
+    "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase"};
 
 std::string join_names(std::span<const AttributeSpec> attributes) {
   std::string list;
@@ -82,11 +83,12 @@ bool is_unknown_to_sofa(std::string_view name) {
 }
 
 bool is_collision_component(std::string_view name) {
-  static constexpr std::array<std::string_view, 16> kCollision = {
+  static constexpr std::array<std::string_view, 19> kCollision = {
       "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase", "BruteForceDetection",
       "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection", "DiscreteIntersection",
       "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel", "LineCollisionModel",
-      "PointCollisionModel", "SphereCollisionModel", "SphereLoader"};
+      "PointCollisionModel", "SphereCollisionModel", "SphereLoader", "TetrahedronCollisionModel",
+      "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase"};
   return std::find(kCollision.begin(), kCollision.end(), name) != kCollision.end();
 }
 

@@ -26,7 +26,7 @@ std::vector<ComponentSpec> mechanics_components() {
         {"computeVonMisesStress", "int", "0", "0 none, 1 from the corotational strain (not small), 2 from the Green strain"},
         {"computeGlobalMatrix", "bool", "false", "SOFA's assembled variant (alias assembling): the same forces for small and large; refused for polar and svd, where SOFA then computes no force"},
         {"assembling", "bool", "false", "alias of computeGlobalMatrix"},
-        {"updateStiffnessMatrix", "bool", "false", "only false: J from the rest shape"},
+        {"updateStiffnessMatrix", "bool", "false", "polar, svd: J from the current shape at each force evaluation; refused for large; no effect for small (as in SOFA)"},
         {"updateStiffness", "bool", "false", "accepted: the material does not change during a run"},
         {"plasticMaxThreshold", "real", "0", "largest plastic strain (2-norm); > 0 turns SOFA's plasticity on"},
         {"plasticYieldThreshold", "real", "0.0001", "elastic strain (2-norm) beyond which the plastic strain grows"},

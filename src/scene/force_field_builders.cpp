@@ -15,6 +15,14 @@ double real_or_alias(SceneData& data, Component& c, const char* name, const char
 
 }  // namespace
 
+bool makes_mesh_springs(SceneData& data, Component& c) {
+  for (const char* kind : {"lines", "triangles", "quads", "tetrahedra", "tetras", "cubes"}) {
+    const std::string stiffness = std::string(kind) + "Stiffness", damping = std::string(kind) + "Damping";
+    if ((c.has(stiffness) && data.real(c, stiffness, 0) != 0) || (c.has(damping) && data.real(c, damping, 0) != 0)) return true;
+  }
+  return false;
+}
+
 std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh,
                                                        std::span<const Vec3<double>> rest) {
   try {

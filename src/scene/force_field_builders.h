@@ -13,6 +13,11 @@
 
 namespace fastcorot::scene_detail {
 
+// Whether MeshSpringForceField c makes any spring: one of its per-kind stiffnesses or dampings
+// (linesStiffness, tetrahedraStiffness, ...) is not zero. (Its `stiffness` and `damping`, which it
+// inherits from SpringForceField, make none, as in SOFA.)
+bool makes_mesh_springs(SceneData& data, Component& c);
+
 // MeshSpringForceField over `mesh` (its topology's tetrahedra and edges), rest lengths from `rest`.
 std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh,
                                                        std::span<const Vec3<double>> rest);

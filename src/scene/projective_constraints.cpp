@@ -75,7 +75,8 @@ Vec3<double> patch_test_displacement(const std::vector<Vec3<double>>& k, const s
 bool is_partial_projective_constraint(std::string_view type) {
   return type == "PartialFixedProjectiveConstraint" || type == "FixedPlaneProjectiveConstraint" ||
          type == "PlaneProjectiveConstraint" || type == "LineProjectiveConstraint" ||
-         type == "AffineMovementProjectiveConstraint" || type == "PatchTestMovementProjectiveConstraint";
+         type == "AffineMovementProjectiveConstraint" || type == "PatchTestMovementProjectiveConstraint" ||
+         type == "PointProjectiveConstraint";
 }
 
 void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system) {
@@ -95,6 +96,17 @@ void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<d
     for (Index i : indices) {
       system.projections.push_back({i, free});
       if (velocity) system.placements.push_back({i, Mat3<double>::Identity(), Vec3<double>::Zero(), free});
+    }
+    return;
+  }
+  if (type == "PointProjectiveConstraint") {
+    // Increments and velocities zero, positions set to `point` after each step (SOFA's default
+    // indices: point 0).
+    const auto indices = constrained_points(data, c, size, data.boolean(c, "fixAll", false), {0});
+    const Vec3<double> point = data.vec3(c, "point", {0, 0, 0});
+    for (Index i : indices) {
+      system.projections.push_back({i, Mat3<double>::Zero()});
+      system.placements.push_back({i, Mat3<double>::Zero(), point, Mat3<double>::Zero()});
     }
     return;
   }

@@ -1,6 +1,6 @@
 // The projective constraints beyond FixedProjectiveConstraint, built onto an object's
 // MechanicalSystem as partial projections and end-of-step placements (mechanical_system.h):
-// PartialFixed-, FixedPlane-, Plane-, Line-, AffineMovement- and AttachProjectiveConstraint, each
+// PartialFixed-, FixedPlane-, Plane-, Line-, Point-, AffineMovement-, PatchTestMovement- and AttachProjectiveConstraint, each
 // as SOFA defines it.
 // Internal to src/scene (scene_builder.cpp).
 #pragma once

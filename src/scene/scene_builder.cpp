@@ -193,7 +193,9 @@ class Builder {
           object.system.force_fields.push_back(scene_detail::build_penalty_force_field(data_, *c, mesh));
           object.force_field_drawing.push_back({});
         }
-        if (type == "MeshSpringForceField") {
+        if (type == "MeshSpringForceField" && !scene_detail::makes_mesh_springs(data_, *c)) {
+          info_.push_back(c->where() + ": no per-kind stiffness or damping (linesStiffness, tetrahedraStiffness, ...): no springs, as in SOFA");
+        } else if (type == "MeshSpringForceField") {
           auto mesh = mesh_of(*c, system.size());
           add_field(scene_detail::build_mesh_springs(data_, *c, mesh, system.state.rest_position), mesh, *c, object);
         }
@@ -309,13 +311,15 @@ class Builder {
     if (!topology) throw make_error(user.where(), ": no topology in its node or above");
     if (const auto it = meshes_.find(topology); it != meshes_.end()) return it->second;
     std::vector<Index> flat = data_.indices(*topology, "tetrahedra");
-    if (flat.empty() && topology->type() == "RegularGridTopology" && user.type() == "TetrahedronFEMForceField") {
-      // TetrahedronFEMForceField tessellates a grid's hexahedra itself, as SOFA's init does.
+    const bool grid = topology->type() == "RegularGridTopology" || topology->type() == "CylinderGridTopology";
+    if (flat.empty() && grid && user.type() == "TetrahedronFEMForceField") {
+      // TetrahedronFEMForceField tessellates a grid's hexahedra itself, as SOFA's init does (the
+      // split depends on the point counts only).
       for (const Tetrahedron& t : tetrahedron_fem_grid_tetrahedra(data_.grid(*topology))) flat.insert(flat.end(), t.begin(), t.end());
     }
     if (flat.empty()) {
       throw make_error(user.where(), ": its topology ", topology->where(), " has no tetrahedra",
-                       topology->type() == "RegularGridTopology"
+                       grid
                            ? " (a grid gives hexahedra: add a TetrahedronSetTopologyContainer filled by a "
                              "Hexa2TetraTopologicalMapping after it)"
                            : "");
@@ -412,7 +416,10 @@ class Builder {
                          " only reports an error); use computeGlobalMatrix=\"false\"");
       }
       if (data_.boolean(c, "updateStiffnessMatrix", false)) {
-        throw make_error("updateStiffnessMatrix=\"true\" is not supported (J is taken from the rest shape)");
+        if (c.type() != "TetrahedronFEMForceField") {
+          throw make_error("updateStiffnessMatrix=\"true\" is not supported (J is taken from the rest shape)");
+        }
+        parameters.update_stiffness_matrix = parameters.method != TetrahedronFEMMethod::small;  // SOFA: no effect for small
       }
       parameters.plastic_max_threshold = data_.real(c, "plasticMaxThreshold", 0.0);
       if (c.has("plasticYieldThreshold")) parameters.plastic_yield_threshold = data_.real(c, "plasticYieldThreshold", 0.0);

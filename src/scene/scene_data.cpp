@@ -309,6 +309,21 @@ RegularGrid SceneData::grid(Component& c) {
   return grid;
 }
 
+CylinderGrid SceneData::cylinder_grid(Component& c) {
+  CylinderGrid cylinder;
+  cylinder.n = grid(c).n;
+  cylinder.center = vec3(c, "center", {0, 0, 0});
+  cylinder.axis = vec3(c, "axis", {0, 0, 1});
+  cylinder.radius = real(c, "radius", 1);
+  cylinder.length = real(c, "length", 1);
+  try {
+    cylinder_grid_points(cylinder);  // validates
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+  return cylinder;
+}
+
 Numbers SceneData::cells_inside(Component& c, const Numbers& cells, int corners, const char* kind,
                                 const std::vector<Vec3<double>>& positions,
                                 const std::function<bool(const Vec3<double>&)>& inside) {

@@ -11,6 +11,7 @@
 #include "fastcorot/scene/component_table.h"
 #include "fastcorot/io/mesh_readers.h"
 #include "fastcorot/scene/scene_graph.h"
+#include "fastcorot/topology/cylinder_grid.h"
 #include "fastcorot/topology/regular_grid.h"
 
 #include <functional>
@@ -115,8 +116,11 @@ class SceneData {
   static constexpr const char* kTranslationParts[3] = {"dx", "dy", "dz"};
   static constexpr const char* kRotationParts[3] = {"rx", "ry", "rz"};
   static constexpr const char* kScaleParts[3] = {"sx", "sy", "sz"};
-  // The grid a RegularGridTopology describes (validated; errors name the component).
+  // The grid a RegularGridTopology describes (validated; errors name the component). For a
+  // CylinderGridTopology, its point counts (the rest of the grid is then unused).
   RegularGrid grid(Component& c);
+  // The cylinder a CylinderGridTopology describes.
+  CylinderGrid cylinder_grid(Component& c);
 
  private:
   Numbers compute(Component& c, const std::string& name);

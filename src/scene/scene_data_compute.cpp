@@ -4,6 +4,7 @@
 #include "scene_data.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/topology/cylinder_grid.h"
 #include "fastcorot/topology/cylinder_mesh.h"
 #include "fastcorot/topology/regular_grid.h"
 #include "fastcorot/topology/tetrahedron_faces.h"
@@ -58,6 +59,8 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   }
   if (type == "RegularGridTopology" && name == "position") return flatten(grid_points<double>(grid(c)));
   if (type == "RegularGridTopology" && name == "n") return {2, 2, 2};
+  if (type == "CylinderGridTopology" && name == "position") return flatten(cylinder_grid_points(cylinder_grid(c)));
+  if (type == "CylinderGridTopology" && name == "n") return {2, 2, 2};
   if (type == "MeshGmshLoader" || type == "MeshVTKLoader" || type == "GIDMeshLoader") {
     const MeshData& mesh = mesh_file(c);
     if (name == "position") return flatten(mesh.points);
@@ -114,8 +117,9 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
                            " to take points from");
         }
         // A grid whose position links back to this state (SOFA scenes write that) gives its own points.
-        base = topology->type() == "RegularGridTopology" ? grid_points<double>(grid(*topology))
-                                                         : points_from(data(*topology, "position"), *topology, "position");
+        base = topology->type() == "RegularGridTopology"    ? grid_points<double>(grid(*topology))
+               : topology->type() == "CylinderGridTopology" ? cylinder_grid_points(cylinder_grid(*topology))
+                                                            : points_from(data(*topology, "position"), *topology, "position");
       }
       return flatten(transformed(std::move(base), placement(c, "scale3d"), placement(c, "rotation"),
                                  placement(c, "translation")));

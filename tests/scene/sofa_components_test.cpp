@@ -280,6 +280,45 @@ TEST(SofaProjectiveConstraints, PatchTestMovementInterpolatesTheCornerMovements)
   EXPECT_NE(planar.warnings[1].find("3 movements"), std::string::npos);
 }
 
+TEST(SofaProjectiveConstraints, PointHoldsPointsAtItsPoint) {
+  LoadedScene scene = build(beam("<PointProjectiveConstraint indices=\"5 7\" point=\"1 2 3\"/><PointProjectiveConstraint/>"));
+  auto& system = scene.simulation.objects[0].system;
+  scene.simulation.step();
+  EXPECT_EQ(system.state.position[5], Vec3<double>(1, 2, 3));
+  EXPECT_EQ(system.state.position[7], Vec3<double>(1, 2, 3));
+  EXPECT_EQ(system.state.position[0], Vec3<double>::Zero());  // the default: point 0 held at the origin
+  EXPECT_EQ(system.state.velocity[5], Vec3<double>::Zero());
+  EXPECT_NE(system.state.velocity[4], Vec3<double>::Zero());
+  EXPECT_NE(error_of(beam("<PointProjectiveConstraint indices=\"12\"/>")).find("index 12 out of range"), std::string::npos);
+}
+
+TEST(SofaTetrahedronFEM, UpdateStiffnessMatrixForPolarAndSvdOnly) {
+  std::string polar = beam("");
+  polar.replace(polar.find("TetrahedronFEMForceField"), 24, "TetrahedronFEMForceField method=\"polar\" updateStiffnessMatrix=\"1\"");
+  const LoadedScene built = build(polar);
+  const auto* field = dynamic_cast<const TetrahedronFEMForceField<double>*>(built.simulation.objects[0].system.force_fields[0].get());
+  ASSERT_NE(field, nullptr);
+  EXPECT_TRUE(field->parameters().update_stiffness_matrix);
+  std::string large = beam("");
+  large.replace(large.find("TetrahedronFEMForceField"), 24, "TetrahedronFEMForceField updateStiffnessMatrix=\"1\"");
+  EXPECT_NE(error_of(large).find("updateStiffnessMatrix with method large is not supported"), std::string::npos) << error_of(large);
+}
+
+TEST(SofaGrid, CylinderGridCarriesTetrahedronFEMAndSpringlessMeshSprings) {
+  LoadedScene scene = build(R"(<Node name="cylinder"><EulerImplicitSolver/><CGLinearSolver/>
+    <MechanicalObject/><UniformMass totalMass="1"/><FixedProjectiveConstraint indices="0 1 2"/>
+    <CylinderGridTopology n="3 3 4" axis="0 1 0" radius="2" length="6"/>
+    <MeshSpringForceField stiffness="100" damping="1"/>
+    <TetrahedronFEMForceField method="polar" youngModulus="100"/></Node>)");
+  auto& object = scene.simulation.objects[0];
+  ASSERT_EQ(object.system.size(), 36);
+  ASSERT_EQ(object.system.force_fields.size(), 1u);  // the springs' kinds are all zero: none (SOFA)
+  EXPECT_EQ(object.system.force_fields[0]->mesh().num_tetrahedra(), 6 * 2 * 2 * 3);
+  EXPECT_LT((object.system.state.position[35] - Vec3<double>(std::sqrt(2.0), 6, -std::sqrt(2.0))).norm(), 1e-14);
+  scene.simulation.step();
+  EXPECT_TRUE(object.system.state.position[35].allFinite());
+}
+
 // Two beams: under one solver (SOFA's one system), or each with its own.
 std::string two_beams(bool one_solver, const std::string& second_gravity = "") {
   const std::string solver = "<EulerImplicitSolver rayleighMass=\"0.1\"/><EigenSimplicialLDLT/>";

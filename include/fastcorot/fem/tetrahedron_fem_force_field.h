@@ -67,6 +67,10 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
     Real plastic_max_threshold = 0;
     Real plastic_yield_threshold = static_cast<Real>(0.0001f);
     Real plastic_creep = static_cast<Real>(0.9f);
+    // SOFA's updateStiffnessMatrix (polar and svd): at each force evaluation J is recomputed from
+    // the element's current positions in its frame (the rest volume stays in K), and the force and
+    // tangent use it. Refused for large, where SOFA updates only some of J's entries.
+    bool update_stiffness_matrix = false;
   };
 
   // What SOFA keeps per tetrahedron, compactly: J holds three distinct values per vertex
