@@ -3,6 +3,7 @@
 #include "default_scene.h"
 #include "json_io.h"
 #include "picture_series.h"
+#include "scene_source.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
@@ -73,6 +74,10 @@ std::string mesh_scene_text(const std::string& mesh_path) {
 }
 
 LoadedScene load_scene_argument(const std::string& scene, bool strict) {
+  if (is_script(scene)) {
+    throw make_error(scene, ": a Python script: `fastcorot run` and `fastcorot view` run scripts; this command takes "
+                     "scene and mesh files");
+  }
   const SceneOptions options{strict};
   if (scene.empty()) return build_scene(parse_scene_text(kDefaultScene, "<built-in cantilever beam>"), options);
   std::string extension = std::filesystem::path(scene).extension().string();
@@ -284,7 +289,8 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
                      ": must be >= 0 (0: no bound)");
   }
   const TetrahedronDrawing drawing = parse_tetrahedron_drawing(options.picture.drawing);
-  LoadedScene scene = load_scene_argument(options.scene, options.strict);
+  const std::unique_ptr<SceneSource> source = open_scene(options.scene, options.strict);
+  LoadedScene& scene = source->scene();
   Simulation<double>& simulation = scene.simulation;
   if (options.dt) {
     if (!(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
@@ -321,6 +327,10 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.png_dir.empty()) pictures.emplace(options.png_dir, options.picture, simulation, options.steps);
   const bool dump_last = !options.dump_state.empty();
   if (!options.resume.empty()) {
+    if (source->has_controllers()) {
+      throw make_error("--resume ", options.resume, ": ", options.scene, " has Python controllers, whose own state "
+                       "a checkpoint does not hold: a resumed run could differ; run it from the start");
+    }
     restore_checkpoint(options.resume, simulation);
     if (simulation.steps_done() > options.steps) {
       throw make_error("--resume ", options.resume, ": the checkpoint is at step ",
@@ -347,7 +357,9 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   double last_draw = -1;
   try {
     for (long step = first_step; step <= options.steps; ++step) {
+      source->begin_step();
       const StepReport report = simulation.step();
+      source->end_step();
       solves += report.linear_solves;
       iterations += report.linear_iterations;
       if (options.dump_steps.count(step) || (dump_last && step == options.steps)) record(steps, simulation);

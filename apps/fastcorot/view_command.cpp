@@ -156,11 +156,16 @@ void on_scroll(GLFWwindow* window, double, double offset) {
   controls_of(window).camera->zoom(std::pow(0.9, offset));
 }
 
-void on_key(GLFWwindow* window, int key, int, int action, int) {
+void on_key(GLFWwindow* window, int key, int, int action, int mods) {
   if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
   if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
   Controls& c = controls_of(window);
   ViewerSession& s = *c.session;
+  // As in runSofa, keys pressed with Ctrl go to the scene's controllers (letters as capitals).
+  if ((mods & GLFW_MOD_CONTROL) && key >= GLFW_KEY_SPACE && key <= GLFW_KEY_GRAVE_ACCENT) {
+    s.key_pressed(static_cast<char>(key));
+    return;
+  }
   switch (key) {
     case GLFW_KEY_SPACE:
       s.playing = !s.playing;

@@ -18,16 +18,17 @@ ViewerSession::ViewerSession(const ViewOptions& options) : options_(options) {
   playing = !options.paused;
   if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
   if (options.dt && !(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
-  load();
+  load(false);
   // A brush of 1.5 % of the scene's diagonal takes a few tetrahedra of a typical mesh per cut, so
   // that one drag leaves a visible cut; the panel changes it.
-  cut_radius = 0.015 * scene_.simulation.scene_size();
+  cut_radius = 0.015 * scene_->simulation.scene_size();
   title_ = options.scene.empty() ? "built-in cantilever beam"
                                  : std::filesystem::path(options.scene).filename().string();
 }
 
-void ViewerSession::load() {
-  LoadedScene scene = load_scene_argument(options_.scene, options_.strict);
+void ViewerSession::load(bool again) {
+  if (!source_) source_ = open_scene(options_.scene, options_.strict);
+  LoadedScene& scene = again ? source_->reload() : source_->scene();
   warnings = scene.warnings;
   if (options_.dt) scene.simulation.dt = *options_.dt;
   scene.simulation.threads = options_.threads;
@@ -48,14 +49,16 @@ void ViewerSession::load() {
     }
     materials.push_back(material);
   }
-  scene_ = std::move(scene);
+  scene_ = &scene;
   removed_ = 0;
 }
 
 void ViewerSession::step() {
   const auto start = std::chrono::steady_clock::now();
   try {
-    scene_.simulation.step();
+    source_->begin_step();
+    scene_->simulation.step();
+    source_->end_step();
     message.clear();
   } catch (const Error& error) {
     playing = false;
@@ -79,15 +82,24 @@ void ViewerSession::advance() {
 
 void ViewerSession::reload() {
   try {
-    load();
+    load(true);
     message.clear();
   } catch (const Error& error) {
     message = std::string("reload failed: ") + error.what();
   }
 }
 
+void ViewerSession::key_pressed(char key) {
+  try {
+    source_->key_pressed(key);
+  } catch (const Error& error) {
+    playing = false;
+    message = error.what();
+  }
+}
+
 void ViewerSession::set_method(std::size_t o, RotationMethod method) {
-  auto& object = scene_.simulation.objects.at(o);
+  auto& object = scene_->simulation.objects.at(o);
   // The methods of FastTetrahedralCorotationalForceField; a TetrahedronFEMForceField keeps its own.
   for (auto& field : object.system.force_fields) {
     if (auto* corotational = dynamic_cast<CorotationalForceField<double>*>(field.get())) corotational->set_method(method);
@@ -96,7 +108,7 @@ void ViewerSession::set_method(std::size_t o, RotationMethod method) {
 }
 
 void ViewerSession::set_material(std::size_t o, double young_modulus, double poisson_ratio) {
-  auto& object = scene_.simulation.objects.at(o);
+  auto& object = scene_->simulation.objects.at(o);
   auto& fields = object.system.force_fields;
   try {
     // Build every new field before replacing any, so that a bad value changes nothing.
@@ -127,11 +139,11 @@ void ViewerSession::set_material(std::size_t o, double young_modulus, double poi
 }
 
 std::size_t ViewerSession::cut(std::size_t o, std::span<const Index> tetrahedra) {
-  if (o >= scene_.simulation.objects.size()) {
+  if (o >= scene_->simulation.objects.size()) {
     message = "cut: there is no object " + std::to_string(o);
     return 0;
   }
-  auto& object = scene_.simulation.objects[o];
+  auto& object = scene_->simulation.objects[o];
   if (!object.mesh) {
     message = "cut: " + object.path + " has no tetrahedra to cut";
     return 0;
@@ -167,7 +179,7 @@ std::size_t ViewerSession::cut_at(const Camera& camera, int width, int height,
                                   const Eigen::Vector2d& pixel) {
   if (width < 1 || height < 1) return 0;  // a minimised window shows nothing to cut
   const Ray ray = pixel_ray(camera, width, height, pixel);
-  auto& objects = scene_.simulation.objects;
+  auto& objects = scene_->simulation.objects;
   std::optional<TetrahedronHit> nearest;
   std::size_t hit_object = 0;
   for (std::size_t o = 0; o < objects.size(); ++o) {

@@ -11,6 +11,8 @@
 #include "fastcorot/fem/rotation_method.h"
 #include "fastcorot/render/camera.h"
 #include "fastcorot/render/draw_geometry.h"
+#include "scene_source.h"
+
 #include "fastcorot/scene/scene_builder.h"
 
 #include <chrono>
@@ -34,8 +36,8 @@ class ViewerSession {
   // Loads the scene (throws fastcorot::Error on a bad scene or option, like `run`).
   explicit ViewerSession(const ViewOptions& options);
 
-  Simulation<double>& simulation() { return scene_.simulation; }
-  const Simulation<double>& simulation() const { return scene_.simulation; }
+  Simulation<double>& simulation() { return scene_->simulation; }
+  const Simulation<double>& simulation() const { return scene_->simulation; }
   const std::string& title() const { return title_; }
 
   bool playing = true;
@@ -56,6 +58,8 @@ class ViewerSession {
   void step();
   // Reloads the scene from its source (same options); on failure keeps the current one.
   void reload();
+  // A key for the scene's controllers (a script's onKeypressedEvent); a failure goes to `message`.
+  void key_pressed(char key);
   // Applies `method` to every force field of object `o`.
   void set_method(std::size_t o, RotationMethod method);
   // Rebuilds every force field of object `o` with a uniform E and nu (same mesh, rest positions,
@@ -80,10 +84,11 @@ class ViewerSession {
   double steps_per_second() const { return rate_; }
 
  private:
-  void load();
+  void load(bool again);
 
   ViewOptions options_;
-  LoadedScene scene_;
+  std::unique_ptr<SceneSource> source_;
+  LoadedScene* scene_ = nullptr;  // the source's
   std::string title_;
   double rate_ = 0;
   std::size_t removed_ = 0;

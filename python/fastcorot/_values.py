@@ -53,6 +53,8 @@ def canonical(kind, name, value, where):
         return value
     if isinstance(value, os.PathLike) and kind == "file":
         return os.fspath(value)
+    if kind in TEXT_TYPES and _is_text_list(value):
+        return " ".join(value)  # SOFA reads a list of texts as the texts separated by spaces
     if kind in TEXT_TYPES or name == "name":
         raise TypeError(f"{label}: expected a str, got {type(value).__name__} {value!r}")
     if kind == "bool":
@@ -93,7 +95,13 @@ def canonical(kind, name, value, where):
     # Common and display attributes, and those of ignored components: any plain value.
     if _is_bool(value) or isinstance(value, numbers.Real):
         return value
+    if _is_text_list(value):
+        return " ".join(value)
     return np.asarray(value)
+
+
+def _is_text_list(value):
+    return isinstance(value, (list, tuple)) and len(value) > 0 and all(isinstance(v, str) for v in value)
 
 
 def to_text(value):

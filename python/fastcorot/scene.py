@@ -21,6 +21,7 @@ from the tree (as SOFA applies most changes at the next init).
 import functools
 import os
 import sys
+import warnings
 
 import numpy as np
 
@@ -34,10 +35,19 @@ _VON_MISES = ("vonMisesPerNode", "vonMisesPerElement")
 _FORCE_FIELDS = ("FastTetrahedralCorotationalForceField", "TetrahedronFEMForceField")
 
 
+# Folders whose frames are not "the caller": this package's, and those of front ends built on it
+# (the Sofa compatibility package adds its own).
+INTERNAL_FOLDERS = {_PACKAGE_DIR}
+
+
+class SceneWarning(UserWarning):
+    """An attribute a component does not have (ignored, as SOFA ignores it), with the closest name."""
+
+
 def _caller_location():
-    """(file, line) of the first caller outside this package."""
+    """(file, line) of the first caller outside this package (and the front ends on it)."""
     frame = sys._getframe(1)
-    while frame is not None and os.path.dirname(os.path.abspath(frame.f_code.co_filename)) == _PACKAGE_DIR:
+    while frame is not None and os.path.dirname(os.path.abspath(frame.f_code.co_filename)) in INTERNAL_FOLDERS:
         frame = frame.f_back
     return (frame.f_code.co_filename, frame.f_lineno) if frame is not None else ("<python>", 0)
 
@@ -57,14 +67,15 @@ class Object:
     by name as attributes (``obj.youngModulus``) or items (``obj["youngModulus"]``). Made by
     Node.add_object or fastcorot.load. ``help_text()`` lists its data with their meaning."""
 
-    def __init__(self, node, type_name, attributes, location, check=True):
+    def __init__(self, node, type_name, attributes, location, check=True, strict=True):
         object.__setattr__(self, "_node", node)
         object.__setattr__(self, "_type", type_name)
         object.__setattr__(self, "_location", location)
         object.__setattr__(self, "_data", {})
         object.__setattr__(self, "_binding", None)  # (SimulationCore, object index) once simulated
+        object.__setattr__(self, "_strict", strict)  # False: unknown attributes are warnings, as SOFA's
         if check:
-            _core.check_object(type_name, list(attributes), *location)
+            self._check(list(attributes))
         for name, value in attributes.items():
             self._data[name] = value if not check else self._canonical(name, value)
 
@@ -86,6 +97,11 @@ class Object:
     def _label(self):
         name = self._data.get("name")
         return f"{self._type} '{name}'" if isinstance(name, str) and name else self._type
+
+    def _check(self, names):
+        _, warned = _core.check_object(self._type, names, *self._location, self._strict)
+        for line in warned:
+            warnings.warn(line, SceneWarning, stacklevel=4)
 
     def _kind(self, name):
         spec = _spec(self._type)
@@ -132,10 +148,10 @@ class Object:
 
     def _read(self, name):
         if self._binding is not None and name in _STATE_VIEWS:
-            core, k = self._binding
-            return getattr(core, name)(k)
+            core, k, start, stop = self._binding
+            return getattr(core, name)(k)[start:stop]
         if self._binding is not None and name in _VON_MISES:
-            core, k = self._binding
+            core, k = self._binding[:2]
             return core.von_mises_stress(k, name == "vonMisesPerNode")
         kind = self._kind(name)
         where = f"{self.location}: {self._label()}"
@@ -157,13 +173,13 @@ class Object:
 
     def _write(self, name, value):
         if self._binding is not None and name in _STATE_VIEWS:
-            core, k = self._binding
+            core, k, start, stop = self._binding
             if name == "rest_position":
                 raise ValueError(f"{self.location}: {self._label()}: rest_position cannot change once the "
                                  "Simulation is built (the force fields' rest data come from it)")
-            getattr(core, "set_" + name)(k, value)
+            getattr(core, "set_" + name)(k, value, start, stop)
             return
-        _core.check_object(self._type, [name], *self._location)
+        self._check([name])
         self._data[name] = self._canonical(name, value)
 
     # --- cutting (force fields of a built Simulation) ------------------------------------------
@@ -181,13 +197,13 @@ class Object:
         topology in the running Simulation; the force fields and the mass on it follow. SOFA's
         swap-with-last renumbering: returns the new index of every old tetrahedron (-1 when
         removed). Points stay (those left without tetrahedra and mass are held still)."""
-        core, k = self._simulated_topology("remove_tetrahedra")
+        core, k = self._simulated_topology("remove_tetrahedra")[:2]
         return core.remove_tetrahedra(k, indices)
 
     def add_tetrahedra(self, tetrahedra):
         """Appends (m, 4) tetrahedra over existing points to this force field's topology in the
         running Simulation (rest data from the rest positions)."""
-        core, k = self._simulated_topology("add_tetrahedra")
+        core, k = self._simulated_topology("add_tetrahedra")[:2]
         core.add_tetrahedra(k, tetrahedra)
 
     def __getattr__(self, name):
@@ -423,4 +439,4 @@ def walk(node):
         yield from walk(child)
 
 
-__all__ = ["Node", "Object", "load", "walk"]
+__all__ = ["Node", "Object", "SceneWarning", "load", "walk"]

@@ -22,25 +22,24 @@ class Simulation:
     velocity become views of it) and the root's dt and gravity to the simulation's; a later
     Simulation built from the same tree takes the bindings over."""
 
-    def __init__(self, root, threads=1):
+    def __init__(self, root, threads=1, strict=True, allow_empty=False):
+        """`strict`: unknown attributes are errors (False: warnings, listed in `warnings`, as SOFA and
+        `fastcorot run` take them); `allow_empty`: a scene with nothing to simulate steps only time."""
         if not isinstance(root, Node):
             raise TypeError(f"Simulation: expected a fastcorot.Node, got {type(root).__name__}")
         objects = []
-        core = _core.SimulationCore(root._tree(objects))
+        core = _core.SimulationCore(root._tree(objects), strict, allow_empty)
         core.threads = threads
-        for k, count in enumerate(core.state_counts):
-            if count > 1:
-                raise ValueError(
-                    f"Simulation: {count} MechanicalObjects under one ODE solver (object {k}): SOFA solves them as one "
-                    "system, which `fastcorot run` does and the Python module does not yet; give each its own solver")
         for node in walk(root):
             object.__setattr__(node, "_core", None)
             for obj in node._objects:
                 object.__setattr__(obj, "_binding", None)
-        for k, rank in enumerate(core.state_objects):
-            object.__setattr__(objects[rank], "_binding", (core, k))
+        # Each MechanicalObject views its range of its simulated object's state (several objects
+        # under one solver are one state, theirs one after the other).
+        for rank, k, offset, size in core.state_parts:
+            object.__setattr__(objects[rank], "_binding", (core, k, offset, offset + size))
         # Force fields cut the object whose state is in their node or the nearest node above.
-        bound = {id(objects[rank]): k for k, rank in enumerate(core.state_objects)}
+        bound = {id(objects[rank]): k for rank, k, _, _ in core.state_parts}
 
         def bind_force_fields(node, k):
             for obj in node._objects:
@@ -57,6 +56,7 @@ class Simulation:
         self._core = core
         self._root = root
         self._states = [objects[rank] for rank in core.state_objects]
+        self._parts = [objects[rank] for rank, _, _, _ in core.state_parts]
 
     def step(self, n=1):
         """Advances n time steps (each object in scene order, then time by dt). The GIL is released
@@ -117,6 +117,11 @@ class Simulation:
     @threads.setter
     def threads(self, value):
         self._core.threads = value
+
+    @property
+    def warnings(self):
+        """One line per unknown attribute ignored (with strict=False)."""
+        return list(self._core.warnings)
 
     @property
     def info(self):

@@ -7,6 +7,8 @@
 
 #include "fastcorot/core/types.h"
 
+#include <Eigen/SparseCore>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
@@ -51,6 +53,11 @@ std::vector<double> number_list(py::handle value, const std::string& what);
 std::vector<Index> index_list(py::handle value, const std::string& what);
 // A numpy int array holding `values`.
 py::array index_array(const std::vector<Index>& values);
+
+// A scipy.sparse.csr_matrix of `matrix` (its arrays copied once into numpy), or (rows, cols, values)
+// arrays when scipy is not installed.
+template <class Real>
+py::object sparse_matrix(const Eigen::SparseMatrix<Real, Eigen::RowMajor>& matrix);
 
 // Python's repr of the shape of an array ("(4, 2)").
 std::string shape_text(const py::array& array);

@@ -28,6 +28,7 @@ void bind_errors(py::module_& m);
 void bind_force_field(py::module_& m);
 void bind_scene(py::module_& m);
 void bind_simulation(py::module_& m);
+void bind_cli(py::module_& m);
 
 // The scene tree the Python layer hands over: (name, {attribute: text}, [(type, {attribute: text},
 // file, line), ...], [child trees], file, line). Throws TypeError when it is not of that shape.

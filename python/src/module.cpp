@@ -8,4 +8,5 @@ PYBIND11_MODULE(_core, m) {
   fastcorot::python::bind_force_field(m);
   fastcorot::python::bind_scene(m);
   fastcorot::python::bind_simulation(m);
+  fastcorot::python::bind_cli(m);
 }

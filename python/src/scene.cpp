@@ -88,15 +88,18 @@ void bind_scene(py::module_& m) {
         "The supported SOFA components and their attributes, as Markdown (`fastcorot components`).");
   m.def(
       "check_object",
-      [](const std::string& type, const std::vector<std::string>& names, const std::string& file, int line) {
+      [](const std::string& type, const std::vector<std::string>& names, const std::string& file, int line,
+         bool strict) {
         SceneObject object{type, {}, {file, line}};
         for (const auto& name : names) object.attributes[name] = "";
-        const ComponentSpec* spec = check_scene_object(object);
-        return spec ? py::object(py::str(std::string(spec->name))) : py::object(py::none());
+        std::vector<std::string> warnings;
+        const ComponentSpec* spec = check_scene_object(object, strict ? nullptr : &warnings);
+        return py::make_tuple(spec ? py::object(py::str(std::string(spec->name))) : py::object(py::none()), warnings);
       },
-      py::arg("type"), py::arg("attributes"), py::arg("file"), py::arg("line"),
-      "Checks a component type and attribute names as a scene file's are checked: the supported component's "
-      "name, None for an ignored component; ValueError with the scene loader's message otherwise.");
+      py::arg("type"), py::arg("attributes"), py::arg("file"), py::arg("line"), py::arg("strict") = true,
+      "Checks a component type and attribute names as a scene file's are checked: (the supported component's "
+      "name or None for an ignored component, the warnings); ValueError with the scene loader's message for an "
+      "unknown component, or an unknown attribute when strict.");
   m.def(
       "parse_scene_file",
       [](const std::filesystem::path& path) {

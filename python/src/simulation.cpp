@@ -5,6 +5,7 @@
 // life of the simulation (a test steps and reads through a view taken before).
 #include "arrays.h"
 #include "bindings.h"
+#include "simulation_core.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
@@ -19,25 +20,11 @@ namespace fastcorot::python {
 
 namespace {
 
-struct SimulationCore {
-  LoadedScene scene;
-  std::mutex stepping;  // one step at a time, whichever Python thread asks
-
-  explicit SimulationCore(LoadedScene loaded) : scene(std::move(loaded)) {}
-
-  Simulation<double>& simulation() { return scene.simulation; }
-
-  MechanicalState<double>& state(std::size_t k) {
-    if (k >= simulation().objects.size()) {
-      throw py::index_error("object " + std::to_string(k) + " out of range (" +
-                            std::to_string(simulation().objects.size()) + " objects)");
-    }
-    return simulation().objects[k].system.state;
-  }
-};
-
-std::unique_ptr<SimulationCore> build(py::handle tree) {
-  return std::make_unique<SimulationCore>(build_scene(scene_node_from_tree(tree), SceneOptions{true}));
+std::unique_ptr<SimulationCore> build(py::handle tree, bool strict, bool allow_empty) {
+  SceneOptions options;
+  options.strict = strict;
+  options.allow_empty = allow_empty;
+  return std::make_unique<SimulationCore>(build_scene(scene_node_from_tree(tree), options));
 }
 
 void step(SimulationCore& core, long count) {
@@ -69,13 +56,18 @@ py::array view(std::vector<Vec3<double>>& points, py::handle owner, bool writeab
   return array;
 }
 
-// Copies an (n, 3) array into one of object k's state vectors (`what` names it), between steps.
+// Copies an (stop - start, 3) array into points [start, stop) of one of object k's state vectors
+// (`what` names it), between steps.
 void assign(SimulationCore& core, std::size_t k, std::vector<Vec3<double>> MechanicalState<double>::*vector,
-            py::handle value, const std::string& what) {
+            py::handle value, std::size_t start, std::size_t stop, const std::string& what) {
   auto& points = core.state(k).*vector;
-  const auto given = point_array<double>(value, what, static_cast<py::ssize_t>(points.size()), "");
+  if (start > stop || stop > points.size()) {
+    throw py::index_error(what + ": points [" + std::to_string(start) + ", " + std::to_string(stop) +
+                          ") out of range (" + std::to_string(points.size()) + " points)");
+  }
+  const auto given = point_array<double>(value, what, static_cast<py::ssize_t>(stop - start), "");
   std::lock_guard lock(core.stepping);
-  std::copy_n(as_points<double>(given).begin(), points.size(), points.begin());
+  std::copy_n(as_points<double>(given).begin(), stop - start, points.begin() + static_cast<std::ptrdiff_t>(start));
 }
 
 Vec3<double> vec3_of(py::handle value, const std::string& what) {
@@ -89,9 +81,11 @@ Vec3<double> vec3_of(py::handle value, const std::string& what) {
 }  // namespace
 
 void bind_simulation(py::module_& m) {
-  py::class_<SimulationCore>(m, "SimulationCore",
-                             "The compiled simulation behind fastcorot.Simulation (built from a scene tree).")
-      .def(py::init(&build), py::arg("tree"))
+  py::class_<SimulationCore> core(m, "SimulationCore",
+                                  "The compiled simulation behind fastcorot.Simulation (built from a scene tree).");
+  bind_matrices(core);
+  core.def(py::init(&build), py::arg("tree"), py::arg("strict") = true, py::arg("allow_empty") = false)
+      .def_property_readonly("warnings", [](SimulationCore& c) { return c.scene.warnings; })
       .def("step", &step, py::arg("n") = 1, "Advances n time steps (the GIL is released while stepping).")
       .def_property(
           "dt", [](SimulationCore& c) { return c.simulation().dt; },
@@ -124,6 +118,13 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("info", [](SimulationCore& c) { return c.scene.info; })
       .def_property_readonly("state_objects", [](SimulationCore& c) { return c.scene.state_objects; })
       .def_property_readonly("state_counts", [](SimulationCore& c) { return c.scene.state_counts; })
+      .def_property_readonly("state_parts",
+                             [](SimulationCore& c) {
+                               py::list parts;
+                               for (const auto& p : c.scene.state_parts) parts.append(py::make_tuple(p.rank, p.object, p.offset, p.size));
+                               return parts;
+                             },
+                             "(rank, object, offset, size) of every simulated MechanicalObject")
       .def_property_readonly("paths",
                              [](SimulationCore& c) {
                                std::vector<std::string> paths;
@@ -199,16 +200,16 @@ void bind_simulation(py::module_& m) {
           py::arg("k"), py::arg("tetrahedra"), "Appends tetrahedra to object k's mesh (its force fields and mass follow).")
       .def(
           "set_position",
-          [](SimulationCore& c, std::size_t k, py::handle value) {
-            assign(c, k, &MechanicalState<double>::position, value, "position");
+          [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
+            assign(c, k, &MechanicalState<double>::position, value, start, stop, "position");
           },
-          py::arg("k"), py::arg("value"))
+          py::arg("k"), py::arg("value"), py::arg("start"), py::arg("stop"))
       .def(
           "set_velocity",
-          [](SimulationCore& c, std::size_t k, py::handle value) {
-            assign(c, k, &MechanicalState<double>::velocity, value, "velocity");
+          [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
+            assign(c, k, &MechanicalState<double>::velocity, value, start, stop, "velocity");
           },
-          py::arg("k"), py::arg("value"));
+          py::arg("k"), py::arg("value"), py::arg("start"), py::arg("stop"));
 }
 
 }  // namespace fastcorot::python

@@ -185,18 +185,3 @@ def test_simulation_errors():
     with pytest.raises(fastcorot.SimulationError, match=f"diverged at step 1.*{sim.paths[1]}") as raised:
         sim.step()
     assert isinstance(raised.value, RuntimeError)
-
-
-def test_objects_sharing_one_solver_are_refused_with_a_clear_error():
-    root = fastcorot.Node("root")
-    group = root.add_child("group")
-    group.add_object("EulerImplicitSolver")
-    group.add_object("EigenSimplicialLDLT")
-    for name, shift in (("a", 0.0), ("b", 5.0)):
-        node = group.add_child(name)
-        node.add_object("MechanicalObject", position=[[shift, 0, 0], [shift + 1, 0, 0], [shift, 1, 0], [shift, 0, 1]])
-        node.add_object("TetrahedronSetTopologyContainer", tetrahedra=[[0, 1, 2, 3]])
-        node.add_object("UniformMass", totalMass=1)
-        node.add_object("TetrahedronFEMForceField")
-    with pytest.raises(ValueError, match="2 MechanicalObjects under one ODE solver"):
-        fastcorot.Simulation(root)

@@ -245,3 +245,27 @@ def test_tetrahedron_fem_von_mises_stress_and_cutting_from_python():
     assert (new_index == -1).sum() == 2 and len(sim.tetrahedra(1)) == 1822
     sim.step(1)
     assert fem.vonMisesPerElement.shape == (1822,) and np.all(np.isfinite(fem.vonMisesPerNode))
+
+
+def test_objects_sharing_one_solver_are_one_state_viewed_in_parts(tmp_path):
+    # SOFA's solver integrates both objects as one system: each MechanicalObject views its range.
+    parts = "".join(
+        f"""<Node name="{name}"><MechanicalObject name="dofs" position="{s} 0 0 {s + 1} 0 0 {s} 1 0 {s} 0 1"/>
+          <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/><UniformMass totalMass="1"/>
+          <TetrahedronFEMForceField youngModulus="100"/><FixedProjectiveConstraint indices="0"/></Node>"""
+        for name, s in (("a", 0), ("b", 5)))
+    scene = tmp_path / "two.scn"
+    scene.write_text(f"""<Node name="root"><Node name="group"><EulerImplicitSolver/><EigenSimplicialLDLT/>
+        {parts}</Node></Node>""")
+    root = fastcorot.load(scene)
+    sim = fastcorot.Simulation(root)
+    a, b = root.group.a.dofs, root.group.b.dofs
+    assert a.position.shape == (4, 3) and b.position.shape == (4, 3)
+    whole = sim._core.position(0)
+    assert b.position.__array_interface__["data"][0] == whole.__array_interface__["data"][0] + 4 * 3 * 8
+    sim.step(10)
+    expected = np.array(dump_state(scene, [10], tmp_path)[10]["root/group"])
+    assert np.array_equal(np.vstack([a.position, b.position]), expected)
+    b.velocity = np.ones((4, 3))
+    assert np.array_equal(sim._core.velocity(0)[4:], np.ones((4, 3)))
+    assert not np.any(sim._core.velocity(0)[:4] == 1)

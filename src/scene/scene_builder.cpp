@@ -58,7 +58,7 @@ Vec3<double> node_vec3(const SceneNode& node, const std::string& name, const Vec
 class Builder {
  public:
   Builder(const SceneNode& root, const SceneOptions& options)
-      : data_(root, info_, options.strict ? nullptr : &warnings_) {}
+      : data_(root, info_, options.strict ? nullptr : &warnings_), allow_empty_(options.allow_empty) {}
 
   LoadedScene build() {
     const SceneNode& root = *data_.root().scene;
@@ -72,7 +72,7 @@ class Builder {
       }
     }
     visit(data_.root(), false);
-    if (simulation_.objects.empty()) {
+    if (simulation_.objects.empty() && !allow_empty_) {
       throw make_error(root.location.file.string(), ": the scene has no node with an ODE solver "
                        "(EulerImplicitSolver, StaticSolver, ...) and a MechanicalObject: nothing to simulate");
     }
@@ -80,7 +80,10 @@ class Builder {
     rank_objects(root, rank);
     std::vector<std::size_t> state_objects;
     for (const SceneObject* state : states_) state_objects.push_back(rank.at(state));
-    return {std::move(simulation_), std::move(info_), std::move(warnings_), std::move(state_objects), std::move(state_counts_)};
+    std::vector<LoadedScene::StatePart> parts;
+    for (const auto& [state, part] : parts_) parts.push_back({rank.at(state), part.object, part.offset, part.size});
+    return {std::move(simulation_), std::move(info_),         std::move(warnings_),
+            std::move(state_objects), std::move(state_counts_), std::move(parts)};
   }
 
  private:
@@ -281,6 +284,9 @@ class Builder {
     simulation_.objects.push_back(std::move(object));
     states_.push_back(states.front()->object);
     state_counts_.push_back(states.size());
+    for (std::size_t s = 0; s < states.size(); ++s) {
+      parts_.push_back({states[s]->object, {0, simulation_.objects.size() - 1, offsets[s], sizes[s]}});
+    }
   }
 
   // The pair constraints of the solver's nodes, which tie points of its objects (in any node:
@@ -505,7 +511,9 @@ class Builder {
   Simulation<double> simulation_;
   std::vector<const SceneObject*> states_;  // the (first) MechanicalObject of each simulated object
   std::vector<std::size_t> state_counts_;   // how many MechanicalObjects each simulated object holds
+  std::vector<std::pair<const SceneObject*, LoadedScene::StatePart>> parts_;  // every state, rank to be filled
   std::map<const Component*, std::shared_ptr<TetMesh>> meshes_;
+  bool allow_empty_ = false;
 };
 
 }  // namespace

@@ -229,7 +229,7 @@ std::filesystem::path find_data_file(const std::filesystem::path& from, const st
       for (const char* sub : {"share", "share/mesh", "examples"}) {
         if (found(above / sub / relative)) return above / sub / relative;
       }
-      break;
+      // Not there: further up (SofaPython3's examples/ sit below the folder with SOFA's share/).
     }
     if (above == above.parent_path()) break;
   }

@@ -17,6 +17,9 @@ namespace fastcorot {
 
 struct SceneOptions {
   bool strict = false;  // warnings (unknown attributes) are errors
+  // A scene with nothing to simulate (no solver with a state) is an empty simulation rather than
+  // an error: SOFA runs such scenes, and a script's controllers may be all it does.
+  bool allow_empty = false;
 };
 
 struct LoadedScene {
@@ -30,6 +33,16 @@ struct LoadedScene {
   // For each simulated object, how many MechanicalObjects it holds: 1, or more where one solver
   // integrates several objects as one system (their states one after the other, in document order).
   std::vector<std::size_t> state_counts;
+  // Every simulated MechanicalObject, in the order of simulation.objects and, within a merged
+  // object, of its states: its rank (as above), the simulated object that holds it, and its range
+  // of points in that object's state.
+  struct StatePart {
+    std::size_t rank = 0;
+    std::size_t object = 0;
+    Index offset = 0;
+    Index size = 0;
+  };
+  std::vector<StatePart> state_parts;
 };
 
 LoadedScene build_scene(const SceneNode& root, const SceneOptions& options = {});

@@ -1,0 +1,406 @@
+"""Sofa.Core: SofaPython3's scene graph (Node, objects, Data, Controller) over fastcorot's scene tree.
+
+A Sofa.Core.Node wraps a fastcorot.Node (``node.fastcorot_node``) and an object wraps a
+fastcorot.Object: addChild / addObject build the same tree `fastcorot run` builds from a .scn file,
+so a script and its XML transcription simulate bit for bit the same. What differs from SofaPython3:
+an attribute of a node or object is a Data (``.value``), as there; numbers go to the scene builder
+as the same doubles as in a .scn file; unknown attributes warn with the closest name (SceneWarning);
+an unknown component is a ValueError naming it and the script line.
+"""
+
+import difflib
+import os
+
+import fastcorot
+from fastcorot import _core
+from fastcorot import scene as _scene
+from fastcorot._values import to_text
+
+from ._data import Data
+from ._matrices import object_methods
+
+_scene.INTERNAL_FOLDERS.add(os.path.dirname(os.path.abspath(__file__)))
+
+# A node's own data (SOFA's Node and its context); only dt and gravity change the mechanics.
+_NODE_DATA = ("name", "dt", "gravity", "time", "bbox", "animate", "activated", "multiThreadSimulation")
+
+
+def _closest(name, names):
+    match = difflib.get_close_matches(name, list(names), n=1)
+    return f" (did you mean '{match[0]}'?)" if match else ""
+
+
+def _value_for_scene(value):
+    """A keyword value of addObject as the scene tree takes it: links for Data, objects and nodes."""
+    if isinstance(value, (Data, BaseObject, Node)):
+        return value.getLinkPath()
+    if isinstance(value, tuple):
+        return list(value)
+    return value
+
+
+class BaseObject:
+    """An object of a node (a SOFA component): its data are attributes (``obj.youngModulus.value``)."""
+
+    def __init__(self, wrapped, context):
+        object.__setattr__(self, "_object", wrapped)
+        object.__setattr__(self, "_context", context)
+        object.__setattr__(wrapped, "_sofa", self)
+
+    @staticmethod
+    def _of(wrapped, context):
+        existing = getattr(wrapped, "_sofa", None)
+        return existing if existing is not None else BaseObject(wrapped, context)
+
+    @property
+    def fastcorot_object(self):
+        """The fastcorot.Object this wraps."""
+        return self._object
+
+    def getName(self):
+        name = self._object._data.get("name")
+        return name if isinstance(name, str) and name else self._object.type
+
+    def getClassName(self):
+        return self._object.type
+
+    def getTemplateName(self):
+        template = self._object._data.get("template")
+        return template if isinstance(template, str) else ""
+
+    def getContext(self):
+        return self._context
+
+    def getPathName(self):
+        return self._context._sofa_path(self.getName())
+
+    def getLinkPath(self):
+        return "@" + self.getPathName()
+
+    def getDataFields(self):
+        return [Data(self, name) for name in self._object.data_names()]
+
+    def getData(self, name):
+        return Data(self, name) if self._has_data(name) else None
+
+    findData = getData
+
+    def init(self):
+        """Accepted: objects are initialised when the simulation is built (Sofa.Simulation.init)."""
+
+    reinit = init
+
+    def _has_data(self, name):
+        return name in self._object.data_names() or _core.is_common_attribute(name)
+
+    # the owner protocol of Data
+    def _data_value(self, name):
+        return self._object._read(name)
+
+    def _set_data_value(self, name, value):
+        self._object._write(name, _value_for_scene(value))
+
+    def _live_array(self, name):
+        if self._object._binding is not None and name in ("position", "velocity") and self._object.type == "MechanicalObject":
+            return self._object._read(name)
+        return None
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        method = object_methods(self._object.type).get(name)
+        if method is not None:
+            return lambda *args, **kwargs: method(self, *args, **kwargs)
+        if self._has_data(name):
+            return Data(self, name)
+        raise AttributeError(f"{self.getPathName()} ({self._object.type}) has no data or method '{name}'"
+                             f"{_closest(name, self._object.data_names())}")
+
+    def __setattr__(self, name, value):
+        if name.startswith("_"):
+            object.__setattr__(self, name, value)
+        else:
+            self._set_data_value(name, value.value if isinstance(value, Data) else value)
+
+    def __repr__(self):
+        return f"<Sofa.Core.Object {self._object.type} {self.getPathName()}>"
+
+
+Object = BaseObject
+
+
+class Controller:
+    """A Python component called by the animation loop: define onAnimateBeginEvent(event) and
+    onAnimateEndEvent(event) (and onKeypressedEvent in the viewer); other events go to onEvent."""
+
+    def __init__(self, *args, **kwargs):
+        name = kwargs.get("name")
+        if name is None:
+            name = args[0] if args and isinstance(args[0], str) else type(self).__name__
+        self.__dict__["_sofa_name"] = str(name)
+        self.__dict__["_sofa_context"] = None
+
+    def init(self):
+        """Called once the simulation is built (Sofa.Simulation.init)."""
+
+    def reinit(self):
+        pass
+
+    def reset(self):
+        """Called by Sofa.Simulation.reset, after the state is back at its start."""
+
+    def getName(self):
+        return self._sofa_name
+
+    def getContext(self):
+        return self._sofa_context
+
+    def getPathName(self):
+        context = self._sofa_context
+        return context._sofa_path(self._sofa_name) if context is not None else "/" + self._sofa_name
+
+    def getLinkPath(self):
+        return "@" + self.getPathName()
+
+    @property
+    def name(self):
+        return Data(self, "name")
+
+    # the owner protocol of Data
+    def _data_value(self, name):
+        if name == "name":
+            return self._sofa_name
+        raise AttributeError(f"{self.getPathName()}: a controller's only datum is its name")
+
+    def _set_data_value(self, name, value):
+        if name != "name" or not isinstance(value, str):
+            raise TypeError(f"{self.getPathName()}: a controller's only datum is its name (a str)")
+        self.__dict__["_sofa_name"] = value
+
+    def _live_array(self, name):
+        return None
+
+
+class ForceField:
+    """SofaPython3's force fields written in Python (addForce, addDForce, addKToMatrix): fastcorot
+    does not call Python inside its solvers; adding one to a scene raises NotImplementedError."""
+
+    def __init__(self, *args, **kwargs):
+        self.__dict__["_sofa_name"] = str(kwargs.get("name", type(self).__name__))
+
+
+ForceFieldVec3d = ForceField
+ForceFieldVec3f = ForceField
+ForceFieldRigid3d = ForceField
+
+
+class Node:
+    """A node of the scene: children, objects (components and controllers) and its data (dt, gravity)."""
+
+    def __init__(self, name="root"):
+        self._bind(fastcorot.Node(name))
+        object.__setattr__(self._node, "_location", _scene._caller_location())
+
+    def _bind(self, node):
+        object.__setattr__(self, "_node", node)
+        object.__setattr__(self, "_controllers", [])
+        object.__setattr__(self, "_extra", {})  # node data without effect here (bbox, animate, ...)
+        object.__setattr__(self, "_simulation", None)  # at the root: the running simulation (Sofa.Simulation)
+        object.__setattr__(node, "_sofa", self)
+
+    @staticmethod
+    def _of(node):
+        existing = getattr(node, "_sofa", None)
+        if existing is not None:
+            return existing
+        wrapper = Node.__new__(Node)
+        wrapper._bind(node)
+        return wrapper
+
+    @property
+    def fastcorot_node(self):
+        """The fastcorot.Node this wraps (what fastcorot.Simulation builds)."""
+        return self._node
+
+    # --- the tree ---------------------------------------------------------------------------------
+    def addChild(self, child):
+        """A new child node of that name (or `child`, a Node made apart)."""
+        if isinstance(child, Node):
+            if child._node._parent is not None:
+                raise ValueError(f"addChild: node '{child.getName()}' already has a parent")
+            object.__setattr__(child._node, "_parent", self._node)
+            self._node._children.append(child._node)
+            return child
+        if not isinstance(child, str):
+            raise TypeError(f"addChild: expected a name (str) or a Sofa.Core.Node, got {type(child).__name__}")
+        self._refuse_when_running("addChild")
+        node = fastcorot.Node(child)
+        object.__setattr__(node, "_location", _scene._caller_location())
+        object.__setattr__(node, "_parent", self._node)
+        self._node._children.append(node)
+        return Node._of(node)
+
+    createChild = addChild
+
+    def addObject(self, type_name, *args, **data):
+        """A component by type name and data (str, numbers, lists, numpy arrays, links as "@path" or
+        as Data, objects or nodes), or a Python Controller. Checked against fastcorot's component
+        table: an unknown type is a ValueError naming the closest; unknown data warn (SceneWarning)."""
+        if isinstance(type_name, Controller):
+            type_name.__dict__["_sofa_context"] = self
+            self._controllers.append(type_name)
+            return type_name
+        if isinstance(type_name, ForceField):
+            raise NotImplementedError(
+                f"{type(type_name).__name__} '{type_name._sofa_name}': force fields written in Python "
+                "(Sofa.Core.ForceField subclasses) are not simulated by fastcorot: its solvers do not call "
+                "Python; use a component of `fastcorot components` or fastcorot.ForceField on arrays")
+        if not isinstance(type_name, str):
+            raise TypeError(f"addObject: expected a component type (str) or a Sofa.Core.Controller, got "
+                            f"{type(type_name).__name__}")
+        if args:
+            raise TypeError(f"addObject('{type_name}'): data are keyword arguments, got {len(args)} positional")
+        self._refuse_when_running("addObject")
+        location = _scene._caller_location()
+        values = {key: _value_for_scene(value) for key, value in data.items()}
+        if str(values.get("template", "")).startswith("Rigid"):
+            # 7 numbers per rigid frame: kept as text, for the builder to refuse where it is simulated
+            values = {key: value if isinstance(value, str) else to_text(value) for key, value in values.items()}
+        wrapped = _scene.Object(self._node, type_name, values, location, strict=False)
+        self._node._objects.append(wrapped)
+        return BaseObject._of(wrapped, self)
+
+    createObject = addObject
+
+    def _refuse_when_running(self, what):
+        root = self.getRoot()
+        if root._simulation is not None:
+            raise NotImplementedError(f"{self.getPathName()}: {what} after Sofa.Simulation.init: fastcorot builds "
+                                      "the scene once; add everything in createScene (or call Sofa.Simulation.unload "
+                                      "and init again)")
+
+    def getRoot(self):
+        node = self._node
+        while node._parent is not None:
+            node = node._parent
+        return Node._of(node)
+
+    def getChild(self, name):
+        for child in self._node._children:
+            if child.name == name:
+                return Node._of(child)
+        return None
+
+    def getObject(self, name):
+        for obj in self._node._objects:
+            if obj._data.get("name") == name:
+                return BaseObject._of(obj, self)
+        for controller in self._controllers:
+            if controller.getName() == name:
+                return controller
+        return None
+
+    @property
+    def children(self):
+        return [Node._of(child) for child in self._node._children]
+
+    @property
+    def objects(self):
+        return [BaseObject._of(obj, self) for obj in self._node._objects] + list(self._controllers)
+
+    @property
+    def parents(self):
+        return [Node._of(self._node._parent)] if self._node._parent is not None else []
+
+    def getName(self):
+        return self._node.name
+
+    def getPathName(self):
+        """SOFA's path: "/" for the root, "/Liver/Visu" below it."""
+        names = [node.name for node in self._node._lineage()[1:]]
+        return "/" + "/".join(names)
+
+    def _sofa_path(self, name):
+        path = self.getPathName()
+        return (path if path != "/" else "") + "/" + name
+
+    def getLinkPath(self):
+        return "@" + self.getPathName()
+
+    def init(self):
+        """SOFA initialises a node added at run time; fastcorot builds the scene once (Sofa.Simulation.init)."""
+        if self.getRoot()._simulation is not None:
+            raise NotImplementedError(f"{self.getPathName()}: init() of a node added at run time: fastcorot builds "
+                                      "the scene once, in Sofa.Simulation.init")
+
+    def getData(self, name):
+        return Data(self, name) if name in _NODE_DATA else None
+
+    findData = getData
+
+    # --- data (the owner protocol of Data) ----------------------------------------------------------
+    def _data_value(self, name):
+        if name == "name":
+            return self._node.name
+        if name in ("dt", "gravity"):
+            return getattr(self.getRoot()._node if self._node._parent is not None and name == "dt" else self._node, name)
+        if name == "time":
+            simulation = self.getRoot()._simulation
+            return simulation.time if simulation is not None else 0.0
+        return self._extra.get(name)
+
+    def _set_data_value(self, name, value):
+        if name == "name":
+            self._node.name = value
+        elif name in ("dt", "gravity"):
+            setattr(self._node, name, value)
+        elif name == "time":
+            raise AttributeError(f"{self.getPathName()}: time is read-only (it advances with the steps)")
+        else:
+            self._extra[name] = value
+
+    def _live_array(self, name):
+        return None
+
+    # --- attribute access: children, objects, controllers, then data ------------------------------
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        found = self.getChild(name) or self.getObject(name)
+        if found is not None:
+            return found
+        if name in _NODE_DATA:
+            return Data(self, name)
+        names = [c.name for c in self._node._children] + [o._data.get("name") for o in self._node._objects]
+        names = [n for n in names if isinstance(n, str)] + [c.getName() for c in self._controllers]
+        raise AttributeError(f"Node {self.getPathName()} has no child, object or data named '{name}'"
+                             f"{_closest(name, names + list(_NODE_DATA))}")
+
+    def __setattr__(self, name, value):
+        if name.startswith("_"):
+            object.__setattr__(self, name, value)
+        elif name in _NODE_DATA:
+            self._set_data_value(name, value.value if isinstance(value, Data) else value)
+        else:
+            object.__setattr__(self, name, value)  # a Python attribute of the script's own, as SofaPython3 keeps
+
+    def __repr__(self):
+        return f"<Sofa.Core.Node {self.getPathName()}>"
+
+    # --- what the animation loop calls (Sofa.Simulation and `fastcorot run script.py`) ------------
+    def _all_controllers(self):
+        found = list(self._controllers)
+        for child in self._node._children:
+            found += Node._of(child)._all_controllers()
+        return found
+
+    def _send(self, event_type, **fields):
+        """Sends an event to every controller below, in scene order: its on<Type> method, else onEvent."""
+        event = {"type": event_type, "isHandled": False, **fields}
+        for controller in self._all_controllers():
+            method = getattr(controller, "on" + event_type, None) or getattr(controller, "onEvent", None)
+            if method is not None:
+                method(event)
+
+
+__all__ = ["BaseObject", "Controller", "Data", "ForceField", "ForceFieldVec3d", "Node", "Object"]

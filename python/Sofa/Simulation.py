@@ -1,0 +1,84 @@
+"""Sofa.Simulation: build and step a scene (SofaPython3's init / initRoot / animate / reset / unload).
+
+init(root) builds the scene tree into a fastcorot.Simulation (after it, simulated MechanicalObjects'
+position and velocity are views of the state) and calls each controller's init(); animate(root, dt)
+sends AnimateBeginEvent to the controllers, steps once, and sends AnimateEndEvent, as SOFA's
+DefaultAnimationLoop does.
+"""
+
+import fastcorot
+
+from .Core import Node
+
+
+def _root(node):
+    if not isinstance(node, Node):
+        raise TypeError(f"expected a Sofa.Core.Node, got {type(node).__name__}")
+    return node.getRoot()
+
+
+def _start(root, strict=False):
+    simulation = fastcorot.Simulation(root.fastcorot_node, strict=strict, allow_empty=True)
+    object.__setattr__(root, "_simulation", simulation)
+    for controller in root._all_controllers():
+        controller.init()
+    return simulation
+
+
+def init(node):
+    """Builds the simulation of node's scene (unknown attributes were warnings at addObject)."""
+    _start(_root(node))
+
+
+initRoot = init
+
+
+def simulation_of(node):
+    """The fastcorot.Simulation running node's scene; RuntimeError before init."""
+    simulation = _root(node)._simulation
+    if simulation is None:
+        raise RuntimeError(f"{node.getPathName()}: the scene is not initialised: call Sofa.Simulation.init(root) first")
+    return simulation
+
+
+def animate(node, dt=0.0):
+    """One step of `dt` (0: the root's dt) with the controllers' AnimateBeginEvent and AnimateEndEvent."""
+    root = _root(node)
+    simulation = simulation_of(root)
+    step = float(dt) if dt else simulation.dt
+    if not step > 0:
+        raise ValueError(f"Sofa.Simulation.animate: dt = {dt!r}: must be > 0")
+    root._send("AnimateBeginEvent", dt=step)
+    if step != simulation.dt:  # SOFA's animate(root, dt) steps by dt, leaving the root's dt
+        previous = simulation.dt
+        simulation._core.dt = step
+        try:
+            simulation.step()
+        finally:
+            simulation._core.dt = previous
+    else:
+        simulation.step()
+    root._send("AnimateEndEvent", dt=step)
+
+
+def reset(node):
+    """Back to the start: the simulation is built again from the scene tree, then each controller's
+    reset() is called."""
+    root = _root(node)
+    simulation_of(root)
+    _start(root)
+    for controller in root._all_controllers():
+        controller.reset()
+
+
+def unload(node):
+    """Drops the simulation (the tree stays; init builds it again)."""
+    object.__setattr__(_root(node), "_simulation", None)
+
+
+def initVisual(node):
+    """Accepted: fastcorot's pictures and viewer draw from the simulation itself."""
+
+
+updateVisual = initVisual
+initTextures = initVisual

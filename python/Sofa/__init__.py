@@ -1,0 +1,17 @@
+"""Sofa: SofaPython3's API over fastcorot, so that a script written for SofaPython3 runs unchanged.
+
+    import Sofa
+    root = Sofa.Core.Node("root")
+    createScene(root)                  # root.addChild / addObject, Data .value, controllers
+    Sofa.Simulation.initRoot(root)
+    Sofa.Simulation.animate(root, root.dt.value)
+
+The scene is a fastcorot scene tree (`root.fastcorot_node`): `fastcorot run script.py` and
+`fastcorot view script.py` call the script's createScene(root) and run it as they run a .scn file.
+What SofaPython3 has and fastcorot does not is a clear exception naming it. docs/python.md has the
+table of what maps and what differs.
+"""
+
+from . import Core, Helper, Simulation  # noqa: F401  (Sofa.Gui is imported on demand, as in SofaPython3)
+
+__all__ = ["Core", "Helper", "Simulation"]

@@ -1,0 +1,37 @@
+// The running simulation behind fastcorot.Simulation: the scene the builder made, and a lock so
+// that one step runs at a time whichever Python thread asks. simulation.cpp binds it; matrices.cpp
+// and cli.cpp use it.
+#pragma once
+
+#include "bindings.h"
+
+#include "fastcorot/scene/scene_builder.h"
+
+#include <mutex>
+#include <string>
+
+namespace fastcorot::python {
+
+struct SimulationCore {
+  LoadedScene scene;
+  std::mutex stepping;  // one step at a time, whichever Python thread asks
+
+  explicit SimulationCore(LoadedScene loaded) : scene(std::move(loaded)) {}
+
+  Simulation<double>& simulation() { return scene.simulation; }
+
+  SimulatedObject<double>& object(std::size_t k) {
+    if (k >= simulation().objects.size()) {
+      throw py::index_error("object " + std::to_string(k) + " out of range (" +
+                            std::to_string(simulation().objects.size()) + " objects)");
+    }
+    return simulation().objects[k];
+  }
+
+  MechanicalState<double>& state(std::size_t k) { return object(k).system.state; }
+};
+
+// Adds the matrix accessors (matrices.cpp) to the SimulationCore class.
+void bind_matrices(py::class_<SimulationCore>& core);
+
+}  // namespace fastcorot::python
