@@ -107,6 +107,9 @@ class Data:
     __hash__ = object.__hash__
 
     def __setattr__(self, name, value):
+        if isinstance(getattr(type(self), name, None), property):
+            object.__setattr__(self, name, value)
+            return
         raise AttributeError(f"{self._where()}: assign the datum's value (.value = ...) or the datum itself "
                              f"(owner.{self._name} = ...), not '{name}'")
 

@@ -1,0 +1,330 @@
+"""The Sofa compatibility package: SofaPython3 scripts run unchanged (docs/python.md)."""
+
+import json
+import os
+import subprocess
+import sys
+import warnings
+
+import numpy as np
+import pytest
+
+import fastcorot
+import Sofa
+import Sofa.Simulation
+from fastcorot.scene import SceneWarning
+
+from conftest import REPOSITORY, dump_state, executable, run_cli
+
+SOFA_BEAM = REPOSITORY / "examples/python/sofa_beam.py"
+BEAM_SCN = REPOSITORY / "examples/cantilever_beam_40x10x10.scn"
+SOFA_SCENES = REPOSITORY / "../shared/sofa-scenes"
+PYTHON_EXAMPLES = SOFA_SCENES / "python/examples"
+
+
+def load_script(path, name):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def beam_root():
+    root = Sofa.Core.Node("root")
+    load_script(SOFA_BEAM, "sofa_beam").createScene(root)
+    return root
+
+
+def tetrahedron_scene(root, controller=None):
+    """Four points, one tetrahedron, point 0 fixed: a small scene for the calls below."""
+    root.dt = 0.01
+    node = root.addChild("body")
+    node.addObject("EulerImplicitSolver")
+    node.addObject("EigenSimplicialLDLT")
+    state = node.addObject("MechanicalObject", name="dofs", position=[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    node.addObject("TetrahedronSetTopologyContainer", name="topology", tetrahedra=[0, 1, 2, 3])
+    node.addObject("UniformMass", name="mass", totalMass=2)
+    node.addObject("FastTetrahedralCorotationalForceField", name="FEM", youngModulus=100, poissonRatio=0.3)
+    node.addObject("FixedProjectiveConstraint", name="fixed", indices=[0])
+    if controller is not None:
+        node.addObject(controller)
+    return state
+
+
+# --- the same trajectories as the scene files -----------------------------------------------------------
+
+def test_a_sofapython3_script_steps_bitwise_as_its_scn_file(tmp_path):
+    expected = dump_state(BEAM_SCN, [1, 10, 100], tmp_path)
+    out = tmp_path / "script.json"
+    run_cli("run", SOFA_BEAM, "--steps", 100, "--quiet", "--dump-state", out, "--dump-steps", "1,10,100")
+    from_script = {int(k): v for k, v in json.loads(out.read_text())["steps"].items()}
+    assert from_script == expected
+    # And in-process, through Sofa.Simulation.animate.
+    root = beam_root()
+    Sofa.Simulation.init(root)
+    for _ in range(10):
+        Sofa.Simulation.animate(root, root.dt.value)
+    assert np.array_equal(root.beam.state.position.array(), np.array(expected[10]["root/beam"]))
+
+
+@pytest.mark.skipif(not PYTHON_EXAMPLES.is_dir(), reason="no ../shared/sofa-scenes")
+def test_liver_py_steps_bitwise_as_its_xml_transcription(tmp_path):
+    mesh = (SOFA_SCENES / "share/mesh").resolve()
+    scene = tmp_path / "liver.scn"
+    scene.write_text(f"""<Node name="root" gravity="0 -9.81 0" dt="0.02">
+  <DefaultAnimationLoop/>
+  <CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>
+  <CollisionResponse response="PenalityContactForceField"/><DiscreteIntersection/>
+  <MeshOBJLoader name="LiverSurface" filename="{mesh}/liver-smooth.obj"/>
+  <Node name="Liver">
+    <EulerImplicitSolver rayleighStiffness="0.1" rayleighMass="0.1"/>
+    <CGLinearSolver iterations="25" tolerance="1e-09" threshold="1e-09"/>
+    <MeshGmshLoader name="meshLoader" filename="{mesh}/liver.msh"/>
+    <TetrahedronSetTopologyContainer name="topo" src="@meshLoader"/>
+    <MechanicalObject name="dofs" src="@meshLoader"/>
+    <TetrahedronSetGeometryAlgorithms template="Vec3d"/>
+    <DiagonalMass massDensity="1.0"/>
+    <TetrahedralCorotationalFEMForceField method="large" poissonRatio="0.3" youngModulus="3000" computeGlobalMatrix="0"/>
+    <FixedProjectiveConstraint indices="3 39 64"/>
+    <Node name="Visu"><OglModel name="VisualModel" src="@../../LiverSurface"/><BarycentricMapping input="@../dofs" output="@VisualModel"/></Node>
+  </Node>
+</Node>""")
+    expected = dump_state(scene, [1, 100], tmp_path)
+    out = tmp_path / "liver.json"
+    run_cli("run", PYTHON_EXAMPLES / "liver.py", "--steps", 100, "--quiet", "--dump-state", out, "--dump-steps", "1,100")
+    assert {int(k): v for k, v in json.loads(out.read_text())["steps"].items()} == expected
+
+
+# --- SofaPython3's examples ----------------------------------------------------------------------------
+
+# What each example does with `fastcorot run SCRIPT --steps 100`: runs, or is refused naming what is missing.
+EXAMPLES = {
+    "liver.py": None,
+    "liver-scriptcontroller.py": None,
+    "basic.py": None,
+    "emptyController.py": None,
+    "emptyForceField.py": "force fields written in Python",
+    "springForceField.py": "rigid bodies",
+    "access_matrix.py": "HexahedronFEMForceField",
+    "access_stiffness_matrix.py": "HexahedronFEMForceField",
+    "access_mass_matrix.py": "CompositeLinearSystem",
+}
+
+
+@pytest.mark.skipif(not PYTHON_EXAMPLES.is_dir(), reason="no ../shared/sofa-scenes")
+@pytest.mark.parametrize("script", sorted(EXAMPLES))
+def test_sofapython3_examples_run_or_are_refused_in_one_line(script, tmp_path):
+    path = PYTHON_EXAMPLES / script
+    missing = EXAMPLES[script]
+    out = tmp_path / "state.json"
+    completed = subprocess.run([str(executable()), "run", str(path), "--steps", "100", "--quiet", "--dump-state", str(out)],
+                               capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    if missing is None:
+        assert completed.returncode == 0, completed.stderr
+        for points in json.loads(out.read_text())["steps"]["100"].values():
+            assert np.all(np.isfinite(points))
+    else:
+        assert completed.returncode == 2, completed.stderr
+        lines = [line for line in completed.stderr.splitlines() if not line.startswith(("info:", "warning:"))]
+        assert len(lines) == 1 and lines[0].startswith("fastcorot: error: ") and missing in lines[0], completed.stderr
+
+
+@pytest.mark.skipif(not PYTHON_EXAMPLES.is_dir(), reason="no ../shared/sofa-scenes")
+def test_the_examples_own_main_runs_with_the_gui_switched_off(capsys):
+    liver = load_script(PYTHON_EXAMPLES / "liver.py", "liver_example")
+    liver.USE_GUI = False
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SceneWarning)
+        liver.main()
+    env = dict(os.environ, PYTHONPATH=os.environ.get("PYTHONPATH", str(REPOSITORY / "build/python")))
+    completed = subprocess.run([sys.executable, str(PYTHON_EXAMPLES / "basic.py")], capture_output=True, text=True,
+                               timeout=120, env=env)
+    assert completed.returncode == 0, completed.stderr
+    assert "Simulation made 10 time steps. Done" in completed.stdout
+
+
+def test_gui_calls_without_a_display_raise_a_clear_error(monkeypatch):
+    import Sofa.Gui
+
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    root = Sofa.Core.Node("root")
+    tetrahedron_scene(root)
+    Sofa.Simulation.init(root)
+    Sofa.Gui.GUIManager.Init("myscene", "imgui")
+    Sofa.Gui.GUIManager.createGUI(root, __file__)
+    with pytest.raises(RuntimeError, match="viewer could not show the scene"):
+        Sofa.Gui.GUIManager.MainLoop(root)
+
+
+# --- Data ---------------------------------------------------------------------------------------------
+
+def test_data_values_views_and_assignment():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    root.dt = 0.02
+    root.gravity = [0, 0, -10]
+    assert root.dt.value == 0.02 and list(root.gravity.value) == [0, 0, -10]
+    assert root.body.dofs is state and root.body.FEM.youngModulus.value == 100
+    root.body.FEM.youngModulus.value = 50
+    assert root.body.FEM.youngModulus.value == 50
+    assert state.getLinkPath() == "@/body/dofs" and state.position.getLinkPath() == "@/body/dofs.position"
+    assert root.body.getPathName() == "/body" and root.getPathName() == "/"
+    Sofa.Simulation.init(root)
+    simulation = Sofa.Simulation.simulation_of(root)
+    core_view = simulation._core.position(0)
+    view = state.position.array()
+    assert view.__array_interface__["data"][0] == core_view.__array_interface__["data"][0]
+    assert not view.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        view[1, 0] = 5
+    with state.position.writeableArray() as x:
+        assert x.__array_interface__["data"][0] == core_view.__array_interface__["data"][0]
+        x[1, 0] = 1.5
+    assert core_view[1, 0] == 1.5
+    state.velocity.value = np.ones((4, 3))
+    assert np.array_equal(simulation._core.velocity(0), np.ones((4, 3)))
+    Sofa.Simulation.animate(root, root.dt.value)
+    assert root.time.value == pytest.approx(0.02)
+    assert view[1, 0] != 1.5  # the view follows the state
+
+
+def test_bad_calls_raise_clear_python_exceptions():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    with pytest.raises(RuntimeError, match="call Sofa.Simulation.init"):
+        Sofa.Simulation.animate(root, 0.01)
+    with pytest.raises(AttributeError, match="did you mean 'position'"):
+        state.positon
+    with pytest.raises(AttributeError, match="did you mean 'body'"):
+        root.bodi
+    with pytest.warns(SceneWarning, match="unknown attribute 'youngModulous' ignored.*did you mean 'youngModulus'"):
+        root.body.addObject("TetrahedronFEMForceField", youngModulous=3)
+    with pytest.raises(ValueError, match="unknown component 'TetrahedronFEMForceFeild'.*did you mean"):
+        root.body.addObject("TetrahedronFEMForceFeild")
+    with pytest.raises(TypeError, match="expected a number"):
+        root.body.addObject("UniformMass", totalMass=[1, 2])
+    with pytest.raises(TypeError, match="keyword arguments"):
+        root.body.addObject("UniformMass", 3)
+    with pytest.raises(TypeError, match="component type"):
+        root.body.addObject(3)
+    with pytest.raises(NotImplementedError, match="force fields written in Python"):
+        root.body.addObject(Sofa.Core.ForceFieldVec3d(name="mine"))
+    with pytest.raises(ValueError, match="dt"):
+        root.dt = -1
+    with pytest.raises(AttributeError, match="read-only"):
+        root.time = 3
+
+
+def test_controllers_get_the_animation_events_in_scene_order():
+    calls = []
+
+    class Recorder(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+
+        def init(self):
+            calls.append((self.getName(), "init"))
+
+        def onAnimateBeginEvent(self, event):
+            calls.append((self.getName(), event["type"], round(self.getContext().getRoot().time.value, 6)))
+
+        def onEvent(self, event):
+            calls.append((self.getName(), event["type"], round(self.getContext().getRoot().time.value, 6)))
+
+    root = Sofa.Core.Node("root")
+    root.addObject(Recorder(name="first"))
+    tetrahedron_scene(root, Recorder(name="second"))
+    assert root.first.getName() == "first" and root.body.second.getPathName() == "/body/second"
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, 0.01)
+    assert calls == [("first", "init"), ("second", "init"),
+                     ("first", "AnimateBeginEvent", 0.0), ("second", "AnimateBeginEvent", 0.0),
+                     ("first", "AnimateEndEvent", 0.01), ("second", "AnimateEndEvent", 0.01)]
+    Sofa.Simulation.reset(root)
+    assert root.time.value == 0.0
+
+
+def test_a_controller_moving_fixed_points_matches_the_same_motion_through_fastcorots_api():
+    def motion(step):
+        return np.array([0.01 * step, 0.0, 0.0])
+
+    class Mover(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+            self.state = kwargs["state"]
+            self.step = 0
+
+        def onAnimateBeginEvent(self, event):
+            self.step += 1
+            with self.state.position.writeableArray() as x:
+                x[0] = self.state.rest_position.array()[0] + motion(self.step)
+
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    root.body.addObject(Mover(name="mover", state=state))
+    Sofa.Simulation.init(root)
+    for _ in range(20):
+        Sofa.Simulation.animate(root, root.dt.value)
+
+    plain = fastcorot.Node("root", dt=0.01)
+    body = plain.add_child("body")
+    body.add_object("EulerImplicitSolver")
+    body.add_object("EigenSimplicialLDLT")
+    dofs = body.add_object("MechanicalObject", name="dofs", position=[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    body.add_object("TetrahedronSetTopologyContainer", tetrahedra=[0, 1, 2, 3])
+    body.add_object("UniformMass", totalMass=2)
+    body.add_object("FastTetrahedralCorotationalForceField", youngModulus=100, poissonRatio=0.3)
+    body.add_object("FixedProjectiveConstraint", indices=[0])
+    simulation = fastcorot.Simulation(plain)
+    for step in range(1, 21):
+        dofs.position[0] = dofs.rest_position[0] + motion(step)
+        simulation.step()
+    assert np.array_equal(state.position.array(), dofs.position)
+    assert state.position.array()[0, 0] == pytest.approx(0.2)
+
+
+# --- matrices -----------------------------------------------------------------------------------------
+
+def test_assembled_stiffness_and_mass_matrices():
+    scipy = pytest.importorskip("scipy")  # noqa: F841
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, 0.01)
+    K = root.body.FEM.assembleKMatrix()
+    field = fastcorot.ForceField(state.rest_position.array().copy(), [[0, 1, 2, 3]], young_modulus=100,
+                                 poisson_ratio=0.3, method="large")
+    # df/dx at the field's last linearisation: the start of the step, the rest shape here.
+    expected = field.stiffness(state.rest_position.array().copy()).toarray()
+    assert K.shape == (12, 12)
+    assert np.allclose(K.toarray(), expected, rtol=1e-12, atol=1e-12)
+    M = root.body.mass.assembleMMatrix()
+    assert np.array_equal(M.toarray(), np.eye(12) * 0.5)  # UniformMass: totalMass / 4 per point
+    other = Sofa.Core.Node("root")
+    system = other.addObject("MatrixLinearSystem", name="system")
+    with pytest.raises(NotImplementedError, match="MatrixLinearSystem.get_system_matrix.*linear systems"):
+        system.get_system_matrix()
+
+
+# --- the command line ---------------------------------------------------------------------------------
+
+def test_script_errors_are_one_line_with_status_2(tmp_path):
+    script = tmp_path / "broken.py"
+    script.write_text("import Sofa\n\nclass C(Sofa.Core.Controller):\n"
+                      "    def onAnimateEndEvent(self, event):\n        raise ValueError('boom')\n\n"
+                      "def createScene(root):\n    root.addObject(C(name='c'))\n")
+    completed = subprocess.run([str(executable()), "run", str(script), "--steps", "3"], capture_output=True, text=True)
+    assert completed.returncode == 2
+    assert f"{script}:5: ValueError: boom (in a controller's AnimateEndEvent)" in completed.stderr
+    empty = tmp_path / "empty.py"
+    empty.write_text("x = 1\n")
+    completed = subprocess.run([str(executable()), "run", str(empty)], capture_output=True, text=True)
+    assert completed.returncode == 2 and "defines no createScene(root)" in completed.stderr
+    checkpoint = tmp_path / "c.ckpt"
+    run_cli("run", SOFA_BEAM, "--steps", 4, "--quiet", "--checkpoint-every", 2, "--checkpoint", checkpoint)
+    completed = subprocess.run([str(executable()), "run", str(SOFA_BEAM), "--steps", "6", "--resume", str(checkpoint)],
+                               capture_output=True, text=True)
+    assert completed.returncode == 2 and "Python controllers" in completed.stderr
