@@ -7,6 +7,7 @@ DefaultAnimationLoop does.
 """
 
 import fastcorot
+from fastcorot.scene import walk
 
 from .Core import Node
 
@@ -20,6 +21,8 @@ def _root(node):
 def _start(root, strict=False):
     simulation = fastcorot.Simulation(root.fastcorot_node, strict=strict, allow_empty=True)
     object.__setattr__(root, "_simulation", simulation)
+    if any(obj._sofa_canonical() == "MatrixLinearSystem" for node in walk(root.fastcorot_node) for obj in node._objects):
+        simulation._core.record_solves()  # for the linear systems' get_system_matrix and the like
     for controller in root._all_controllers():
         controller.init()
     return simulation

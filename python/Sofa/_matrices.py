@@ -1,12 +1,11 @@
 """The matrix access of SofaPython3's components, as scipy.sparse matrices over the points of the
 component's own MechanicalObject: a force field's assembleKMatrix() (df/dx, SOFA's sign), a mass's
-assembleMMatrix(). fastcorot's linear systems are inside its solvers: MatrixLinearSystem's A(),
-get_system_matrix() and the like raise NotImplementedError naming the call."""
+assembleMMatrix(); a MatrixLinearSystem's A() (or
+get_system_matrix(), get_rhs_vector() and get_solution_vector() give its last solve (the
+Sofa package records the solves of a scene that has one)."""
 
 from fastcorot import _core
 from fastcorot import scene as _scene
-
-_LINEAR_SYSTEM_CALLS = ("A", "b", "x", "get_system_matrix", "get_rhs_vector", "get_solution_vector")
 
 
 def _canonical(type_name):
@@ -66,13 +65,64 @@ def assemble_m_matrix(sofa_object):
     return core.mass_matrix(k, start, stop)
 
 
-def _not_available(call):
-    def refuse(sofa_object, *args, **kwargs):
-        raise NotImplementedError(
-            f"{sofa_object.getPathName()}: {sofa_object.getClassName()}.{call}(): fastcorot's linear systems are "
-            "inside its solvers and not exposed; assemble with a force field's assembleKMatrix() and a mass's "
-            "assembleMMatrix()")
-    return refuse
+def _solver_object(sofa_object):
+    """(core, k) of the simulated object whose ODE solver sits at or above the linear system's node."""
+    simulation = sofa_object.getContext().getRoot()._simulation
+    if simulation is None:
+        raise RuntimeError(f"{sofa_object.getPathName()}: the scene is not initialised: call Sofa.Simulation.init(root)")
+    node = sofa_object.fastcorot_object.node
+    paths = simulation.paths
+    while node is not None:
+        if any(_category(obj.type) == "odesolver" for obj in node._objects) and node.path in paths:
+            return simulation._core, paths.index(node.path)
+        node = node._parent
+    raise RuntimeError(f"{sofa_object.getPathName()}: no simulated ODE solver at or above its node")
+
+
+def _flag(sofa_object, name):
+    value = sofa_object.fastcorot_object._read(name)
+    return True if value is None else bool(value)
+
+
+def _last_solve(sofa_object):
+    core, k = _solver_object(sofa_object)
+    last = core.last_solve(k)
+    if last is None:
+        raise RuntimeError(f"{sofa_object.getPathName()}: no linear solve yet (the system is filled by a step)")
+    return core, k, last
+
+
+def system_matrix(sofa_object):
+    """The system matrix of the last solve, with the linear system's own choices (assembleMass,
+    assembleStiffness, assembleDamping, applyProjectiveConstraints): a scipy.sparse matrix, or a
+    numpy array for template FullMatrix."""
+    core, k, ((m, b, kf), _, _) = _last_solve(sofa_object)
+    m = m if _flag(sofa_object, "assembleMass") else 0.0
+    b = b if _flag(sofa_object, "assembleDamping") else 0.0
+    kf = kf if _flag(sofa_object, "assembleStiffness") else 0.0
+    if _flag(sofa_object, "applyProjectiveConstraints"):
+        matrix = core.system_matrix(k, m, b, kf)
+    elif b == 0 and kf == 0:
+        size = core.position(k).shape[0]
+        matrix = core.mass_matrix(k, 0, size) * m
+    else:
+        raise NotImplementedError(f"{sofa_object.getPathName()}: applyProjectiveConstraints=False with stiffness or "
+                                  "damping assembled: fastcorot assembles those projected only")
+    if sofa_object.getTemplateName() == "FullMatrix":
+        return matrix.toarray()
+    return matrix
+
+
+def rhs_vector(sofa_object):
+    return _last_solve(sofa_object)[2][1]
+
+
+def solution_vector(sofa_object):
+    return _last_solve(sofa_object)[2][2]
+
+
+_LINEAR_SYSTEM_CALLS = {"A": system_matrix, "get_system_matrix": system_matrix, "b": rhs_vector,
+                        "get_rhs_vector": rhs_vector, "x": solution_vector, "get_solution_vector": solution_vector}
 
 
 def object_methods(type_name):
@@ -82,6 +132,6 @@ def object_methods(type_name):
         return {"assembleKMatrix": assemble_k_matrix}
     if category == "mass":
         return {"assembleMMatrix": assemble_m_matrix}
-    if type_name in ("MatrixLinearSystem", "CompositeLinearSystem", "LinearSystem"):
-        return {call: _not_available(call) for call in _LINEAR_SYSTEM_CALLS}
+    if _canonical(type_name) == "MatrixLinearSystem":
+        return dict(_LINEAR_SYSTEM_CALLS)
     return {}

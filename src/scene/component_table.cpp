@@ -149,7 +149,6 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       {"BilateralLagrangianConstraint", "Lagrangian constraints are not simulated"},
       {"FixedLagrangianConstraint", "Lagrangian constraints are not simulated"},
       {"RigidMapping", "rigid bodies (Rigid3 states, RigidMapping) are not simulated"},
-      {"HexahedronFEMForceField", "hexahedral FEM is not simulated (tetrahedra only)"},
       {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},
       {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
       {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},

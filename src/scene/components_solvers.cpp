@@ -82,8 +82,19 @@ std::vector<ComponentSpec> solver_components() {
         {"update_step", "int", "1", "older name of assemblingRate"},
         {"preconditionerSystem", "link", "", "the preconditioner's MatrixLinearSystem"}}},
       {"MatrixLinearSystem", "linearsystem",
-       "The matrix a SOFA preconditioner or direct solver assembles into; accepted for links to it (the solvers here build what they need themselves).",
-       {}},
+       "The matrix a SOFA preconditioner or direct solver assembles into; accepted for links to it (the solvers here build "
+       "what they need themselves). From Python (Sofa package) its get_system_matrix(), get_rhs_vector() and "
+       "get_solution_vector() give the last solve.",
+       {{"assembleMass", "bool", "true", "whether get_system_matrix() includes the mass term"},
+        {"assembleStiffness", "bool", "true", "whether get_system_matrix() includes the stiffness term"},
+        {"assembleDamping", "bool", "true", "whether get_system_matrix() includes the damping term"},
+        {"assembleGeometricStiffness", "bool", "true", "accepted (no geometric stiffness here)"},
+        {"applyProjectiveConstraints", "bool", "true", "whether get_system_matrix() is projected (fixed points' rows cleared)"}}},
+      {"CompositeLinearSystem", "linearsystem",
+       "SOFA's system that hands the solver's matrix contributions to several MatrixLinearSystems (for access to them); "
+       "the solve is the same.",
+       {{"linearSystems", "string", "", "the linear systems filled (accepted)"},
+        {"solverLinearSystem", "link", "", "the one the solver uses (accepted)"}}},
       {"BlockJacobiPreconditioner", "preconditioner",
        "The inverses of the system matrix's 3x3 diagonal blocks (for PCGLinearSolver), built without assembling the matrix.",
        {{"verbose", "bool", "false", "accepted"},

@@ -6,6 +6,7 @@
 #include "fastcorot/sim/merged_objects.h"
 #include "fastcorot/topology/regular_grid.h"
 #include "force_field_builders.h"
+#include "hexahedron_builders.h"
 #include "projective_constraints.h"
 #include "scene_data.h"
 #include "solver_builder.h"
@@ -190,6 +191,10 @@ class Builder {
         const std::string_view type = c->type();
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
         if (type == "TetrahedronFEMForceField" || type == "TetrahedralCorotationalFEMForceField") add_tetrahedron_fem(*c, object);
+        if (type == "HexahedronFEMForceField") {
+          auto field = scene_detail::build_hexahedron_fem(data_, *c, system.state.rest_position);
+          add_field(field, field->drawn_mesh(), *c, object);
+        }
         if (scene_detail::is_penalty_force_field(type)) {
           // Points, not elements: the object's mesh (for output), or a mesh of its points alone.
           auto mesh = object.mesh ? object.mesh : std::make_shared<TetMesh>(system.size(), std::vector<Tetrahedron>{});
@@ -452,6 +457,10 @@ class Builder {
   Mass<double> build_mass(Component& c, const Points<double>& rest) {
     const auto n = static_cast<Index>(rest.size());
     const std::string_view type = c.type();
+    if (type == "DiagonalMass" || type == "MeshMatrixMass") {
+      const std::vector<Hexahedron> hexahedra = scene_detail::hexahedra_of(data_, c);
+      if (!hexahedra.empty()) return scene_detail::build_hexahedron_mass(data_, c, hexahedra, rest);
+    }
     try {
       if (type == "UniformMass") {
         double vertex_mass;

@@ -307,7 +307,8 @@ class SolverBuilder {
   void link_to_matrix_system(Component& c, const std::string& attribute) {
     if (!c.has(attribute)) return;
     Component& target = data.resolve_object(*c.node, c.object->attributes.at(attribute), c);
-    if (target.type() != "MatrixLinearSystem" && target.type() != "PrecomputedMatrixSystem") {
+    if (target.type() != "MatrixLinearSystem" && target.type() != "PrecomputedMatrixSystem" &&
+        target.type() != "CompositeLinearSystem") {
       throw make_error(c.where(), ": ", attribute, " must link a MatrixLinearSystem, not ",
                        target.where());
     }

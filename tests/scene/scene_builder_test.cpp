@@ -217,11 +217,13 @@ TEST(SceneBuilder, CollisionComponentsAreWarnedAsNotSimulated) {
 }
 
 TEST(SceneBuilder, ComponentsFastcorotDoesNotSimulateAreRefusedSayingWhy) {
-  const std::string message = error_of(kTet + "\n<HexahedronFEMForceField/>");
-  EXPECT_NE(message.find("test.scn:8: HexahedronFEMForceField: this scene needs what fastcorot does not have: "
-                         "hexahedral FEM is not simulated"),
+  const std::string message = error_of(kTet + "\n<SparseGridTopology/>");
+  EXPECT_NE(message.find("test.scn:8: SparseGridTopology: this scene needs what fastcorot does not have: "
+                         "sparse grids (hexahedral FEM) are not simulated"),
             std::string::npos)
       << message;
+  EXPECT_NE(error_of(kTet + "\n<HexahedronFEMForceField/>").find("HexahedronFEMForceField: its topology has no hexahedra"),
+            std::string::npos);
   EXPECT_NE(error_of(kTet + "\n<GenericConstraintSolver/>").find("Lagrangian constraint solvers are not simulated"),
             std::string::npos);
 }

@@ -1,0 +1,31 @@
+// The hexahedral pieces of a scene: HexahedronFEMForceField and the masses (DiagonalMass,
+// MeshMatrixMass) on a topology of hexahedra (a RegularGridTopology or CylinderGridTopology without
+// tetrahedra). Internal to src/scene (scene_builder.cpp); errors
+// name the component.
+#pragma once
+
+#include "fastcorot/fem/hexahedron_fem_force_field.h"
+#include "fastcorot/sim/mass.h"
+#include "scene_data.h"
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace fastcorot::scene_detail {
+
+// The hexahedra of c's topology (its `topology` link, else its node's): a grid's cells in SOFA's
+// order (x fastest, corners as grid_cell_corners); empty when the topology is not a grid or has
+// tetrahedra.
+std::vector<Hexahedron> hexahedra_of(SceneData& data, Component& c);
+
+std::shared_ptr<HexahedronFEMForceField<double>> build_hexahedron_fem(SceneData& data, Component& c,
+                                                                       std::span<const Vec3<double>> rest);
+
+// DiagonalMass (each hexahedron's mass, density x volume, in eighths on its corners) or MeshMatrixMass
+// (SOFA's: density x volume / 20 on each corner, / 40 on each of the twelve edges) on `hexahedra`,
+// from massDensity or scaled to totalMass.
+Mass<double> build_hexahedron_mass(SceneData& data, Component& c, std::span<const Hexahedron> hexahedra,
+                                   std::span<const Vec3<double>> rest);
+
+}  // namespace fastcorot::scene_detail
