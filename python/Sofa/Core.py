@@ -345,8 +345,10 @@ class Node:
         if name in ("dt", "gravity"):
             return getattr(self.getRoot()._node if self._node._parent is not None and name == "dt" else self._node, name)
         if name == "time":
-            simulation = self.getRoot()._simulation
-            return simulation.time if simulation is not None else 0.0
+            root = self.getRoot()
+            if root._simulation is None:
+                return 0.0
+            return root._simulation.time + root._extra.get("_time_offset", 0.0)
         return self._extra.get(name)
 
     def _set_data_value(self, name, value):

@@ -21,6 +21,7 @@ def _root(node):
 def _start(root, strict=False):
     simulation = fastcorot.Simulation(root.fastcorot_node, strict=strict, allow_empty=True)
     object.__setattr__(root, "_simulation", simulation)
+    root._extra.pop("_time_offset", None)
     if any(obj._sofa_canonical() == "MatrixLinearSystem" for node in walk(root.fastcorot_node) for obj in node._objects):
         simulation._core.record_solves()  # for the linear systems' get_system_matrix and the like
     for controller in root._all_controllers():
@@ -59,6 +60,8 @@ def animate(node, dt=0.0):
             simulation.step()
         finally:
             simulation._core.dt = previous
+        # The simulation counts time as steps x dt: the difference is the root's to add.
+        root._extra["_time_offset"] = root._extra.get("_time_offset", 0.0) + step - previous
     else:
         simulation.step()
     root._send("AnimateEndEvent", dt=step)

@@ -328,3 +328,134 @@ def test_script_errors_are_one_line_with_status_2(tmp_path):
     completed = subprocess.run([str(executable()), "run", str(SOFA_BEAM), "--steps", "6", "--resume", str(checkpoint)],
                                capture_output=True, text=True)
     assert completed.returncode == 2 and "Python controllers" in completed.stderr
+
+
+# --- the viewer ---------------------------------------------------------------------------------------
+
+def _xvfb(arguments, env=None, tmp_path=None):
+    import shutil
+
+    if shutil.which("xvfb-run") is None:
+        pytest.skip("no xvfb-run")
+    completed = subprocess.run(["xvfb-run", "-a", *arguments], capture_output=True, text=True, timeout=300, env=env,
+                               cwd=tmp_path)
+    if completed.returncode != 0 and "FASTCOROT_BUILD_VIEWER" in completed.stderr:
+        pytest.skip("built without the viewer")
+    return completed
+
+
+def test_a_script_in_the_viewer_and_through_sofa_gui(tmp_path):
+    shot = tmp_path / "shot.png"
+    completed = _xvfb([str(executable()), "view", str(SOFA_BEAM), "--frames", "20", "--screenshot", str(shot)],
+                      tmp_path=tmp_path)
+    assert completed.returncode == 0, completed.stderr
+    assert "20 steps, 20 frames" in completed.stdout and shot.stat().st_size > 1000
+    script = tmp_path / "gui.py"
+    script.write_text(f"""import sys
+sys.path.insert(0, {str(SOFA_BEAM.parent)!r})
+import Sofa, Sofa.Simulation, Sofa.Gui, SofaImGui
+import sofa_beam
+root = Sofa.Core.Node("root")
+sofa_beam.createScene(root)
+Sofa.Simulation.init(root)
+Sofa.Gui.GUIManager.Init("myscene", "imgui")
+Sofa.Gui.GUIManager.createGUI(root, sofa_beam.__file__)
+Sofa.Gui.GUIManager.SetDimension(320, 240)
+Sofa.Gui.GUIManager.MainLoop(root)
+Sofa.Gui.GUIManager.closeGUI()
+print("steps", Sofa.Simulation.simulation_of(root).steps_done, "tip controller", root.beam.tip.steps)
+""")
+    env = dict(os.environ, FASTCOROT_VIEW_FRAMES="15")
+    completed = _xvfb([sys.executable, str(script)], env=env, tmp_path=tmp_path)
+    assert completed.returncode == 0, completed.stderr
+    assert "steps 15 tip controller 15" in completed.stdout
+
+
+def test_keys_reach_the_controllers_as_keypressed_events():
+    from Sofa import _script
+
+    pressed = []
+
+    class Keys(Sofa.Core.Controller):
+        def onKeypressedEvent(self, event):
+            pressed.append(event["key"])
+
+    root = Sofa.Core.Node("root")
+    tetrahedron_scene(root, Keys(name="keys"))
+    Sofa.Simulation.init(root)
+    run = _script.ScriptRun(root, "keys.py")
+    run.key_pressed("L")
+    assert pressed == ["L"] and run.has_controllers
+
+
+# --- the rest of SofaPython3's calls -------------------------------------------------------------------
+
+def test_tree_calls_links_aliases_and_helpers(capsys):
+    import SofaRuntime
+    from Sofa.Helper import msg_info, msg_warning
+
+    assert SofaRuntime.importPlugin("Sofa.Component.StateContainer")
+    root = Sofa.Core.Node("root")
+    loose = Sofa.Core.Node("loose")
+    assert root.addChild(loose) is loose and root.loose is loose and loose.parents == [root]
+    with pytest.raises(ValueError, match="already has a parent"):
+        root.addChild(loose)
+    state = tetrahedron_scene(root)
+    body = root.getChild("body")
+    assert body is root.body and root.getChild("nothing") is None
+    assert body.getObject("dofs") is state and body.getObject("nothing") is None
+    assert [c.getName() for c in root.children] == ["loose", "body"]
+    assert [o.getName() for o in body.objects][:3] == ["EulerImplicitSolver", "EigenSimplicialLDLT", "dofs"]
+    assert state.getContext() is body and body.getRoot() is root and body.getLinkPath() == "@/body"
+    assert state.getClassName() == "MechanicalObject" and state.getTemplateName() == ""
+    assert state.getData("position").getName() == "position" and state.findData("nothing") is None
+    assert "position" in [d.getName() for d in state.getDataFields()]
+    # A Data (or an object) given as a value is a link to it.
+    other = root.addChild("other")
+    copy = other.addObject("MechanicalObject", name="copy", position=state.position)
+    assert copy.fastcorot_object._data["position"] == "@/body/dofs.position"
+    created = other.createObject("UniformMass", totalMass=1)
+    assert created.totalMass.value == 1 and created.totalMass.getValueString() == "1.0"
+    root.myValue = 3  # a script's own attribute, as SofaPython3 keeps it
+    assert root.myValue == 3
+    root.bbox = [[-1, -1, -1], [1, 1, 1]]
+    assert root.bbox.value == [[-1, -1, -1], [1, 1, 1]]
+    msg_info("hello")
+    msg_warning(state, "careful")
+    err = capsys.readouterr().err
+    assert "[INFO]     [PythonScript] hello" in err and "[WARNING]  [dofs] careful" in err
+
+
+def test_data_sequence_calls_and_writeable_copies():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    indices = root.body.fixed.indices
+    assert len(indices) == 1 and indices[0] == 0 and np.array_equal(np.asarray(indices), [0])
+    with indices.writeable() as values:  # before init: a copy, written back
+        values[0] = 2
+    assert root.body.fixed.indices.value.tolist() == [2]
+    Sofa.Simulation.init(root)
+    state.position[1] = [1.25, 0, 0]  # item assignment writes the state
+    assert Sofa.Simulation.simulation_of(root)._core.position(0)[1, 0] == 1.25
+    assert state.position == state.position.array()
+    with pytest.raises(AttributeError, match="assign the datum's value"):
+        state.position.nonsense = 1
+    assert "Sofa.Core.Data /body/dofs.position" in repr(state.position)
+
+
+def test_animate_with_another_dt_reset_and_unload():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    Sofa.Simulation.init(root)
+    start = state.position.array().copy()
+    Sofa.Simulation.animate(root, 0.05)
+    assert root.time.value == pytest.approx(0.05) and root.dt.value == 0.01  # the root's dt stays
+    assert not np.array_equal(state.position.array(), start)
+    Sofa.Simulation.reset(root)
+    assert root.time.value == 0 and np.array_equal(state.position.array(), start)
+    with pytest.raises(NotImplementedError, match="after Sofa.Simulation.init"):
+        root.addChild("late")
+    Sofa.Simulation.unload(root)
+    root.addChild("late")  # the tree can change again; init builds it anew
+    with pytest.raises(ValueError, match="dt"):
+        Sofa.Simulation.init(root) or Sofa.Simulation.animate(root, -1)
