@@ -129,9 +129,8 @@ class BaseObject:
 Object = BaseObject
 
 
-class Controller:
-    """A Python component called by the animation loop: define onAnimateBeginEvent(event) and
-    onAnimateEndEvent(event) (and onKeypressedEvent in the viewer); other events go to onEvent."""
+class _PythonComponent:
+    """What a component written in Python has of SOFA's BaseObject: a name and the node it is in."""
 
     def __init__(self, *args, **kwargs):
         name = kwargs.get("name")
@@ -145,9 +144,6 @@ class Controller:
 
     def reinit(self):
         pass
-
-    def reset(self):
-        """Called by Sofa.Simulation.reset, after the state is back at its start."""
 
     def getName(self):
         return self._sofa_name
@@ -170,28 +166,79 @@ class Controller:
     def _data_value(self, name):
         if name == "name":
             return self._sofa_name
-        raise AttributeError(f"{self.getPathName()}: a controller's only datum is its name")
+        raise AttributeError(f"{self.getPathName()}: a Python component's only datum is its name")
 
     def _set_data_value(self, name, value):
         if name != "name" or not isinstance(value, str):
-            raise TypeError(f"{self.getPathName()}: a controller's only datum is its name (a str)")
+            raise TypeError(f"{self.getPathName()}: a Python component's only datum is its name (a str)")
         self.__dict__["_sofa_name"] = value
 
     def _live_array(self, name):
         return None
 
 
-class ForceField:
-    """SofaPython3's force fields written in Python (addForce, addDForce, addKToMatrix): fastcorot
-    does not call Python inside its solvers; adding one to a scene raises NotImplementedError."""
+class Controller(_PythonComponent):
+    """A Python component called by the animation loop: define onAnimateBeginEvent(event) and
+    onAnimateEndEvent(event) (and onKeypressedEvent in the viewer); other events go to onEvent."""
 
-    def __init__(self, *args, **kwargs):
-        self.__dict__["_sofa_name"] = str(kwargs.get("name", type(self).__name__))
+    def reset(self):
+        """Called by Sofa.Simulation.reset, after the state is back at its start."""
+
+
+class _CallArrays:
+    """The owner of the Data a Python force field's calls receive: numpy views of its state's
+    range for the length of the call (forces writable through writeableArray(), positions not)."""
+
+    def __init__(self, field, **arrays):
+        self._field = field
+        self._arrays = arrays
+
+    def getLinkPath(self):
+        return self._field.getLinkPath()
+
+    def getPathName(self):
+        return self._field.getPathName()
+
+    def _data_value(self, name):
+        return self._arrays[name]
+
+    def _live_array(self, name):
+        array = self._arrays[name]
+        return array if array.flags.writeable else None
+
+    def _set_data_value(self, name, value):
+        array = self._arrays[name]
+        if not array.flags.writeable:
+            raise ValueError(f"{self.getPathName()}: {name} is read-only in this call")
+        array[...] = value
+
+
+class ForceField(_PythonComponent):
+    """A force field written in Python, as SofaPython3's: addForce(mparams, f, x, v) adds the
+    forces at x into f (``with f.writeableArray() as w: w[:] += ...``); addDForce(mparams, df, dx)
+    adds kFactor df/dx dx (mparams["kFactor"], ["bFactor"]) for iterative solvers; addKToMatrix(mparams,
+    nNodes, nDofs) returns the (nNodes nDofs)² matrix kFactor df/dx for assembling ones. Arrays are
+    views of the MechanicalObject's range of the state (no copies), valid during the call."""
+
+    def addForce(self, mparams, f, x, v):
+        raise NotImplementedError(f"{self.getPathName()}: {type(self).__name__} defines no addForce")
+
+    def addDForce(self, mparams, df, dx):
+        raise NotImplementedError(f"{self.getPathName()}: {type(self).__name__} defines no addDForce")
+
+    def addKToMatrix(self, mparams, nNodes, nDofs):
+        return None
+
+    def _fastcorot_add_force(self, mparams, f, x, v):
+        arrays = _CallArrays(self, forces=f, position=x, velocity=v)
+        self.addForce(mparams, Data(arrays, "forces"), Data(arrays, "position"), Data(arrays, "velocity"))
+
+    def _fastcorot_add_dforce(self, mparams, df, dx):
+        arrays = _CallArrays(self, dforce=df, dx=dx)
+        self.addDForce(mparams, Data(arrays, "dforce"), Data(arrays, "dx"))
 
 
 ForceFieldVec3d = ForceField
-ForceFieldVec3f = ForceField
-ForceFieldRigid3d = ForceField
 
 
 class Node:
@@ -203,7 +250,7 @@ class Node:
 
     def _bind(self, node):
         object.__setattr__(self, "_node", node)
-        object.__setattr__(self, "_controllers", [])
+        object.__setattr__(self, "_python_objects", [])  # controllers and force fields written in Python
         object.__setattr__(self, "_extra", {})  # node data without effect here (bbox, animate, ...)
         object.__setattr__(self, "_simulation", None)  # at the root: the running simulation (Sofa.Simulation)
         object.__setattr__(node, "_sofa", self)
@@ -244,17 +291,13 @@ class Node:
 
     def addObject(self, type_name, *args, **data):
         """A component by type name and data (str, numbers, lists, numpy arrays, links as "@path" or
-        as Data, objects or nodes), or a Python Controller. Checked against fastcorot's component
+        as Data, objects or nodes), or a Python Controller or ForceField. Checked against fastcorot's component
         table: an unknown type is a ValueError naming the closest; unknown data warn (SceneWarning)."""
-        if isinstance(type_name, Controller):
+        if isinstance(type_name, _PythonComponent):
+            self._refuse_when_running("addObject")
             type_name.__dict__["_sofa_context"] = self
-            self._controllers.append(type_name)
+            self._python_objects.append(type_name)
             return type_name
-        if isinstance(type_name, ForceField):
-            raise NotImplementedError(
-                f"{type(type_name).__name__} '{type_name._sofa_name}': force fields written in Python "
-                "(Sofa.Core.ForceField subclasses) are not simulated by fastcorot: its solvers do not call "
-                "Python; use a component of `fastcorot components` or fastcorot.ForceField on arrays")
         if not isinstance(type_name, str):
             raise TypeError(f"addObject: expected a component type (str) or a Sofa.Core.Controller, got "
                             f"{type(type_name).__name__}")
@@ -295,7 +338,7 @@ class Node:
         for obj in self._node._objects:
             if obj._data.get("name") == name:
                 return BaseObject._of(obj, self)
-        for controller in self._controllers:
+        for controller in self._python_objects:
             if controller.getName() == name:
                 return controller
         return None
@@ -306,7 +349,7 @@ class Node:
 
     @property
     def objects(self):
-        return [BaseObject._of(obj, self) for obj in self._node._objects] + list(self._controllers)
+        return [BaseObject._of(obj, self) for obj in self._node._objects] + list(self._python_objects)
 
     @property
     def parents(self):
@@ -374,7 +417,7 @@ class Node:
         if name in _NODE_DATA:
             return Data(self, name)
         names = [c.name for c in self._node._children] + [o._data.get("name") for o in self._node._objects]
-        names = [n for n in names if isinstance(n, str)] + [c.getName() for c in self._controllers]
+        names = [n for n in names if isinstance(n, str)] + [c.getName() for c in self._python_objects]
         raise AttributeError(f"Node {self.getPathName()} has no child, object or data named '{name}'"
                              f"{_closest(name, names + list(_NODE_DATA))}")
 
@@ -390,11 +433,14 @@ class Node:
         return f"<Sofa.Core.Node {self.getPathName()}>"
 
     # --- what the animation loop calls (Sofa.Simulation and `fastcorot run script.py`) ------------
-    def _all_controllers(self):
-        found = list(self._controllers)
+    def _all_python_components(self):
+        found = list(self._python_objects)
         for child in self._node._children:
-            found += Node._of(child)._all_controllers()
+            found += Node._of(child)._all_python_components()
         return found
+
+    def _all_controllers(self):
+        return [c for c in self._all_python_components() if isinstance(c, Controller)]
 
     def _send(self, event_type, **fields):
         """Sends an event to every controller below, in scene order: its on<Type> method, else onEvent."""

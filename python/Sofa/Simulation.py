@@ -9,7 +9,8 @@ DefaultAnimationLoop does.
 import fastcorot
 from fastcorot.scene import walk
 
-from .Core import Node
+from ._matrices import bound_state
+from .Core import ForceField, Node
 
 
 def _root(node):
@@ -24,8 +25,14 @@ def _start(root, strict=False):
     root._extra.pop("_time_offset", None)
     if any(obj._sofa_canonical() == "MatrixLinearSystem" for node in walk(root.fastcorot_node) for obj in node._objects):
         simulation._core.record_solves()  # for the linear systems' get_system_matrix and the like
-    for controller in root._all_controllers():
-        controller.init()
+    for component in root._all_python_components():
+        if isinstance(component, ForceField):
+            state = bound_state(component.getContext().fastcorot_node)
+            if state is not None:  # else its node is not simulated (no solver, or an empty state), as in SOFA
+                core, k, start, stop = state
+                core.add_python_force_field(k, component, component.getName(), start, stop)
+    for component in root._all_python_components():
+        component.init()
     return simulation
 
 

@@ -18,14 +18,21 @@ def _category(type_name):
     return spec["category"] if spec else ""
 
 
-def _state_of(sofa_object):
-    """(core, k, start, stop) of the simulated MechanicalObject nearest the object (its node, then up)."""
-    node = sofa_object.fastcorot_object.node
+def bound_state(node):
+    """(core, k, start, stop) of the simulated MechanicalObject nearest a fastcorot node (it, then up); None if none."""
     while node is not None:
         for obj in node._objects:
             if obj.type == "MechanicalObject" and obj._binding is not None:
                 return obj._binding
         node = node._parent
+    return None
+
+
+def _state_of(sofa_object):
+    """(core, k, start, stop) of the simulated MechanicalObject nearest the object (its node, then up)."""
+    state = bound_state(sofa_object.fastcorot_object.node)
+    if state is not None:
+        return state
     raise RuntimeError(f"{sofa_object.getPathName()}: not part of a running simulation: call "
                        "Sofa.Simulation.init(root) first (and give its node a solver and a MechanicalObject)")
 

@@ -105,7 +105,7 @@ EXAMPLES = {
     "liver-scriptcontroller.py": None,
     "basic.py": None,
     "emptyController.py": None,
-    "emptyForceField.py": "force fields written in Python",
+    "emptyForceField.py": None,
     "springForceField.py": "rigid bodies",
     "access_matrix.py": None,
     "access_stiffness_matrix.py": None,
@@ -210,8 +210,6 @@ def test_bad_calls_raise_clear_python_exceptions():
         root.body.addObject("UniformMass", 3)
     with pytest.raises(TypeError, match="component type"):
         root.body.addObject(3)
-    with pytest.raises(NotImplementedError, match="force fields written in Python"):
-        root.body.addObject(Sofa.Core.ForceFieldVec3d(name="mine"))
     with pytest.raises(ValueError, match="dt"):
         root.dt = -1
     with pytest.raises(AttributeError, match="read-only"):
@@ -459,3 +457,75 @@ def test_animate_with_another_dt_reset_and_unload():
     root.addChild("late")  # the tree can change again; init builds it anew
     with pytest.raises(ValueError, match="dt"):
         Sofa.Simulation.init(root) or Sofa.Simulation.animate(root, -1)
+
+
+# --- force fields written in Python ----------------------------------------------------------------------
+
+class SpringToRest(Sofa.Core.ForceFieldVec3d):
+    """f = -k (x - rest): its forces, its product for CG, its matrix for direct solvers."""
+
+    def __init__(self, *args, **kwargs):
+        Sofa.Core.ForceFieldVec3d.__init__(self, *args, **kwargs)
+        self.k = kwargs["stiffness"]
+        self.rest = np.asarray(kwargs["rest"], dtype=float)
+        self.calls = {"addForce": 0, "addDForce": 0, "addKToMatrix": 0}
+
+    def addForce(self, mparams, f, x, v):
+        self.calls["addForce"] += 1
+        with f.writeableArray() as forces:
+            forces[:] += -self.k * (x.value - self.rest)
+
+    def addDForce(self, mparams, df, dx):
+        self.calls["addDForce"] += 1
+        with df.writeableArray() as dforce:
+            dforce[:] += -self.k * mparams["kFactor"] * dx.value
+
+    def addKToMatrix(self, mparams, nNodes, nDofs):
+        self.calls["addKToMatrix"] += 1
+        return -self.k * mparams["kFactor"] * np.eye(nNodes * nDofs)
+
+
+@pytest.mark.parametrize("solver", ["EigenSimplicialLDLT", "CGLinearSolver"])
+def test_a_python_force_field_steps_as_implicit_euler_says(solver):
+    # Points at rest under gravity with mass m each and a spring k to rest: one implicit Euler step
+    # gives (m + h^2 k) v1 = h m g, x1 = rest + h v1 (independent of the solver).
+    rest = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    root = Sofa.Core.Node("root")
+    root.dt, root.gravity = 0.1, [0, -10, 0]
+    node = root.addChild("points")
+    node.addObject("EulerImplicitSolver")
+    node.addObject(solver, **({"iterations": 100, "tolerance": 1e-30, "threshold": 1e-30} if solver == "CGLinearSolver" else {}))
+    state = node.addObject("MechanicalObject", name="dofs", position=rest)
+    node.addObject("UniformMass", totalMass=8)
+    spring = node.addObject(SpringToRest(name="spring", stiffness=50.0, rest=rest))
+    assert root.points.spring is spring and spring.getPathName() == "/points/spring"
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, root.dt.value)
+    m, h, k = 2.0, 0.1, 50.0
+    v1 = h * m * -10 / (m + h * h * k)
+    expected = np.array(rest, dtype=float) + np.array([0, h * v1, 0])
+    assert np.allclose(state.position.array(), expected, rtol=0, atol=1e-12)
+    assert spring.calls["addForce"] >= 1
+    assert spring.calls["addDForce" if solver == "CGLinearSolver" else "addKToMatrix"] >= 1
+
+
+def test_a_python_force_field_failing_is_a_simulation_error_naming_it():
+    class Broken(Sofa.Core.ForceFieldVec3d):
+        def addForce(self, mparams, f, x, v):
+            raise ValueError("no forces today")
+
+    root = Sofa.Core.Node("root")
+    tetrahedron_scene(root, Broken(name="broken"))
+    Sofa.Simulation.init(root)
+    with pytest.raises(fastcorot.SimulationError, match="Python ForceField 'broken': addForce: no forces today"):
+        Sofa.Simulation.animate(root, 0.01)
+
+    class ReadOnly(Sofa.Core.ForceFieldVec3d):
+        def addForce(self, mparams, f, x, v):
+            x.value[0, 0] = 1  # positions are read-only in the call
+
+    root = Sofa.Core.Node("root")
+    tetrahedron_scene(root, ReadOnly(name="readonly"))
+    Sofa.Simulation.init(root)
+    with pytest.raises(fastcorot.SimulationError, match="read-only"):
+        Sofa.Simulation.animate(root, 0.01)

@@ -243,6 +243,12 @@ class Builder {
     if (states.empty()) {
       throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
     }
+    if (states.size() == 1 && data_.points(*states.front(), "position").empty()) {
+      // SOFA steps an empty state without effect.
+      info_.push_back(states.front()->where() + ": the state has no points: node " + solver_node.path +
+                      " has nothing to simulate");
+      return;
+    }
     SimulatedObject<double> object;
     std::vector<Index> offsets, sizes;
     if (states.size() == 1) {

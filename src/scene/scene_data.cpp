@@ -92,9 +92,12 @@ Numbers SceneData::parse_numbers(const Component& c, const std::string& name, co
     if (ch == ',' || ch == '[' || ch == ']') ch = ' ';
   }
   // Index lists take SOFA's ranges: "A-B" is A..B (either way), "A-B-S" every S-th from A to B.
-  bool indices = false;
+  bool indices = false, real = false;
   if (c.spec) {
-    for (const auto& a : c.spec->attributes) indices = indices || (a.name == name && a.type == std::string_view("indices"));
+    for (const auto& a : c.spec->attributes) {
+      indices = indices || (a.name == name && a.type == std::string_view("indices"));
+      real = real || (a.name == name && a.type == std::string_view("real"));
+    }
   }
   std::istringstream in(cleaned);
   std::string token;
@@ -128,8 +131,15 @@ Numbers SceneData::parse_numbers(const Component& c, const std::string& name, co
     try {
       std::size_t used = 0;
       const double value = std::stod(token, &used);
-      if (used != token.size()) throw std::invalid_argument(token);
       if (!std::isfinite(value)) throw std::invalid_argument(token);
+      if (used != token.size()) {
+        // SOFA reads one real as a stream does: the number that starts the text, the rest ignored.
+        if (!real || !numbers.empty()) throw std::invalid_argument(token);
+        warn(c.where() + ": " + name + " = \"" + text + "\": read as " + token.substr(0, used) +
+             ", as SOFA reads it (the text after the number is ignored)");
+        numbers.push_back(value);
+        return numbers;
+      }
       numbers.push_back(value);
     } catch (const std::exception&) {
       throw make_error(c.where(), ": ", name, " = \"", text.size() > 60 ? text.substr(0, 60) + "..." : text,

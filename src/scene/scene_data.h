@@ -68,7 +68,7 @@ class SceneData {
   GraphNode& root() { return *root_; }
 
   // A warning about what a scene says (with --strict, an error).
-  void warn(const std::string& line) {
+  void warn(const std::string& line) const {
     if (!warnings_) throw make_error(line);
     warnings_->push_back(line);
   }

@@ -113,8 +113,10 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
           if (!local.empty()) topology = local.front();
         }
         if (!topology) {
-          throw make_error(c.where(), ": no position given and no topology in node ", c.node->path,
-                           " to take points from");
+          // SOFA's MechanicalObject is one point at the origin until something sizes it.
+          warn(c.where() + ": no position given and no topology in node " + c.node->path +
+               " to take points from: one point at the origin, SOFA's default");
+          return {0.0, 0.0, 0.0};
         }
         // A grid whose position links back to this state (SOFA scenes write that) gives its own points.
         base = topology->type() == "RegularGridTopology"    ? grid_points<double>(grid(*topology))
