@@ -116,10 +116,12 @@ std::vector<ComponentSpec> solver_components() {
        "The matrix SOFA's PrecomputedWarpPreconditioner assembles into; accepted for links to it.",
        {}},
       {"EigenSimplicialLDLT", "linearsolver",
-       "Sparse direct LDL^T solve of the assembled system; as a PCGLinearSolver's preconditioner, the factorisation it keeps for update_step solves.",
+       "Sparse direct LDL^T solve of the assembled system; as a PCGLinearSolver's preconditioner, the factorisation it keeps for update_step solves. SOFA's other exact direct solvers (LLT, LU, QR, SVD) solve the same system: the same solution to round-off.",
        {{"ordering", "string", "AMD", "accepted"},
-        {"linearSystem", "link", "", "a MatrixLinearSystem (accepted)"}},
-       {"SparseLDLSolver", "SparseCholeskySolver", "EigenSimplicialLLT", "EigenSparseLU"}}
+        {"orderingMethod", "link", "", "accepted (an ordering component)"},
+        {"linearSystem", "link", "", "a MatrixLinearSystem (accepted)"},
+        {"verbose", "bool", "false", "accepted"}},
+       {"SparseLDLSolver", "SparseCholeskySolver", "EigenSimplicialLLT", "EigenSparseLU", "EigenSparseQR", "SVDLinearSolver"}}
   };
 }
 

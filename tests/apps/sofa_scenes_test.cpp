@@ -70,6 +70,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "Component/MechanicalLoad/ConicalForceField.scn",
                       "Component/MechanicalLoad/TrianglePressureForceField.scn",
                       "Component/Engine/Generate/GenerateCylinder.scn",
+                      "Component/Topology/Container/Grid/CylinderGridTopology.scn",
                       "Component/Engine/Select/ValuesFromPositions_vectorField.scn",
                       "Component/Topology/Container/Dynamic/TetrahedronForceFieldTopologyChangeHandling.scn"),
     [](const auto& info) { return std::filesystem::path(info.param).stem().string(); });
