@@ -137,13 +137,16 @@ template std::vector<std::array<Index, 2>> index_tuples<2>(py::handle, const std
 template std::vector<std::array<Index, 4>> index_tuples<4>(py::handle, const std::string&);
 
 template <class Real>
-py::object sparse_matrix(const Eigen::SparseMatrix<Real, Eigen::RowMajor>& input) {
-  Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix = input;
-  matrix.makeCompressed();
-  const auto nonzeros = static_cast<py::ssize_t>(matrix.nonZeros());
-  py::array_t<Real> values(nonzeros, matrix.valuePtr());
-  py::array_t<Index> columns(nonzeros, matrix.innerIndexPtr());
-  py::array_t<Index> starts(matrix.rows() + 1, matrix.outerIndexPtr());
+py::object sparse_matrix(Eigen::SparseMatrix<Real, Eigen::RowMajor> input) {
+  // The matrix moves to the heap and numpy views its arrays, which scipy takes as they are: no copy.
+  using Matrix = Eigen::SparseMatrix<Real, Eigen::RowMajor>;
+  auto* matrix = new Matrix(std::move(input));
+  matrix->makeCompressed();
+  const py::capsule owner(matrix, [](void* p) { delete static_cast<Matrix*>(p); });
+  const auto nonzeros = static_cast<py::ssize_t>(matrix->nonZeros());
+  py::array_t<Real> values(nonzeros, matrix->valuePtr(), owner);
+  py::array_t<Index> columns(nonzeros, matrix->innerIndexPtr(), owner);
+  py::array_t<Index> starts(matrix->rows() + 1, matrix->outerIndexPtr(), owner);
   py::object sparse;
   try {
     sparse = py::module_::import("scipy.sparse");
@@ -151,16 +154,16 @@ py::object sparse_matrix(const Eigen::SparseMatrix<Real, Eigen::RowMajor>& input
     if (!error.matches(PyExc_ImportError)) throw;
     py::array_t<Index> rows(nonzeros);
     auto r = rows.mutable_unchecked<1>();
-    for (Eigen::Index row = 0; row < matrix.rows(); ++row) {
-      for (Index k = matrix.outerIndexPtr()[row]; k < matrix.outerIndexPtr()[row + 1]; ++k) r(k) = static_cast<Index>(row);
+    for (Eigen::Index row = 0; row < matrix->rows(); ++row) {
+      for (Index k = matrix->outerIndexPtr()[row]; k < matrix->outerIndexPtr()[row + 1]; ++k) r(k) = static_cast<Index>(row);
     }
     return py::make_tuple(rows, columns, values);
   }
   return sparse.attr("csr_matrix")(py::make_tuple(values, columns, starts),
-                                   py::arg("shape") = py::make_tuple(matrix.rows(), matrix.cols()));
+                                   py::arg("shape") = py::make_tuple(matrix->rows(), matrix->cols()));
 }
 
-template py::object sparse_matrix(const Eigen::SparseMatrix<float, Eigen::RowMajor>&);
-template py::object sparse_matrix(const Eigen::SparseMatrix<double, Eigen::RowMajor>&);
+template py::object sparse_matrix(Eigen::SparseMatrix<float, Eigen::RowMajor>);
+template py::object sparse_matrix(Eigen::SparseMatrix<double, Eigen::RowMajor>);
 
 }  // namespace fastcorot::python

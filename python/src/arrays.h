@@ -54,10 +54,10 @@ std::vector<Index> index_list(py::handle value, const std::string& what);
 // A numpy int array holding `values`.
 py::array index_array(const std::vector<Index>& values);
 
-// A scipy.sparse.csr_matrix of `matrix` (its arrays copied once into numpy), or (rows, cols, values)
-// arrays when scipy is not installed.
+// A scipy.sparse.csr_matrix of `matrix`, whose arrays are the matrix's own (it is kept alive by
+// them: no copy), or (rows, cols, values) arrays when scipy is not installed.
 template <class Real>
-py::object sparse_matrix(const Eigen::SparseMatrix<Real, Eigen::RowMajor>& matrix);
+py::object sparse_matrix(Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix);
 
 // Python's repr of the shape of an array ("(4, 2)").
 std::string shape_text(const py::array& array);

@@ -169,7 +169,7 @@ class ForceField {
         matrix = f.stiffness_matrix(static_cast<Real>(k_factor));
         matrix.makeCompressed();
       }
-      return sparse_matrix(matrix);
+      return sparse_matrix(std::move(matrix));
     });
   }
 

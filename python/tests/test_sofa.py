@@ -298,6 +298,7 @@ def test_assembled_stiffness_and_mass_matrices():
     # df/dx at the field's last linearisation: the start of the step, the rest shape here.
     expected = field.stiffness(state.rest_position.array().copy()).toarray()
     assert K.shape == (12, 12)
+    assert not K.data.flags.owndata and not K.indices.flags.owndata  # the assembled matrix's own arrays
     assert np.allclose(K.toarray(), expected, rtol=1e-12, atol=1e-12)
     M = root.body.mass.assembleMMatrix()
     assert np.array_equal(M.toarray(), np.eye(12) * 0.5)  # UniformMass: totalMass / 4 per point
