@@ -162,15 +162,43 @@ class _PythonComponent:
     def name(self):
         return Data(self, "name")
 
+    def addData(self, name, value=None, default=None, help="", group="", type=""):
+        """A datum of the component's own (SofaPython3's addData): then ``self.<name>`` is a Data with
+        `.value`, and other objects may link to it."""
+        if not isinstance(name, str) or not name.isidentifier():
+            raise TypeError(f"{self.getPathName()}: addData: name must be an identifier, got {name!r}")
+        self.__dict__.setdefault("_sofa_data", {})[name] = value if value is not None else default
+        return Data(self, name)
+
+    def __getattr__(self, name):
+        own = self.__dict__.get("_sofa_data", {})
+        if name in own:
+            return Data(self, name)
+        raise AttributeError(f"{type(self).__name__} '{self.__dict__.get('_sofa_name', '?')}' has no attribute '{name}'")
+
+    def __setattr__(self, name, value):
+        own = self.__dict__.get("_sofa_data", {})
+        if name in own:
+            own[name] = value.value if isinstance(value, Data) else value
+        else:
+            object.__setattr__(self, name, value)
+
     # the owner protocol of Data
     def _data_value(self, name):
         if name == "name":
             return self._sofa_name
-        raise AttributeError(f"{self.getPathName()}: a Python component's only datum is its name")
+        own = self.__dict__.get("_sofa_data", {})
+        if name in own:
+            return own[name]
+        raise AttributeError(f"{self.getPathName()}: no datum '{name}' (add one with addData)")
 
     def _set_data_value(self, name, value):
+        own = self.__dict__.get("_sofa_data", {})
+        if name in own:
+            own[name] = value
+            return
         if name != "name" or not isinstance(value, str):
-            raise TypeError(f"{self.getPathName()}: a Python component's only datum is its name (a str)")
+            raise TypeError(f"{self.getPathName()}: a Python component's data are its name (a str) and those of addData")
         self.__dict__["_sofa_name"] = value
 
     def _live_array(self, name):
@@ -380,6 +408,42 @@ class Node:
         return Data(self, name) if name in _NODE_DATA else None
 
     findData = getData
+
+    def _first(self, category):
+        for obj in self._node._objects:
+            spec = _core.component_spec(obj.type)
+            if spec and spec["category"] == category:
+                yield BaseObject._of(obj, self)
+
+    def getMechanicalState(self):
+        """The node's MechanicalObject (None without one)."""
+        return next(self._first("state"), None)
+
+    def getMass(self):
+        return next(self._first("mass"), None)
+
+    def getForceField(self, index):
+        fields = list(self._first("forcefield"))
+        return fields[index] if 0 <= index < len(fields) else None
+
+    def removeChild(self, child):
+        """Removes a child node (a Node or its name) before Sofa.Simulation.init."""
+        self._refuse_when_running("removeChild")
+        node = child._node if isinstance(child, Node) else next((c for c in self._node._children if c.name == child), None)
+        if node is None or node not in self._node._children:
+            raise ValueError(f"{self.getPathName()}: removeChild: no child {child!r}")
+        self._node._children.remove(node)
+        object.__setattr__(node, "_parent", None)
+
+    def removeObject(self, obj):
+        """Removes an object (or a Python controller or force field) before Sofa.Simulation.init."""
+        self._refuse_when_running("removeObject")
+        if isinstance(obj, BaseObject) and obj._object in self._node._objects:
+            self._node._objects.remove(obj._object)
+        elif obj in self._python_objects:
+            self._python_objects.remove(obj)
+        else:
+            raise ValueError(f"{self.getPathName()}: removeObject: {obj!r} is not in this node")
 
     # --- data (the owner protocol of Data) ----------------------------------------------------------
     def _data_value(self, name):

@@ -530,3 +530,33 @@ def test_a_python_force_field_failing_is_a_simulation_error_naming_it():
     Sofa.Simulation.init(root)
     with pytest.raises(fastcorot.SimulationError, match="read-only"):
         Sofa.Simulation.animate(root, 0.01)
+
+
+def test_own_data_of_controllers_and_node_lookups():
+    class WithData(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+            self.addData(name="amplitude", value=0.5, help="how far", type="double")
+            self.counter = 0  # an attribute of the script's own
+
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    controller = root.body.addObject(WithData(name="withData"))
+    assert controller.amplitude.value == 0.5 and controller.counter == 0
+    controller.amplitude = 2.0
+    controller.amplitude.value = 3.0
+    assert controller.amplitude.value == 3.0 and controller.amplitude.getLinkPath() == "@/body/withData.amplitude"
+    with pytest.raises(AttributeError, match="has no attribute 'amplitud'"):
+        controller.amplitud
+    body = root.body
+    assert body.getMechanicalState() is state and body.getMass().getName() == "mass"
+    assert body.getForceField(0).getName() == "FEM" and body.getForceField(5) is None
+    extra = body.addObject("ConstantForceField", name="push", forces=[[0, 0, 1]], indices=[1])
+    body.removeObject(extra)
+    body.removeObject(controller)
+    assert body.getObject("push") is None and body.getObject("withData") is None
+    spare = root.addChild("spare")
+    root.removeChild("spare")
+    assert root.getChild("spare") is None and spare.parents == []
+    with pytest.raises(ValueError, match="no child"):
+        root.removeChild("spare")
