@@ -516,3 +516,8 @@ class Node:
 
 
 __all__ = ["BaseObject", "Controller", "Data", "ForceField", "ForceFieldVec3d", "Node", "Object"]
+
+
+def __getattr__(name):
+    raise AttributeError(f"Sofa.Core.{name}: SofaPython3 has it, fastcorot's Sofa package does not (docs/python.md lists "
+                         "what maps)")

@@ -11,7 +11,13 @@ from . import _script
 from .Core import Node
 
 
-class GUIManager:
+class _NamesCalls(type):
+    def __getattr__(cls, name):
+        raise AttributeError(f"Sofa.Gui.GUIManager.{name}: SofaPython3's GUI has it, fastcorot's viewer does not (it has "
+                             "Init, createGUI, SetDimension, MainLoop, closeGUI)")
+
+
+class GUIManager(metaclass=_NamesCalls):
     _size = (1280, 720)
     _script = None
 

@@ -95,3 +95,8 @@ def initVisual(node):
 
 updateVisual = initVisual
 initTextures = initVisual
+
+
+def __getattr__(name):
+    raise AttributeError(f"Sofa.Simulation.{name}: SofaPython3 has it, fastcorot's Sofa package does not (it has init, "
+                         "initRoot, animate, reset, unload, initVisual, updateVisual)")

@@ -15,3 +15,8 @@ table of what maps and what differs.
 from . import Core, Helper, Simulation  # noqa: F401  (Sofa.Gui is imported on demand, as in SofaPython3)
 
 __all__ = ["Core", "Helper", "Simulation"]
+
+
+def __getattr__(name):
+    raise AttributeError(f"Sofa.{name}: SofaPython3 has it, fastcorot's Sofa package does not (docs/python.md lists what "
+                         "maps)")

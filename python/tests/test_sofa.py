@@ -560,3 +560,16 @@ def test_own_data_of_controllers_and_node_lookups():
     assert root.getChild("spare") is None and spare.parents == []
     with pytest.raises(ValueError, match="no child"):
         root.removeChild("spare")
+
+
+def test_what_sofapython3_has_and_fastcorot_does_not_is_named():
+    import Sofa.Gui
+
+    with pytest.raises(AttributeError, match="Sofa.Core.Topology: SofaPython3 has it"):
+        Sofa.Core.Topology
+    with pytest.raises(AttributeError, match="Sofa.Simulation.print: SofaPython3 has it"):
+        Sofa.Simulation.print
+    with pytest.raises(AttributeError, match="Sofa.SofaGL: SofaPython3 has it"):
+        Sofa.SofaGL
+    with pytest.raises(AttributeError, match="GUIManager.SaveScreenshot: SofaPython3's GUI has it"):
+        Sofa.Gui.GUIManager.SaveScreenshot("x.png")
