@@ -47,24 +47,16 @@ def assemble_k_matrix(sofa_object):
     core, k, _, _ = _state_of(sofa_object)
     wanted = _canonical(sofa_object.getClassName())
     candidates = [i for i, name in enumerate(core.force_field_types(k)) if name == wanted]
-    # Objects of the same type on the same simulated object come in scene order.
-    root = sofa_object.fastcorot_object.node
-    while root._parent is not None:
-        root = root._parent
-    rank = 0
-    if len(candidates) > 1:
-        peers = []
-        for obj in _document_order(root):
-            if _canonical(obj.type) != wanted:
-                continue
-            wrapper = getattr(obj, "_sofa", None)
-            if wrapper is not None and _state_of(wrapper)[1] == k:
-                peers.append(obj)
-        rank = peers.index(sofa_object.fastcorot_object) if sofa_object.fastcorot_object in peers else 0
     if not candidates:
         raise NotImplementedError(f"{sofa_object.getPathName()}: assembleKMatrix: {wanted} has no stiffness matrix "
                                   "in fastcorot (a load or a constraint, not an elastic force field)")
-    return core.stiffness_matrix(k, candidates[rank])
+    # The force fields of one type on one simulated object are in scene order.
+    root = sofa_object.fastcorot_object.node
+    while root._parent is not None:
+        root = root._parent
+    peers = [obj for obj in _document_order(root)
+             if _canonical(obj.type) == wanted and (bound_state(obj.node) or (None, None))[1] == k]
+    return core.stiffness_matrix(k, candidates[peers.index(sofa_object.fastcorot_object)])
 
 
 def assemble_m_matrix(sofa_object):
