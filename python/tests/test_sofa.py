@@ -573,3 +573,30 @@ def test_what_sofapython3_has_and_fastcorot_does_not_is_named():
         Sofa.SofaGL
     with pytest.raises(AttributeError, match="GUIManager.SaveScreenshot: SofaPython3's GUI has it"):
         Sofa.Gui.GUIManager.SaveScreenshot("x.png")
+
+
+def test_the_remaining_calls_scripts_make(capsys):
+    import Sofa.Gui
+    import SofaRuntime
+    from Sofa.Helper import msg_deprecated, msg_error, msg_fatal
+
+    SofaRuntime.PluginRepository.addFirstPath("/nowhere")
+    SofaRuntime.DataRepository.addFirstPath("/nowhere")
+    assert Sofa.Gui.GUIManager.ListSupportedGUI(",") == "fastcorot"
+    root = Sofa.Core.Node("root")
+    child = root.createChild("child")
+    state = child.addObject("MechanicalObject", name="dofs", template="Vec3d",
+                            position=np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]))
+    assert state.getTemplateName() == "Vec3d" and state.position.toList()[1] == [1.0, 0.0, 0.0]
+    assert isinstance(state.position.value, np.ndarray) and not state.position.value.flags.writeable
+    Sofa.Simulation.initVisual(root)
+    Sofa.Simulation.updateVisual(root)
+    msg_error("e")
+    msg_deprecated("d")
+    msg_fatal("f")
+    err = capsys.readouterr().err
+    assert "[ERROR]" in err and "[DEPRECATED]" in err and "[FATAL]" in err
+    with pytest.raises(TypeError, match="expected a Sofa.Core.Node"):
+        Sofa.Simulation.init("root")
+    with pytest.raises(TypeError, match="name .str. or a Sofa.Core.Node"):
+        root.addChild(3)
