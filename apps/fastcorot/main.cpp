@@ -13,14 +13,16 @@
 
 namespace {
 
-// Whether the command (run or view) names a Python script as its scene.
+// Whether the command (run or view) names a Python script as its scene: an argument ending in .py
+// that is not the value of an option naming a file.
 bool runs_script(int argc, char** argv) {
   if (argc < 3 || (std::strcmp(argv[1], "run") != 0 && std::strcmp(argv[1], "view") != 0)) return false;
   for (int i = 2; i < argc; ++i) {
     const std::string argument = argv[i];
-    if (argument.size() > 3 && argument.compare(argument.size() - 3, 3, ".py") == 0 && argv[i - 1][0] != '-') {
-      return true;
-    }
+    const std::string before = argv[i - 1];
+    const bool file_value = before == "--dump-state" || before == "--checkpoint" || before == "--resume" ||
+                            before == "--screenshot" || before == "--out" || before == "--png";
+    if (argument.size() > 3 && argument.compare(argument.size() - 3, 3, ".py") == 0 && !file_value) return true;
   }
   return false;
 }

@@ -58,7 +58,7 @@ def tetrahedron_scene(root, controller=None):
 def test_a_sofapython3_script_steps_bitwise_as_its_scn_file(tmp_path):
     expected = dump_state(BEAM_SCN, [1, 10, 100], tmp_path)
     out = tmp_path / "script.json"
-    run_cli("run", SOFA_BEAM, "--steps", 100, "--quiet", "--dump-state", out, "--dump-steps", "1,10,100")
+    run_cli("run", "--quiet", SOFA_BEAM, "--steps", 100, "--dump-state", out, "--dump-steps", "1,10,100")
     from_script = {int(k): v for k, v in json.loads(out.read_text())["steps"].items()}
     assert from_script == expected
     # And in-process, through Sofa.Simulation.animate.
