@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -35,6 +36,11 @@ int exec_python(int argc, char** argv) {
   if (!python || !*python) python = FASTCOROT_PYTHON_EXECUTABLE;
   const char* package = std::getenv("FASTCOROT_PYTHONPATH");
   std::string path = package && *package ? package : FASTCOROT_PYTHON_PACKAGE_DIR;
+  if (std::error_code error; !std::filesystem::exists(std::filesystem::path(path) / "fastcorot" / "__main__.py", error)) {
+    std::cerr << "fastcorot: error: Python scene scripts run in the Python module, which is not in " << path
+              << " (build it with scripts/build, or set FASTCOROT_PYTHONPATH to the folder that holds fastcorot/)\n";
+    return 2;
+  }
   if (const char* existing = std::getenv("PYTHONPATH"); existing && *existing) path += std::string(":") + existing;
   setenv("PYTHONPATH", path.c_str(), 1);
   std::vector<char*> arguments{const_cast<char*>(python), const_cast<char*>("-m"), const_cast<char*>("fastcorot")};

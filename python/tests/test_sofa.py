@@ -322,6 +322,9 @@ def test_script_errors_are_one_line_with_status_2(tmp_path):
     empty.write_text("x = 1\n")
     completed = subprocess.run([str(executable()), "run", str(empty)], capture_output=True, text=True)
     assert completed.returncode == 2 and "defines no createScene(root)" in completed.stderr
+    moved = subprocess.run([str(executable()), "run", str(SOFA_BEAM)], capture_output=True, text=True,
+                           env=dict(os.environ, FASTCOROT_PYTHONPATH=str(tmp_path / "nowhere")))
+    assert moved.returncode == 2 and "the Python module, which is not in" in moved.stderr
     checkpoint = tmp_path / "c.ckpt"
     run_cli("run", SOFA_BEAM, "--steps", 4, "--quiet", "--checkpoint-every", 2, "--checkpoint", checkpoint)
     completed = subprocess.run([str(executable()), "run", str(SOFA_BEAM), "--steps", "6", "--resume", str(checkpoint)],
