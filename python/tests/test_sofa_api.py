@@ -1,0 +1,376 @@
+"""The Sofa compatibility package's calls, one by one: Data, controllers, matrices, the tree, force
+fields written in Python, and the bad calls (docs/python.md)."""
+
+import numpy as np
+import pytest
+
+import fastcorot
+import Sofa
+import Sofa.Simulation
+from fastcorot.scene import SceneWarning
+
+from test_sofa import tetrahedron_scene
+
+
+# --- Data ---------------------------------------------------------------------------------------------
+
+def test_data_values_views_and_assignment():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    root.dt = 0.02
+    root.gravity = [0, 0, -10]
+    assert root.dt.value == 0.02 and list(root.gravity.value) == [0, 0, -10]
+    assert root.body.dofs is state and root.body.FEM.youngModulus.value == 100
+    root.body.FEM.youngModulus.value = 50
+    assert root.body.FEM.youngModulus.value == 50
+    assert state.getLinkPath() == "@/body/dofs" and state.position.getLinkPath() == "@/body/dofs.position"
+    assert root.body.getPathName() == "/body" and root.getPathName() == "/"
+    Sofa.Simulation.init(root)
+    simulation = Sofa.Simulation.simulation_of(root)
+    core_view = simulation._core.position(0)
+    view = state.position.array()
+    assert view.__array_interface__["data"][0] == core_view.__array_interface__["data"][0]
+    assert not view.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        view[1, 0] = 5
+    with state.position.writeableArray() as x:
+        assert x.__array_interface__["data"][0] == core_view.__array_interface__["data"][0]
+        x[1, 0] = 1.5
+    assert core_view[1, 0] == 1.5
+    state.velocity.value = np.ones((4, 3))
+    assert np.array_equal(simulation._core.velocity(0), np.ones((4, 3)))
+    Sofa.Simulation.animate(root, root.dt.value)
+    assert root.time.value == pytest.approx(0.02)
+    assert view[1, 0] != 1.5  # the view follows the state
+
+
+def test_bad_calls_raise_clear_python_exceptions():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    with pytest.raises(RuntimeError, match="call Sofa.Simulation.init"):
+        Sofa.Simulation.animate(root, 0.01)
+    with pytest.raises(AttributeError, match="did you mean 'position'"):
+        state.positon
+    with pytest.raises(AttributeError, match="did you mean 'body'"):
+        root.bodi
+    with pytest.warns(SceneWarning, match="unknown attribute 'youngModulous' ignored.*did you mean 'youngModulus'"):
+        root.body.addObject("TetrahedronFEMForceField", youngModulous=3)
+    with pytest.raises(ValueError, match="unknown component 'TetrahedronFEMForceFeild'.*did you mean"):
+        root.body.addObject("TetrahedronFEMForceFeild")
+    with pytest.raises(TypeError, match="expected a number"):
+        root.body.addObject("UniformMass", totalMass=[1, 2])
+    with pytest.raises(TypeError, match="keyword arguments"):
+        root.body.addObject("UniformMass", 3)
+    with pytest.raises(TypeError, match="component type"):
+        root.body.addObject(3)
+    with pytest.raises(ValueError, match="dt"):
+        root.dt = -1
+    with pytest.raises(AttributeError, match="read-only"):
+        root.time = 3
+
+
+def test_controllers_get_the_animation_events_in_scene_order():
+    calls = []
+
+    class Recorder(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+
+        def init(self):
+            calls.append((self.getName(), "init"))
+
+        def onAnimateBeginEvent(self, event):
+            calls.append((self.getName(), event["type"], round(self.getContext().getRoot().time.value, 6)))
+
+        def onEvent(self, event):
+            calls.append((self.getName(), event["type"], round(self.getContext().getRoot().time.value, 6)))
+
+    root = Sofa.Core.Node("root")
+    root.addObject(Recorder(name="first"))
+    tetrahedron_scene(root, Recorder(name="second"))
+    assert root.first.getName() == "first" and root.body.second.getPathName() == "/body/second"
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, 0.01)
+    assert calls == [("first", "init"), ("second", "init"),
+                     ("first", "AnimateBeginEvent", 0.0), ("second", "AnimateBeginEvent", 0.0),
+                     ("first", "AnimateEndEvent", 0.01), ("second", "AnimateEndEvent", 0.01)]
+    Sofa.Simulation.reset(root)
+    assert root.time.value == 0.0
+
+
+def test_a_controller_moving_fixed_points_matches_the_same_motion_through_fastcorots_api():
+    def motion(step):
+        return np.array([0.01 * step, 0.0, 0.0])
+
+    class Mover(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+            self.state = kwargs["state"]
+            self.step = 0
+
+        def onAnimateBeginEvent(self, event):
+            self.step += 1
+            with self.state.position.writeableArray() as x:
+                x[0] = self.state.rest_position.array()[0] + motion(self.step)
+
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    root.body.addObject(Mover(name="mover", state=state))
+    Sofa.Simulation.init(root)
+    for _ in range(20):
+        Sofa.Simulation.animate(root, root.dt.value)
+
+    plain = fastcorot.Node("root", dt=0.01)
+    body = plain.add_child("body")
+    body.add_object("EulerImplicitSolver")
+    body.add_object("EigenSimplicialLDLT")
+    dofs = body.add_object("MechanicalObject", name="dofs", position=[[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    body.add_object("TetrahedronSetTopologyContainer", tetrahedra=[0, 1, 2, 3])
+    body.add_object("UniformMass", totalMass=2)
+    body.add_object("FastTetrahedralCorotationalForceField", youngModulus=100, poissonRatio=0.3)
+    body.add_object("FixedProjectiveConstraint", indices=[0])
+    simulation = fastcorot.Simulation(plain)
+    for step in range(1, 21):
+        dofs.position[0] = dofs.rest_position[0] + motion(step)
+        simulation.step()
+    assert np.array_equal(state.position.array(), dofs.position)
+    assert state.position.array()[0, 0] == pytest.approx(0.2)
+
+
+# --- matrices -----------------------------------------------------------------------------------------
+
+def test_assembled_stiffness_and_mass_matrices():
+    pytest.importorskip("scipy")
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, 0.01)
+    K = root.body.FEM.assembleKMatrix()
+    field = fastcorot.ForceField(state.rest_position.array().copy(), [[0, 1, 2, 3]], young_modulus=100,
+                                 poisson_ratio=0.3, method="large")
+    # df/dx at the field's last linearisation: the start of the step, the rest shape here.
+    expected = field.stiffness(state.rest_position.array().copy()).toarray()
+    assert K.shape == (12, 12)
+    assert not K.data.flags.owndata and not K.indices.flags.owndata  # the assembled matrix's own arrays
+    assert np.allclose(K.toarray(), expected, rtol=1e-12, atol=1e-12)
+    M = root.body.mass.assembleMMatrix()
+    assert np.array_equal(M.toarray(), np.eye(12) * 0.5)  # UniformMass: totalMass / 4 per point
+    other = Sofa.Core.Node("root")
+    system = other.addObject("MatrixLinearSystem", name="system")
+    with pytest.raises(RuntimeError, match="not initialised"):
+        system.get_system_matrix()
+
+
+# --- the rest of SofaPython3's calls -------------------------------------------------------------------
+
+def test_tree_calls_links_aliases_and_helpers(capsys):
+    import SofaRuntime
+    from Sofa.Helper import msg_info, msg_warning
+
+    assert SofaRuntime.importPlugin("Sofa.Component.StateContainer")
+    root = Sofa.Core.Node("root")
+    loose = Sofa.Core.Node("loose")
+    assert root.addChild(loose) is loose and root.loose is loose and loose.parents == [root]
+    with pytest.raises(ValueError, match="already has a parent"):
+        root.addChild(loose)
+    state = tetrahedron_scene(root)
+    body = root.getChild("body")
+    assert body is root.body and root.getChild("nothing") is None
+    assert body.getObject("dofs") is state and body.getObject("nothing") is None
+    assert [c.getName() for c in root.children] == ["loose", "body"]
+    assert [o.getName() for o in body.objects][:3] == ["EulerImplicitSolver", "EigenSimplicialLDLT", "dofs"]
+    assert state.getContext() is body and body.getRoot() is root and body.getLinkPath() == "@/body"
+    assert state.getClassName() == "MechanicalObject" and state.getTemplateName() == ""
+    assert state.getData("position").getName() == "position" and state.findData("nothing") is None
+    assert "position" in [d.getName() for d in state.getDataFields()]
+    # A Data (or an object) given as a value is a link to it.
+    other = root.addChild("other")
+    copy = other.addObject("MechanicalObject", name="copy", position=state.position)
+    assert copy.fastcorot_object._data["position"] == "@/body/dofs.position"
+    created = other.createObject("UniformMass", totalMass=1)
+    assert created.totalMass.value == 1 and created.totalMass.getValueString() == "1.0"
+    root.myValue = 3  # a script's own attribute, as SofaPython3 keeps it
+    assert root.myValue == 3
+    root.bbox = [[-1, -1, -1], [1, 1, 1]]
+    assert root.bbox.value == [[-1, -1, -1], [1, 1, 1]]
+    msg_info("hello")
+    msg_warning(state, "careful")
+    err = capsys.readouterr().err
+    assert "[INFO]     [PythonScript] hello" in err and "[WARNING]  [dofs] careful" in err
+
+
+def test_data_sequence_calls_and_writeable_copies():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    indices = root.body.fixed.indices
+    assert len(indices) == 1 and indices[0] == 0 and np.array_equal(np.asarray(indices), [0])
+    with indices.writeable() as values:  # before init: a copy, written back
+        values[0] = 2
+    assert root.body.fixed.indices.value.tolist() == [2]
+    Sofa.Simulation.init(root)
+    state.position[1] = [1.25, 0, 0]  # item assignment writes the state
+    assert Sofa.Simulation.simulation_of(root)._core.position(0)[1, 0] == 1.25
+    assert state.position == state.position.array()
+    with pytest.raises(AttributeError, match="assign the datum's value"):
+        state.position.nonsense = 1
+    assert "Sofa.Core.Data /body/dofs.position" in repr(state.position)
+
+
+def test_animate_with_another_dt_reset_and_unload():
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    Sofa.Simulation.init(root)
+    start = state.position.array().copy()
+    Sofa.Simulation.animate(root, 0.05)
+    assert root.time.value == pytest.approx(0.05) and root.dt.value == 0.01  # the root's dt stays
+    assert not np.array_equal(state.position.array(), start)
+    Sofa.Simulation.reset(root)
+    assert root.time.value == 0 and np.array_equal(state.position.array(), start)
+    with pytest.raises(NotImplementedError, match="after Sofa.Simulation.init"):
+        root.addChild("late")
+    Sofa.Simulation.unload(root)
+    root.addChild("late")  # the tree can change again; init builds it anew
+    with pytest.raises(ValueError, match="dt"):
+        Sofa.Simulation.init(root) or Sofa.Simulation.animate(root, -1)
+
+
+# --- force fields written in Python ----------------------------------------------------------------------
+
+class SpringToRest(Sofa.Core.ForceFieldVec3d):
+    """f = -k (x - rest): its forces, its product for CG, its matrix for direct solvers."""
+
+    def __init__(self, *args, **kwargs):
+        Sofa.Core.ForceFieldVec3d.__init__(self, *args, **kwargs)
+        self.k = kwargs["stiffness"]
+        self.rest = np.asarray(kwargs["rest"], dtype=float)
+        self.calls = {"addForce": 0, "addDForce": 0, "addKToMatrix": 0}
+
+    def addForce(self, mparams, f, x, v):
+        self.calls["addForce"] += 1
+        with f.writeableArray() as forces:
+            forces[:] += -self.k * (x.value - self.rest)
+
+    def addDForce(self, mparams, df, dx):
+        self.calls["addDForce"] += 1
+        with df.writeableArray() as dforce:
+            dforce[:] += -self.k * mparams["kFactor"] * dx.value
+
+    def addKToMatrix(self, mparams, nNodes, nDofs):
+        self.calls["addKToMatrix"] += 1
+        return -self.k * mparams["kFactor"] * np.eye(nNodes * nDofs)
+
+
+@pytest.mark.parametrize("solver", ["EigenSimplicialLDLT", "CGLinearSolver"])
+def test_a_python_force_field_steps_as_implicit_euler_says(solver):
+    # Points at rest under gravity with mass m each and a spring k to rest: one implicit Euler step
+    # gives (m + h^2 k) v1 = h m g, x1 = rest + h v1 (independent of the solver).
+    rest = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]
+    root = Sofa.Core.Node("root")
+    root.dt, root.gravity = 0.1, [0, -10, 0]
+    node = root.addChild("points")
+    node.addObject("EulerImplicitSolver")
+    node.addObject(solver, **({"iterations": 100, "tolerance": 1e-30, "threshold": 1e-30} if solver == "CGLinearSolver" else {}))
+    state = node.addObject("MechanicalObject", name="dofs", position=rest)
+    node.addObject("UniformMass", totalMass=8)
+    spring = node.addObject(SpringToRest(name="spring", stiffness=50.0, rest=rest))
+    assert root.points.spring is spring and spring.getPathName() == "/points/spring"
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, root.dt.value)
+    m, h, k = 2.0, 0.1, 50.0
+    v1 = h * m * -10 / (m + h * h * k)
+    expected = np.array(rest, dtype=float) + np.array([0, h * v1, 0])
+    assert np.allclose(state.position.array(), expected, rtol=0, atol=1e-12)
+    assert spring.calls["addForce"] >= 1
+    assert spring.calls["addDForce" if solver == "CGLinearSolver" else "addKToMatrix"] >= 1
+
+
+def test_a_python_force_field_failing_is_a_simulation_error_naming_it():
+    class Broken(Sofa.Core.ForceFieldVec3d):
+        def addForce(self, mparams, f, x, v):
+            raise ValueError("no forces today")
+
+    root = Sofa.Core.Node("root")
+    tetrahedron_scene(root, Broken(name="broken"))
+    Sofa.Simulation.init(root)
+    with pytest.raises(fastcorot.SimulationError, match="Python ForceField 'broken': addForce: no forces today"):
+        Sofa.Simulation.animate(root, 0.01)
+
+    class ReadOnly(Sofa.Core.ForceFieldVec3d):
+        def addForce(self, mparams, f, x, v):
+            x.value[0, 0] = 1  # positions are read-only in the call
+
+    root = Sofa.Core.Node("root")
+    tetrahedron_scene(root, ReadOnly(name="readonly"))
+    Sofa.Simulation.init(root)
+    with pytest.raises(fastcorot.SimulationError, match="read-only"):
+        Sofa.Simulation.animate(root, 0.01)
+
+
+def test_own_data_of_controllers_and_node_lookups():
+    class WithData(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+            self.addData(name="amplitude", value=0.5, help="how far", type="double")
+            self.counter = 0  # an attribute of the script's own
+
+    root = Sofa.Core.Node("root")
+    state = tetrahedron_scene(root)
+    controller = root.body.addObject(WithData(name="withData"))
+    assert controller.amplitude.value == 0.5 and controller.counter == 0
+    controller.amplitude = 2.0
+    controller.amplitude.value = 3.0
+    assert controller.amplitude.value == 3.0 and controller.amplitude.getLinkPath() == "@/body/withData.amplitude"
+    with pytest.raises(AttributeError, match="has no attribute 'amplitud'"):
+        controller.amplitud
+    body = root.body
+    assert body.getMechanicalState() is state and body.getMass().getName() == "mass"
+    assert body.getForceField(0).getName() == "FEM" and body.getForceField(5) is None
+    extra = body.addObject("ConstantForceField", name="push", forces=[[0, 0, 1]], indices=[1])
+    body.removeObject(extra)
+    body.removeObject(controller)
+    assert body.getObject("push") is None and body.getObject("withData") is None
+    spare = root.addChild("spare")
+    root.removeChild("spare")
+    assert root.getChild("spare") is None and spare.parents == []
+    with pytest.raises(ValueError, match="no child"):
+        root.removeChild("spare")
+
+
+def test_what_sofapython3_has_and_fastcorot_does_not_is_named():
+    import Sofa.Gui
+
+    with pytest.raises(AttributeError, match="Sofa.Core.Topology: SofaPython3 has it"):
+        Sofa.Core.Topology
+    with pytest.raises(AttributeError, match="Sofa.Simulation.print: SofaPython3 has it"):
+        Sofa.Simulation.print
+    with pytest.raises(AttributeError, match="Sofa.SofaGL: SofaPython3 has it"):
+        Sofa.SofaGL
+    with pytest.raises(AttributeError, match="GUIManager.SaveScreenshot: SofaPython3's GUI has it"):
+        Sofa.Gui.GUIManager.SaveScreenshot("x.png")
+
+
+def test_the_remaining_calls_scripts_make(capsys):
+    import Sofa.Gui
+    import SofaRuntime
+    from Sofa.Helper import msg_deprecated, msg_error, msg_fatal
+
+    SofaRuntime.PluginRepository.addFirstPath("/nowhere")
+    SofaRuntime.DataRepository.addFirstPath("/nowhere")
+    assert Sofa.Gui.GUIManager.ListSupportedGUI(",") == "fastcorot"
+    root = Sofa.Core.Node("root")
+    child = root.createChild("child")
+    state = child.addObject("MechanicalObject", name="dofs", template="Vec3d",
+                            position=np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]]))
+    assert state.getTemplateName() == "Vec3d" and state.position.toList()[1] == [1.0, 0.0, 0.0]
+    assert isinstance(state.position.value, np.ndarray) and not state.position.value.flags.writeable
+    Sofa.Simulation.initVisual(root)
+    Sofa.Simulation.updateVisual(root)
+    msg_error("e")
+    msg_deprecated("d")
+    msg_fatal("f")
+    err = capsys.readouterr().err
+    assert "[ERROR]" in err and "[DEPRECATED]" in err and "[FATAL]" in err
+    with pytest.raises(TypeError, match="expected a Sofa.Core.Node"):
+        Sofa.Simulation.init("root")
+    with pytest.raises(TypeError, match="name .str. or a Sofa.Core.Node"):
+        root.addChild(3)
