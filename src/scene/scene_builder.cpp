@@ -7,6 +7,7 @@
 #include "fastcorot/topology/regular_grid.h"
 #include "force_field_builders.h"
 #include "hexahedron_builders.h"
+#include "mass_builders.h"
 #include "projective_constraints.h"
 #include "scene_data.h"
 #include "solver_builder.h"
@@ -461,50 +462,7 @@ class Builder {
   }
 
   Mass<double> build_mass(Component& c, const Points<double>& rest) {
-    const auto n = static_cast<Index>(rest.size());
-    const std::string_view type = c.type();
-    if (type == "DiagonalMass" || type == "MeshMatrixMass") {
-      const std::vector<Hexahedron> hexahedra = scene_detail::hexahedra_of(data_, c);
-      if (!hexahedra.empty()) return scene_detail::build_hexahedron_mass(data_, c, hexahedra, rest);
-    }
-    try {
-      if (type == "UniformMass") {
-        double vertex_mass;
-        if (c.has("totalMass")) {
-          vertex_mass = data_.real(c, "totalMass", 0) / static_cast<double>(n);
-        } else if (c.has("vertexMass")) {
-          vertex_mass = data_.real(c, "vertexMass", 0);
-        } else {
-          throw make_error("neither vertexMass nor totalMass given");
-        }
-        return Mass<double>::lumped(std::vector<double>(static_cast<std::size_t>(n), vertex_mass));
-      }
-      const auto mesh = mesh_of(c, n);
-      double density = 1;
-      const bool from_total = c.has("totalMass") || !c.has("massDensity");
-      if (!from_total) density = data_.real(c, "massDensity", 1.0);
-      if (!(density > 0) || !std::isfinite(density)) throw make_error("massDensity = ", density, ": must be > 0");
-      if (type == "DiagonalMass" || (type == "MeshMatrixMass" && data_.boolean(c, "lumping", false))) {
-        std::vector<double> masses = tetrahedral_lumped_masses<double>(*mesh, rest, 1.0);
-        double sum = 0;
-        for (double m : masses) sum += m;
-        const double factor = from_total ? data_.real(c, "totalMass", 1.0) / sum : density;
-        if (from_total && !(data_.real(c, "totalMass", 1.0) > 0)) throw make_error("totalMass must be > 0");
-        for (double& m : masses) m *= factor;
-        Mass<double> mass = Mass<double>::lumped(std::move(masses));
-        mass.follow_tetrahedra(mesh, factor);
-        return mass;
-      }
-      Eigen::SparseMatrix<double> matrix = tetrahedral_mass_matrix<double>(*mesh, rest, 1.0);
-      const double total = matrix.sum();
-      const double factor = from_total ? data_.real(c, "totalMass", 1.0) / total : density;
-      if (from_total && !(data_.real(c, "totalMass", 1.0) > 0)) throw make_error("totalMass must be > 0");
-      Mass<double> mass = Mass<double>::consistent(matrix * factor);
-      mass.follow_tetrahedra(mesh, factor);
-      return mass;
-    } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
-    }
+    return scene_detail::build_mass(data_, c, rest, [&] { return mesh_of(c, static_cast<Index>(rest.size())); });
   }
 
   // The boxes are kept for drawing only; the selection itself is BoxROI's `indices` data.
