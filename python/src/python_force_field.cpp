@@ -64,7 +64,7 @@ class PythonForceField final : public ForceField<double> {
   void apply(const TopologyChange&) override {
     throw make_error(component(), ": a Python force field does not follow topological changes");
   }
-  std::string unsaved_state() const override { return component() + " (its Python state)"; }
+  std::string unsaved_state() const override { return "its Python state"; }
   std::vector<double> model_values() const override { return {}; }
   void set_threads(int) override {}
   int threads() const override { return 1; }

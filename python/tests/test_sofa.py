@@ -180,6 +180,16 @@ def test_script_errors_are_one_line_with_status_2(tmp_path):
     completed = subprocess.run([str(executable()), "run", str(SOFA_BEAM), "--steps", "6", "--resume", str(checkpoint)],
                                capture_output=True, text=True)
     assert completed.returncode == 2 and "Python controllers" in completed.stderr
+    with_field = tmp_path / "field.py"
+    with_field.write_text("import Sofa\n\nclass F(Sofa.Core.ForceFieldVec3d):\n"
+                          "    def addForce(self, m, f, x, v):\n        pass\n\n"
+                          "    def addDForce(self, m, df, dx):\n        pass\n\n"
+                          "def createScene(root):\n    n = root.addChild('n')\n    n.addObject('EulerImplicitSolver')\n"
+                          "    n.addObject('CGLinearSolver')\n    n.addObject('MechanicalObject', position=[0, 0, 0])\n"
+                          "    n.addObject('UniformMass', totalMass=1)\n    n.addObject(F(name='f'))\n")
+    completed = subprocess.run([str(executable()), "run", str(with_field), "--steps", "2", "--checkpoint-every", "1",
+                                "--checkpoint", str(tmp_path / "f.ckpt")], capture_output=True, text=True)
+    assert completed.returncode == 2 and "Python ForceField 'f' carries its Python state" in completed.stderr
 
 
 # --- the viewer ---------------------------------------------------------------------------------------
