@@ -161,10 +161,18 @@ void on_key(GLFWwindow* window, int key, int, int action, int mods) {
   if (ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard) return;
   Controls& c = controls_of(window);
   ViewerSession& s = *c.session;
-  // As in runSofa, keys pressed with Ctrl go to the scene's controllers (letters as capitals).
-  if ((mods & GLFW_MOD_CONTROL) && key >= GLFW_KEY_SPACE && key <= GLFW_KEY_GRAVE_ACCENT) {
-    s.key_pressed(static_cast<char>(key));
-    return;
+  // As in runSofa, keys pressed with Ctrl go to the scene's controllers (letters as capitals; the
+  // arrows as SOFA's codes 18 left, 19 up, 20 right, 21 down).
+  if (mods & GLFW_MOD_CONTROL) {
+    if (key >= GLFW_KEY_SPACE && key <= GLFW_KEY_GRAVE_ACCENT) {
+      s.key_pressed(static_cast<char>(key));
+      return;
+    }
+    const int arrow = key == GLFW_KEY_LEFT ? 18 : key == GLFW_KEY_UP ? 19 : key == GLFW_KEY_RIGHT ? 20 : key == GLFW_KEY_DOWN ? 21 : 0;
+    if (arrow != 0) {
+      s.key_pressed(static_cast<char>(arrow));
+      return;
+    }
   }
   switch (key) {
     case GLFW_KEY_SPACE:

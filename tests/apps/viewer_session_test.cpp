@@ -5,6 +5,7 @@
 #include "viewer_session.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/scene/scene_graph.h"
 #include "render/render_scenes.h"
 #include "support/force_fields.h"
 
@@ -248,6 +249,53 @@ TEST(ViewerSession, ACutAcrossABeamSeparatesItsFreeEnd) {
   const auto& x = object.system.state.position;
   EXPECT_LT(x[static_cast<std::size_t>(tip)].y(), 1 - 0.9);
   EXPECT_GT(x[static_cast<std::size_t>(inner)].y(), 1 - 0.05);
+}
+
+// A script's scene (through a loader written here in place of the Python module's): each step is
+// wrapped in the controllers' begin and end, keys reach them, and reload builds the scene again.
+class KeyedSource final : public SceneSource {
+ public:
+  explicit KeyedSource(std::vector<std::string>& events) : events_(events), scene_(build()) {}
+  LoadedScene& scene() override { return scene_; }
+  LoadedScene& reload() override {
+    events_.push_back("reload");
+    scene_ = build();
+    return scene_;
+  }
+  void begin_step() override { events_.push_back("begin"); }
+  void end_step() override { events_.push_back("end"); }
+  void key_pressed(char key) override {
+    if (key == 'X') throw make_error("script.py:3: ValueError: no X (in a controller's KeypressedEvent)");
+    events_.push_back(std::string("key ") + key);
+  }
+
+ private:
+  static LoadedScene build() {
+    return build_scene(parse_scene_text("<Node name=\"root\">" + testing::small_beam() + "</Node>", "script.py"));
+  }
+  std::vector<std::string>& events_;
+  LoadedScene scene_;
+};
+
+TEST(ViewerSession, AScriptsControllersGetTheStepsAndTheKeys) {
+  std::vector<std::string> events;
+  set_script_loader([&](const std::string&, bool) -> std::unique_ptr<SceneSource> {
+    return std::make_unique<KeyedSource>(events);
+  });
+  ViewOptions options;
+  options.scene = "script.py";
+  options.paused = true;
+  {
+    ViewerSession session(options);
+    session.step();
+    session.key_pressed('L');
+    session.reload();
+    EXPECT_EQ(session.simulation().steps_done(), 0);
+    session.key_pressed('X');
+    EXPECT_NE(session.message.find("no X"), std::string::npos);
+  }
+  set_script_loader(nullptr);
+  EXPECT_EQ(events, (std::vector<std::string>{"begin", "end", "key L", "reload"}));
 }
 
 }  // namespace
