@@ -9,7 +9,7 @@ DefaultAnimationLoop does.
 import fastcorot
 from fastcorot.scene import walk
 
-from ._matrices import bound_state
+from ._matrices import bound_state, canonical_type
 from .Core import ForceField, Node
 
 
@@ -23,7 +23,7 @@ def _start(root, strict=False):
     simulation = fastcorot.Simulation(root.fastcorot_node, strict=strict, allow_empty=True)
     object.__setattr__(root, "_simulation", simulation)
     root._extra.pop("_time_offset", None)
-    if any(obj._sofa_canonical() == "MatrixLinearSystem" for node in walk(root.fastcorot_node) for obj in node._objects):
+    if any(canonical_type(obj.type) == "MatrixLinearSystem" for node in walk(root.fastcorot_node) for obj in node._objects):
         simulation._core.record_solves()  # for the linear systems' get_system_matrix and the like
     for component in root._all_python_components():
         if isinstance(component, ForceField):

@@ -8,7 +8,8 @@ from fastcorot import _core
 from fastcorot import scene as _scene
 
 
-def _canonical(type_name):
+def canonical_type(type_name):
+    """A type's name in the component table (an alias resolved), else the type as written."""
     spec = _scene._spec(type_name)
     return spec[0] if spec else type_name
 
@@ -45,7 +46,7 @@ def _document_order(node):
 
 def assemble_k_matrix(sofa_object):
     core, k, _, _ = _state_of(sofa_object)
-    wanted = _canonical(sofa_object.getClassName())
+    wanted = canonical_type(sofa_object.getClassName())
     candidates = [i for i, name in enumerate(core.force_field_types(k)) if name == wanted]
     if not candidates:
         raise NotImplementedError(f"{sofa_object.getPathName()}: assembleKMatrix: {wanted} has no stiffness matrix "
@@ -55,7 +56,7 @@ def assemble_k_matrix(sofa_object):
     while root._parent is not None:
         root = root._parent
     peers = [obj for obj in _document_order(root)
-             if _canonical(obj.type) == wanted and (bound_state(obj.node) or (None, None))[1] == k]
+             if canonical_type(obj.type) == wanted and (bound_state(obj.node) or (None, None))[1] == k]
     return core.stiffness_matrix(k, candidates[peers.index(sofa_object.fastcorot_object)])
 
 
@@ -131,6 +132,6 @@ def object_methods(type_name):
         return {"assembleKMatrix": assemble_k_matrix}
     if category == "mass":
         return {"assembleMMatrix": assemble_m_matrix}
-    if _canonical(type_name) == "MatrixLinearSystem":
+    if canonical_type(type_name) == "MatrixLinearSystem":
         return dict(_LINEAR_SYSTEM_CALLS)
     return {}

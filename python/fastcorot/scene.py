@@ -103,11 +103,6 @@ class Object:
         for line in warned:
             warnings.warn(line, SceneWarning, stacklevel=4)
 
-    def _sofa_canonical(self):
-        """The component's name in the table (an alias resolved), else its type as written."""
-        spec = _spec(self._type)
-        return spec[0] if spec else self._type
-
     def _kind(self, name):
         spec = _spec(self._type)
         if spec and name in spec[1]:

@@ -239,16 +239,27 @@ Mat3<Real> HexahedronFEMForceField<Real>::element_rotation(std::span<const Vec3<
 }
 
 template <class Real>
+Mat3<Real> HexahedronFEMForceField<Real>::current_rotation(std::span<const Vec3<Real>> x, std::size_t e) const {
+  return parameters_.method == HexahedronFEMMethod::small ? rotation_[e] : element_rotation(x, hexahedra_[e]);
+}
+
+template <class Real>
+Eigen::Matrix<Real, 24, 1> HexahedronFEMForceField<Real>::displacement(std::span<const Vec3<Real>> x, std::size_t e,
+                                                                      const Mat3<Real>& R) const {
+  Eigen::Matrix<Real, 24, 1> D;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3<Real> deformed = R * x[static_cast<std::size_t>(hexahedra_[e][static_cast<std::size_t>(k)])];
+    D.template segment<3>(3 * k) = rest_in_frame_[e][static_cast<std::size_t>(k)] - deformed;
+  }
+  return D;
+}
+
+template <class Real>
 void HexahedronFEMForceField<Real>::forces(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f, bool record) {
   for (std::size_t e = 0; e < hexahedra_.size(); ++e) {
     const Hexahedron& h = hexahedra_[e];
-    const Mat3<Real> R = parameters_.method == HexahedronFEMMethod::small ? rotation_[e] : element_rotation(x, h);
-    Eigen::Matrix<Real, 24, 1> D;
-    for (int k = 0; k < 8; ++k) {
-      const Vec3<Real> deformed = R * x[static_cast<std::size_t>(h[static_cast<std::size_t>(k)])];
-      D.template segment<3>(3 * k) = rest_in_frame_[e][static_cast<std::size_t>(k)] - deformed;
-    }
-    const Eigen::Matrix<Real, 24, 1> F = stiffness_[e] * D;
+    const Mat3<Real> R = current_rotation(x, e);
+    const Eigen::Matrix<Real, 24, 1> F = stiffness_[e] * displacement(x, e, R);
     for (int k = 0; k < 8; ++k) {
       f[static_cast<std::size_t>(h[static_cast<std::size_t>(k)])] += R.transpose() * F.template segment<3>(3 * k);
     }
@@ -314,12 +325,7 @@ template <class Real>
 Real HexahedronFEMForceField<Real>::potential_energy(std::span<const Vec3<Real>> x) const {
   Real energy = 0;
   for (std::size_t e = 0; e < hexahedra_.size(); ++e) {
-    const Hexahedron& h = hexahedra_[e];
-    const Mat3<Real> R = parameters_.method == HexahedronFEMMethod::small ? rotation_[e] : element_rotation(x, h);
-    Eigen::Matrix<Real, 24, 1> D;
-    for (int k = 0; k < 8; ++k) {
-      D.template segment<3>(3 * k) = rest_in_frame_[e][static_cast<std::size_t>(k)] - R * x[static_cast<std::size_t>(h[static_cast<std::size_t>(k)])];
-    }
+    const Eigen::Matrix<Real, 24, 1> D = displacement(x, e, current_rotation(x, e));
     energy += D.dot(stiffness_[e] * D);
   }
   return energy / 2;

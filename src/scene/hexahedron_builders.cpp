@@ -15,15 +15,10 @@ namespace {
 constexpr int kHexahedronEdges[12][2] = {{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 5}, {2, 3},
                                          {2, 6}, {3, 7}, {4, 5}, {4, 7}, {5, 6}, {6, 7}};
 
-Component* topology_for(SceneData& data, Component& c) {
-  return c.has("topology") ? &data.resolve_object(*c.node, c.object->attributes.at("topology"), c)
-                           : data.topology_of(*c.node);
-}
-
 }  // namespace
 
 std::vector<Hexahedron> hexahedra_of(SceneData& data, Component& c) {
-  Component* topology = topology_for(data, c);
+  Component* topology = data.topology_of(c);
   if (!topology || !data.indices(*topology, "tetrahedra").empty()) return {};
   std::vector<Hexahedron> hexahedra;
   if (topology->type() == "RegularGridTopology" || topology->type() == "CylinderGridTopology") {

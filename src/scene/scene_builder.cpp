@@ -324,8 +324,7 @@ class Builder {
 
 
   std::shared_ptr<TetMesh> mesh_of(Component& user, Index num_points) {
-    Component* topology = user.has("topology") ? &data_.resolve_object(*user.node, user.object->attributes.at("topology"), user)
-                                               : data_.topology_of(*user.node);
+    Component* topology = data_.topology_of(user);
     if (!topology) throw make_error(user.where(), ": no topology in its node or above");
     if (const auto it = meshes_.find(topology); it != meshes_.end()) return it->second;
     std::vector<Index> flat = data_.indices(*topology, "tetrahedra");

@@ -375,6 +375,11 @@ Component* SceneData::triangle_container_of(const GraphNode& node) {
   return nullptr;
 }
 
+Component* SceneData::topology_of(Component& user) {
+  return user.has("topology") ? &resolve_object(*user.node, user.object->attributes.at("topology"), user)
+                              : topology_of(*user.node);
+}
+
 Component* SceneData::topology_of(const GraphNode& node) {
   for (const GraphNode* scope = &node; scope; scope = scope->parent) {
     const auto topologies = scope->of_category("topology");

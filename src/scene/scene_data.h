@@ -98,6 +98,8 @@ class SceneData {
   // The node's topology slot (its last topology component, else the nearest ancestor's); nullptr
   // when there is none.
   Component* topology_of(const GraphNode& node);
+  // The topology component `user` works on: the one its `topology` attribute links, else its node's slot.
+  Component* topology_of(Component& user);
   // The nearest TriangleSetTopologyContainer at or above `node` (its last in a node); nullptr if none.
   Component* triangle_container_of(const GraphNode& node);
   // The component of type `mapping_type` whose output is c, searched over the whole scene.

@@ -85,6 +85,9 @@ class HexahedronFEMForceField final : public ForceField<Real> {
 
  private:
   Mat3<Real> element_rotation(std::span<const Vec3<Real>> x, const Hexahedron& h) const;
+  // R of element e at x (its rest rotation for small), and D = rest corners in the frame - R x.
+  Mat3<Real> current_rotation(std::span<const Vec3<Real>> x, std::size_t e) const;
+  Eigen::Matrix<Real, 24, 1> displacement(std::span<const Vec3<Real>> x, std::size_t e, const Mat3<Real>& R) const;
   // Forces at x; records the rotations when `record`.
   void forces(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f, bool record);
   Real factor(Real k_factor, Real b_factor) const { return k_factor + b_factor * parameters_.rayleigh_stiffness; }
