@@ -10,15 +10,25 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/scene/component_table.h"
+#include "fastcorot/sim/petsc_runtime.h"
 
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <string>
+#include <vector>
 
 namespace fastcorot::cli {
 
 namespace {
+
+// Whether this process was started by mpirun (Open MPI) on more than one rank.
+bool started_by_mpirun() {
+  const char* size = std::getenv("OMPI_COMM_WORLD_SIZE");
+  return size && std::atoi(size) > 1;
+}
 
 // The options that shape a picture, shared by `run --png` and `view`. Returned so that `run` can
 // require --png with them.
@@ -42,6 +52,22 @@ std::vector<CLI::Option*> add_picture_options(CLI::App* command, fastcorot::cli:
 }  // namespace
 
 int run_cli(int argc, char** argv) {
+  // PETSc's options (-ksp_type cg -pc_type gamg -ksp_monitor ...) go to PETSc; the rest to us.
+  std::vector<std::string> arguments(argv, argv + argc);
+  const std::vector<std::string> petsc_options = take_petsc_options(arguments);
+  std::vector<char*> kept;
+  for (auto& argument : arguments) kept.push_back(argument.data());
+  argc = static_cast<int>(kept.size());
+  argv = kept.data();
+  try {
+    if (!petsc_options.empty() || started_by_mpirun()) initialise_petsc(petsc_options);
+  } catch (const fastcorot::ReportedElsewhere&) {
+    return 2;  // the rank that failed first printed the error
+  } catch (const fastcorot::Error& error) {
+    std::cerr << "fastcorot: error: " << error.what() << '\n';
+    return 2;
+  }
+
   CLI::App app{"fastcorot: fast corotational tetrahedral finite elements (SOFA-compatible)"};
   app.require_subcommand(1);
 
@@ -141,6 +167,8 @@ int run_cli(int argc, char** argv) {
       fastcorot::cli::view(view_options, std::cout, std::cerr);
     }
     if (app.got_subcommand("components")) std::cout << fastcorot::component_documentation();
+  } catch (const fastcorot::ReportedElsewhere&) {
+    return 2;  // the rank that failed first printed the error
   } catch (const fastcorot::Error& error) {
     std::cerr << "fastcorot: error: " << error.what() << '\n';
     return 2;

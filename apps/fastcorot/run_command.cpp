@@ -1,6 +1,7 @@
 #include "run_command.h"
 
 #include "default_scene.h"
+#include "distributed_run.h"
 #include "json_io.h"
 #include "picture_series.h"
 #include "scene_source.h"
@@ -14,6 +15,7 @@
 #include "fastcorot/io/vtu_writer.h"
 #include "fastcorot/topology/tetrahedron_faces.h"
 #include "fastcorot/scene/scene_builder.h"
+#include "fastcorot/sim/petsc_runtime.h"
 
 #include <unistd.h>
 
@@ -137,14 +139,17 @@ class VtuSeries {
     }
   }
 
-  void write(Simulation<double>& simulation) {
+  // `forces`: each object's forces, when the caller has them (a distributed run gathers them);
+  // computed here otherwise.
+  void write(Simulation<double>& simulation, const std::vector<std::vector<Vec3<double>>>* forces = nullptr) {
     for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
       auto& object = simulation.objects[o];
       auto& system = object.system;
       const auto& x = system.state.position;
       const std::size_t n = x.size();
       std::vector<Vec3<double>> force(n, Vec3<double>::Zero());
-      system.compute_force(x, force);
+      if (forces) force = (*forces)[o];
+      else system.compute_force(x, force);
       VtuField displacement{"displacement", 3, {}}, velocity{"velocity", 3, {}}, force_field{"force", 3, {}};
       for (std::size_t i = 0; i < n; ++i) {
         const Vec3<double> u = x[i] - system.state.rest_position[i];
@@ -289,7 +294,21 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
                      ": must be >= 0 (0: no bound)");
   }
   const TetrahedronDrawing drawing = parse_tetrahedron_drawing(options.picture.drawing);
-  const std::unique_ptr<SceneSource> source = open_scene(options.scene, options.strict);
+  // With several ranks (mpirun), every rank loads the scene and steps its part; rank 0 writes.
+  const bool writer = process_rank() == 0;
+  if (process_count() > 1) {
+    if (!options.png_dir.empty()) throw make_error("--png: not in a distributed run (write --vtu frames and draw them)");
+    if (options.checkpoint_every > 0 || !options.resume.empty()) {
+      throw make_error(options.resume.empty() ? "--checkpoint-every" : "--resume",
+                       ": checkpoints are not supported in a distributed run yet (run on one process)");
+    }
+  }
+  std::unique_ptr<SceneSource> source;
+  std::unique_ptr<DistributedRun> distributed;
+  on_every_rank([&] {
+    source = open_scene(options.scene, options.strict);
+    distributed = std::make_unique<DistributedRun>(source->scene().simulation);
+  });
   LoadedScene& scene = source->scene();
   Simulation<double>& simulation = scene.simulation;
   if (options.dt) {
@@ -307,8 +326,10 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (!folder.empty()) make_output_folder(folder.string(), "--checkpoint");
   }
   // Warnings are printed even with --quiet: they name settings of the scene that are ignored.
-  for (const auto& line : scene.warnings) err << "warning: " << line << '\n';
-  if (!options.quiet) {
+  if (writer) {
+    for (const auto& line : scene.warnings) err << "warning: " << line << '\n';
+  }
+  if (!options.quiet && writer) {
     for (const auto& line : scene.info) err << "info: " << line << '\n';
   }
   json steps = json::object();
@@ -320,9 +341,11 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   // Outputs are set up on the scene as built (the pictures' camera is framed on it), also when
   // resuming, so that a resumed run writes what the uninterrupted one would have.
   std::optional<VtuSeries> vtu;
-  if (options.vtu) vtu.emplace(options.out_dir, simulation, drawing);
   std::optional<ObjSeries> obj;
-  if (options.obj) obj.emplace(options.out_dir, simulation);
+  on_every_rank([&] {
+    if (options.vtu && writer) vtu.emplace(options.out_dir, simulation, drawing);
+    if (options.obj && writer) obj.emplace(options.out_dir, simulation);
+  });
   std::optional<PictureSeries> pictures;
   if (!options.png_dir.empty()) pictures.emplace(options.png_dir, options.picture, simulation, options.steps);
   const bool dump_last = !options.dump_state.empty();
@@ -342,31 +365,47 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
         (dump_last && options.steps == simulation.steps_done())) {
       record(steps, simulation);
     }
-  } else {
-    if (options.dump_steps.count(0) || (dump_last && options.steps == 0)) record(steps, simulation);
-    if (vtu) vtu->write(simulation);
-    if (obj) obj->write(simulation);
-    if (pictures) pictures->write(simulation);
+  }
+  // Frames and dumps of the step just done: a distributed run first gathers the state on rank 0
+  // (collectively), then rank 0 writes.
+  auto write_outputs = [&](bool dump, bool frame) {
+    std::vector<std::vector<Vec3<double>>> forces;
+    if (distributed->active() && (dump || frame)) {
+      distributed->gather_state(simulation);
+      if (options.vtu && frame) forces = distributed->gather_forces(simulation);
+    }
+    on_every_rank([&] {
+      if (!writer) return;
+      if (dump) record(steps, simulation);
+      if (vtu && frame) vtu->write(simulation, distributed->active() ? &forces : nullptr);
+      if (obj && frame) obj->write(simulation);
+      if (pictures && frame) pictures->write(simulation);
+    });
+  };
+  if (options.resume.empty()) {
+    write_outputs(options.dump_steps.count(0) || (dump_last && options.steps == 0),
+                  options.vtu || options.obj || !options.png_dir.empty());
   }
   const long first_step = simulation.steps_done() + 1;
 
-  const bool show_progress = !options.quiet && isatty(fileno(stderr));
+  const bool show_progress = !options.quiet && writer && isatty(fileno(stderr));
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   long solves = 0, iterations = 0;
   double last_draw = -1;
   try {
     for (long step = first_step; step <= options.steps; ++step) {
-      source->begin_step();
-      const StepReport report = simulation.step();
-      source->end_step();
+      StepReport report;
+      on_every_rank([&] {
+        source->begin_step();
+        report = simulation.step();
+        source->end_step();
+      });
       solves += report.linear_solves;
       iterations += report.linear_iterations;
-      if (options.dump_steps.count(step) || (dump_last && step == options.steps)) record(steps, simulation);
-      const bool frame = step % options.every == 0 || step == options.steps;
-      if (vtu && frame) vtu->write(simulation);
-      if (obj && frame) obj->write(simulation);
-      if (pictures && frame) pictures->write(simulation);
+      const bool frame = (options.vtu || options.obj || !options.png_dir.empty()) &&
+                         (step % options.every == 0 || step == options.steps);
+      write_outputs(options.dump_steps.count(step) || (dump_last && step == options.steps), frame);
       // After the frames, so that a run resumed here finds them in the folder.
       if (options.checkpoint_every > 0 && step % options.checkpoint_every == 0) {
         write_checkpoint(checkpoint_file, simulation,
@@ -379,18 +418,21 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
   } catch (const Error&) {
     if (show_progress) err << '\n';
-    write_dump();  // keep what was computed before the failure
+    if (writer) write_dump();  // keep what was computed before the failure
     throw;
   }
   if (show_progress) err << '\n';
-  write_dump();
+  on_every_rank([&] {
+    if (writer) write_dump();
+  });
   const double seconds = elapsed();
   const long steps_run = options.steps - first_step + 1;
-  if (!options.quiet) {
+  if (!options.quiet && writer) {
     out << "fastcorot run: " << steps_run << " steps in " << std::fixed << std::setprecision(3)
         << seconds << " s (" << std::setprecision(1)
         << (seconds > 0 ? static_cast<double>(steps_run) / seconds : 0.0) << " steps/s), "
         << simulation.objects.size() << " object(s), " << solves << " linear solves";
+    if (distributed->active()) out << ", " << process_count() << " ranks";
     if (iterations > 0) {
       out << ", mean linear-solver iterations " << std::setprecision(2)
           << static_cast<double>(iterations) / static_cast<double>(solves);

@@ -115,6 +115,15 @@ std::vector<ComponentSpec> solver_components() {
       {"PrecomputedMatrixSystem", "linearsystem",
        "The matrix SOFA's PrecomputedWarpPreconditioner assembles into; accepted for links to it.",
        {}},
+      {"PETScLinearSolver", "linearsolver",
+       "fastcorot's own: the assembled system solved by PETSc, by default CG with algebraic multigrid (GAMG) given the "
+       "rigid-body modes; for large meshes and distributed runs (docs/scaling.md). PETSc's -ksp_* and -pc_* options on "
+       "the command line override these.",
+       {{"ksp", "string", "cg", "PETSc's Krylov solver (KSPType: cg, gmres, minres, preonly, ...)"},
+        {"pc", "string", "gamg", "PETSc's preconditioner (PCType: gamg, hypre, jacobi, bjacobi, ilu, cholesky, ...)"},
+        {"tolerance", "real", "1e-8", "stop when |b - A x| / |b| <= tolerance"},
+        {"maxIterations", "int", "1000", "most iterations; not converging by then is an error"},
+        {"nearNullSpace", "bool", "true", "give the preconditioner the rigid-body modes of the rest shape"}}},
       {"EigenSimplicialLDLT", "linearsolver",
        "Sparse direct LDL^T solve of the assembled system; as a PCGLinearSolver's preconditioner, the factorisation it keeps for update_step solves. SOFA's other exact direct solvers (LLT, LU, QR, SVD) solve the same system: the same solution to round-off.",
        {{"ordering", "string", "AMD", "accepted"},

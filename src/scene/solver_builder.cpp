@@ -6,6 +6,7 @@
 #include "fastcorot/sim/newmark_solver.h"
 #include "fastcorot/sim/variational_symplectic_solver.h"
 #include "fastcorot/sim/ode_solver.h"
+#include "fastcorot/sim/petsc_linear_solver.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
 #include "fastcorot/sim/sparse_direct_solver.h"
 
@@ -187,6 +188,7 @@ class SolverBuilder {
   std::unique_ptr<LinearSolver<double>> build_linear_solver(Component& c, Index points,
                                                             const std::vector<GraphNode*>& nodes) {
     if (c.type() == "PCGLinearSolver") return build_pcg(c, points, nodes);
+    if (c.type() == "PETScLinearSolver") return build_petsc(c);
     if (c.type() == "EigenSimplicialLDLT") {
       link_to_matrix_system(c, "linearSystem");
       return std::make_unique<SparseDirectSolver<double>>();
@@ -201,6 +203,20 @@ class SolverBuilder {
     p.threshold = data.real(c, "threshold", 1e-5);
     try {
       return std::make_unique<ConjugateGradientSolver<double>>(p);
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+  }
+
+  std::unique_ptr<LinearSolver<double>> build_petsc(Component& c) {
+    PetscLinearSolver::Parameters p;
+    p.ksp = data.text(c, "ksp", p.ksp);
+    p.pc = data.text(c, "pc", p.pc);
+    p.tolerance = data.real(c, "tolerance", p.tolerance);
+    p.max_iterations = data.whole_number(c, "maxIterations", p.max_iterations);
+    p.near_null_space = data.boolean(c, "nearNullSpace", p.near_null_space);
+    try {
+      return std::make_unique<PetscLinearSolver>(p);
     } catch (const Error& error) {
       throw make_error(c.where(), ": ", error.what());
     }

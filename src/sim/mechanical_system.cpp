@@ -151,6 +151,7 @@ void MechanicalSystem<Real>::compute_force(std::span<const Vec3<Real>> x, std::s
       f[static_cast<std::size_t>(constant.indices[i])] += constant.forces[i];
     }
   }
+  if (exchange) exchange->sum_shared(f);
 }
 
 template <class Real>
@@ -163,6 +164,7 @@ void MechanicalSystem<Real>::multiply(const MatrixFactors<Real>& factors, std::s
     set_zero(out);
   }
   for (const auto& field : force_fields) field->add_dforce(dx, out, factors.k, factors.b);
+  if (exchange) exchange->sum_shared(out);
   project(out);
 }
 
@@ -388,12 +390,13 @@ Real MechanicalSystem<Real>::potential_energy(std::span<const Vec3<Real>> x) con
       energy -= constant.forces[i].dot(x[static_cast<std::size_t>(constant.indices[i])]);
     }
   }
-  return energy;
+  return exchange ? exchange->sum(energy) : energy;
 }
 
 template <class Real>
 Real MechanicalSystem<Real>::kinetic_energy() const {
-  return mass.size() == 0 ? Real(0) : mass.kinetic_energy(state.velocity);
+  const Real energy = mass.size() == 0 ? Real(0) : mass.kinetic_energy(state.velocity);
+  return exchange ? exchange->sum(energy) : energy;
 }
 
 template class MechanicalSystem<float>;

@@ -40,8 +40,16 @@ StepReport ImplicitEulerSolver<Real>::step(MechanicalSystem<Real>& system, Linea
     // b += (h tr + rs) K v - rm M v through the matrix-free products (component Rayleigh
     // coefficients do not enter the right-hand side, as in SOFA).
     const PhaseTimer timer(system.timer_slot(&PhaseTimes::matrix_vector));
-    for (const auto& field : system.force_fields) field->add_dforce(v, rhs_, h * tr + rs, Real(0));
-    if (rm != 0 && system.mass.size() != 0) system.mass.add_mdx(v, rhs_, -rm);
+    // In a distributed run the products are partial at shared points: they are completed apart
+    // from the force, which is already complete (dv_ serves as the work vector).
+    std::vector<Vec3<Real>>& terms = system.exchange ? dv_ : rhs_;
+    if (system.exchange) std::fill(dv_.begin(), dv_.end(), Vec3<Real>::Zero());
+    for (const auto& field : system.force_fields) field->add_dforce(v, terms, h * tr + rs, Real(0));
+    if (rm != 0 && system.mass.size() != 0) system.mass.add_mdx(v, terms, -rm);
+    if (system.exchange) {
+      system.exchange->sum_shared(dv_);
+      for (std::size_t i = 0; i < n; ++i) rhs_[i] += dv_[i];
+    }
     for (auto& b : rhs_) b *= h;
     factors = {1 + tr * h * rm, -tr * h, -tr * h * (tr * h + rs)};
   }

@@ -76,6 +76,18 @@ struct PointCoupling {
   Real velocity = Real(0.5);
 };
 
+// How the ranks of a distributed run (sim/distribution.h) complete per-point sums: each rank
+// computes forces and products from its own tetrahedra only, so a point on the boundary between
+// ranks holds a partial sum on each; sum_shared() makes every copy the full sum (the same bits on
+// every rank). sum() adds a number over the ranks. Collective: every rank calls them together.
+template <class Real>
+class PointExchange {
+ public:
+  virtual ~PointExchange() = default;
+  virtual void sum_shared(std::span<Vec3<Real>> values) const = 0;
+  virtual Real sum(Real value) const = 0;
+};
+
 // Factors of the system matrix m M + b B + k K.
 template <class Real>
 struct MatrixFactors {
@@ -110,6 +122,9 @@ class MechanicalSystem {
   // motion, so they are held where they are, like fixed points (sorted). SOFA deletes them; here
   // points stay so that indices into the state never change.
   std::vector<Index> isolated;
+  // Set in distributed runs (null otherwise): compute_force and multiply complete their sums at the
+  // points shared with other ranks, and the energies add over the ranks.
+  std::shared_ptr<const PointExchange<Real>> exchange;
 
   Index size() const { return state.size(); }
 
