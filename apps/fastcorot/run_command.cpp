@@ -432,11 +432,11 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
         << seconds << " s (" << std::setprecision(1)
         << (seconds > 0 ? static_cast<double>(steps_run) / seconds : 0.0) << " steps/s), "
         << simulation.objects.size() << " object(s), " << solves << " linear solves";
-    if (distributed->active()) out << ", " << process_count() << " ranks";
     if (iterations > 0) {
       out << ", mean linear-solver iterations " << std::setprecision(2)
           << static_cast<double>(iterations) / static_cast<double>(solves);
     }
+    if (distributed->active()) out << ", " << process_count() << " ranks";
     out << '\n';
   }
 }

@@ -215,6 +215,7 @@ class SolverBuilder {
     p.tolerance = data.real(c, "tolerance", p.tolerance);
     p.max_iterations = data.whole_number(c, "maxIterations", p.max_iterations);
     p.near_null_space = data.boolean(c, "nearNullSpace", p.near_null_space);
+    p.rebuild_every = data.whole_number(c, "rebuildEvery", p.rebuild_every);
     try {
       return std::make_unique<PetscLinearSolver>(p);
     } catch (const Error& error) {

@@ -109,8 +109,8 @@ struct PetscLinearSolver::Impl {
   std::vector<PetscScalar> values;  // distributed runs: the local rows before they go to PETSc
   // What the pattern was built for: point count, held points, tetrahedra of each force field.
   std::vector<Index> pattern_key;
-  bool assembled_generally = false;  // projections or couplings: MechanicalSystem::assemble
   int builds = 0;
+  long solves_since_setup = 0;  // solves since the preconditioner was last rebuilt
 
   ~Impl() { release(); }
   void release() {
@@ -143,13 +143,17 @@ struct PetscLinearSolver::Impl {
   void build(const MechanicalSystem<double>& system, const Parameters& parameters) {
     release();
     ++builds;
+    solves_since_setup = 0;
     rows.held = sim_detail::held_points(system);
-    const std::vector<std::vector<Index>> pattern = sim_detail::block_pattern(system, rows.held);
-    rows.block_start.assign(1, 0);
-    rows.block_column.clear();
-    for (const auto& columns : pattern) {
-      rows.block_start.push_back(rows.block_start.back() + static_cast<PetscInt>(columns.size()));
-      rows.block_column.insert(rows.block_column.end(), columns.begin(), columns.end());
+    {
+      const std::vector<std::vector<Index>> pattern = sim_detail::block_pattern(system, rows.held);
+      rows.block_start.assign(1, 0);
+      rows.block_column.clear();
+      for (const auto& columns : pattern) {
+        rows.block_start.push_back(rows.block_start.back() + static_cast<PetscInt>(columns.size()));
+        rows.block_column.insert(rows.block_column.end(), columns.begin(), columns.end());
+      }
+      rows.block_column.shrink_to_fit();
     }
     const PetscInt n = owned();
     petsc_check(MatCreate(comm(), &matrix), "matrix");
@@ -163,18 +167,25 @@ struct PetscLinearSolver::Impl {
       values.assign(static_cast<std::size_t>(9 * rows.block_start.back()), 0.0);
     } else {
       // PETSc's compressed rows are the pattern itself: values are written in place each solve.
+      // The pattern goes in block row by block row (zeros), without a second copy of the indices.
       petsc_check(MatSetType(matrix, MATSEQAIJ), "matrix type");
-      std::vector<PetscInt> row_start{0}, column;
-      column.reserve(static_cast<std::size_t>(9 * rows.block_start.back()));
+      std::vector<PetscInt> per_row;
+      per_row.reserve(3 * static_cast<std::size_t>(rows.points()));
       for (Index i = 0; i < rows.points(); ++i) {
-        for (int r = 0; r < 3; ++r) {
-          for (PetscInt b = rows.block_start[static_cast<std::size_t>(i)]; b < rows.block_start[static_cast<std::size_t>(i) + 1]; ++b) {
-            for (int s = 0; s < 3; ++s) column.push_back(3 * rows.block_column[static_cast<std::size_t>(b)] + s);
-          }
-          row_start.push_back(static_cast<PetscInt>(column.size()));
-        }
+        for (int r = 0; r < 3; ++r) per_row.push_back(3 * rows.blocks(i));
       }
-      petsc_check(MatSeqAIJSetPreallocationCSR(matrix, row_start.data(), column.data(), nullptr), "matrix pattern");
+      petsc_check(MatSeqAIJSetPreallocation(matrix, 0, per_row.data()), "preallocation");
+      std::vector<PetscScalar> zeros;
+      for (Index i = 0; i < rows.points(); ++i) {
+        const PetscInt k = rows.blocks(i);
+        zeros.assign(static_cast<std::size_t>(9 * k), 0.0);
+        const PetscInt row = i;
+        petsc_check(MatSetValuesBlocked(matrix, 1, &row, k, rows.block_column.data() + rows.block_start[static_cast<std::size_t>(i)],
+                                        zeros.data(), INSERT_VALUES),
+                    "matrix pattern");
+      }
+      petsc_check(MatAssemblyBegin(matrix, MAT_FINAL_ASSEMBLY), "matrix pattern");
+      petsc_check(MatAssemblyEnd(matrix, MAT_FINAL_ASSEMBLY), "matrix pattern");
     }
     petsc_check(MatSetOption(matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "matrix option");
     petsc_check(MatCreateVecs(matrix, &solution, &rhs), "vectors");
@@ -263,6 +274,7 @@ struct PetscLinearSolver::Impl {
     a.makeCompressed();
     release();
     ++builds;
+    solves_since_setup = 0;
     rows.block_start.assign(static_cast<std::size_t>(system.size()) + 1, 0);
     std::vector<PetscInt> row_start(a.outerIndexPtr(), a.outerIndexPtr() + a.rows() + 1);
     std::vector<PetscInt> column(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
@@ -282,6 +294,7 @@ PetscLinearSolver::PetscLinearSolver(Parameters parameters) : parameters_(std::m
     throw make_error("tolerance ", parameters_.tolerance, ": must be > 0");
   }
   if (parameters_.max_iterations < 1) throw make_error("maxIterations ", parameters_.max_iterations, ": must be >= 1");
+  if (parameters_.rebuild_every < 1) throw make_error("rebuildEvery ", parameters_.rebuild_every, ": must be >= 1");
   initialise_petsc();
   // The types and the command line's options are checked now, when the scene is built.
   KSP probe = nullptr;
@@ -307,9 +320,14 @@ int PetscLinearSolver::pattern_builds() const { return impl_->builds; }
 
 std::size_t PetscLinearSolver::memory_bytes() const {
   if (!impl_->matrix) return 0;
+  // Entries and their column indices, and the row starts (PETSc's own memory count is off unless
+  // its memory logging is on).
   MatInfo info;
   MatGetInfo(impl_->matrix, MAT_LOCAL, &info);
-  return static_cast<std::size_t>(info.memory);
+  PetscInt rows = 0, columns = 0;
+  MatGetLocalSize(impl_->matrix, &rows, &columns);
+  return static_cast<std::size_t>(info.nz_allocated) * (sizeof(PetscScalar) + sizeof(PetscInt)) +
+         static_cast<std::size_t>(rows + 1) * sizeof(PetscInt);
 }
 
 LinearSolveReport PetscLinearSolver::solve(const MechanicalSystem<double>& system, const MatrixFactors<double>& factors,
@@ -340,6 +358,9 @@ LinearSolveReport PetscLinearSolver::solve(const MechanicalSystem<double>& syste
     }
     petsc_check(VecRestoreArray(impl.rhs, &b), "right-hand side");
     petsc_check(KSPSetOperators(impl.ksp, impl.matrix, impl.matrix), "solver operators");
+    const bool rebuild = impl.solves_since_setup % parameters_.rebuild_every == 0;
+    petsc_check(KSPSetReusePreconditioner(impl.ksp, rebuild ? PETSC_FALSE : PETSC_TRUE), "preconditioner reuse");
+    impl.solves_since_setup = rebuild ? 1 : impl.solves_since_setup + 1;
   }
   const int code = KSPSolve(impl.ksp, impl.rhs, impl.solution);
   if (code != 0) petsc_check(code, "solve (ksp " + parameters_.ksp + ", pc " + parameters_.pc + ")");

@@ -46,11 +46,14 @@ void initialise_petsc(const std::vector<std::string>& options) {
   if (!petsc_initialised()) {
     // PETSc's own handler prints a traceback and its signal handler catches crashes: errors here
     // come back as codes, turned into one line (petsc_check), and signals stay the program's.
+    // Options given before initialisation count for it too (-log_view, -info).
     petsc_check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "options");
+    if (!options.empty()) petsc_check(PetscOptionsInsertString(nullptr, joined(options).c_str()), "options");
     petsc_check(PetscInitializeNoArguments(), "initialisation");
     PetscPushErrorHandler(PetscIgnoreErrorHandler, nullptr);
     started_here = true;
     std::atexit(finalise_petsc);
+    return;
   }
   if (!options.empty()) petsc_check(PetscOptionsInsertString(nullptr, joined(options).c_str()), "options");
 }

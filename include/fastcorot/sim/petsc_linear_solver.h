@@ -7,8 +7,10 @@
 // The matrix is assembled from the same 3x3 blocks as MechanicalSystem::assemble, in the same
 // order, into PETSc's compressed rows; its pattern, and GAMG's aggregates and interpolation with it,
 // are built at the first solve and reused while the pattern holds (same points, tetrahedra and
-// fixed points); the coarse operators are recomputed at every solve since the corotational
-// stiffness changes with the rotations. In a distributed run (sim/distribution.h) the matrix and
+// fixed points). The coarse operators (GAMG's Galerkin products, most of its set-up) are
+// recomputed from the current matrix every rebuild_every solves: the corotational stiffness changes
+// only with the rotations, so a preconditioner a few steps old still preconditions well, and every
+// solve meets its tolerance against the current matrix all the same. In a distributed run (sim/distribution.h) the matrix and
 // vectors are MPI objects with each rank's owned points as its rows.
 #pragma once
 
@@ -29,6 +31,9 @@ class PetscLinearSolver final : public LinearSolver<double> {
     double tolerance = 1e-8;   // relative residual |b - A x| / |b| at which the solve stops
     int max_iterations = 1000;
     bool near_null_space = true;  // give the preconditioner the rigid-body modes
+    // Rebuild the preconditioner from the current matrix every this many solves; in between it
+    // is the last one built (the solve still meets the tolerance against the current matrix).
+    int rebuild_every = 10;
   };
 
   // Initialises PETSc if it is not yet. Throws fastcorot::Error for a bad parameter, and in a
@@ -49,7 +54,7 @@ class PetscLinearSolver final : public LinearSolver<double> {
   // How many times the matrix pattern and the preconditioner's hierarchy were built (for tests
   // and the docs' claim that they are reused).
   int pattern_builds() const;
-  // Bytes held by PETSc's matrix and preconditioner after the last solve (0 before).
+  // Bytes held by PETSc's matrix on this rank after the last solve (0 before).
   std::size_t memory_bytes() const;
 
  private:
