@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 
 namespace fastcorot {
 namespace {
@@ -32,6 +33,19 @@ std::string beam(const std::string& solver) {
 }
 
 #ifdef FASTCOROT_WITH_PETSC
+
+// The largest distance between the two scenes' first objects' points, and the largest
+// displacement of the second's.
+std::pair<double, double> compare(const LoadedScene& first, const LoadedScene& second) {
+  const auto& a = first.simulation.objects.at(0).system.state;
+  const auto& b = second.simulation.objects.at(0).system.state;
+  double difference = 0, displacement = 0;
+  for (std::size_t i = 0; i < a.position.size(); ++i) {
+    difference = std::max(difference, (a.position[i] - b.position[i]).norm());
+    displacement = std::max(displacement, (b.position[i] - b.rest_position[i]).norm());
+  }
+  return {difference, displacement};
+}
 
 TEST(PetscScene, AttributesReachTheSolver) {
   LoadedScene scene = testing::build_scene_text(
@@ -54,13 +68,7 @@ TEST(PetscScene, StepsAsTheSparseDirectSolveDoes) {
     petsc.simulation.step();
     direct.simulation.step();
   }
-  const auto& a = petsc.simulation.objects.at(0).system.state;
-  const auto& b = direct.simulation.objects.at(0).system.state;
-  double difference = 0, displacement = 0;
-  for (std::size_t i = 0; i < a.position.size(); ++i) {
-    difference = std::max(difference, (a.position[i] - b.position[i]).norm());
-    displacement = std::max(displacement, (b.position[i] - b.rest_position[i]).norm());
-  }
+  const auto [difference, displacement] = compare(petsc, direct);
   EXPECT_GT(displacement, 1e-3);
   EXPECT_LT(difference, 1e-9 * displacement);
 }
@@ -79,13 +87,7 @@ TEST(PetscScene, StaticNewtonRaphsonAsWithTheDirectSolver) {
   LoadedScene direct = build_scene(parse_scene_text(text, path));
   petsc.simulation.step();
   direct.simulation.step();
-  const auto& a = petsc.simulation.objects.at(0).system.state;
-  const auto& b = direct.simulation.objects.at(0).system.state;
-  double difference = 0, displacement = 0;
-  for (std::size_t i = 0; i < a.position.size(); ++i) {
-    difference = std::max(difference, (a.position[i] - b.position[i]).norm());
-    displacement = std::max(displacement, (b.position[i] - b.rest_position[i]).norm());
-  }
+  const auto [difference, displacement] = compare(petsc, direct);
   EXPECT_GT(displacement, 1e-3);
   EXPECT_LT(difference, 1e-8 * displacement);
 }
