@@ -231,11 +231,12 @@ struct PetscLinearSolver::Impl {
     std::fill(values.begin(), values.end(), 0.0);
     add_entries(system, factors, values.data());
     petsc_check(MatZeroEntries(matrix), "matrix");
+    std::vector<PetscInt> columns;
     for (Index i = 0; i < rows.points(); ++i) {
       const PetscInt k = rows.blocks(i);
       // A held point's identity comes once, from its owner; a point of no local block has none.
       if ((rows.held[static_cast<std::size_t>(i)] && !distribution->owns(i)) || (k == 1 && !touched(system, i))) continue;
-      std::vector<PetscInt> columns(static_cast<std::size_t>(k));
+      columns.resize(static_cast<std::size_t>(k));
       for (PetscInt m = 0; m < k; ++m) {
         columns[static_cast<std::size_t>(m)] = row_of(rows.block_column[static_cast<std::size_t>(rows.block_start[static_cast<std::size_t>(i)] + m)]);
       }
