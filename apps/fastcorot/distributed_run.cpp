@@ -6,6 +6,7 @@ namespace fastcorot::cli {
 
 DistributedRun::DistributedRun(Simulation<double>& simulation) {
   if (process_count() == 1) return;
+  fingerprints_ = scene_fingerprints(simulation);
   for (auto& object : simulation.objects) distributions_.push_back(distribute(object));
 }
 

@@ -1,8 +1,9 @@
 // `fastcorot run` on several MPI ranks (mpirun -np N fastcorot run scene.scn, docs/scaling.md):
 // every object is shared out over the ranks (sim/distribution.h), every rank steps its part, and
-// rank 0 gathers the state it writes (frames, --dump-state, the summary).
+// rank 0 gathers the state it writes (frames, --dump-state, checkpoints, the summary).
 #pragma once
 
+#include "fastcorot/io/checkpoint.h"
 #include "fastcorot/sim/distribution.h"
 #include "fastcorot/sim/simulation.h"
 
@@ -18,6 +19,9 @@ class DistributedRun {
   explicit DistributedRun(Simulation<double>& simulation);
 
   bool active() const { return !distributions_.empty(); }
+  // The objects' checkpoint fingerprints as the scene was built, before it was shared out (what
+  // checkpoints record and check); null when the run is not distributed.
+  const std::vector<ObjectFingerprint>* fingerprints() const { return active() ? &fingerprints_ : nullptr; }
   // Every object's positions and velocities, complete, into rank 0's state (collective).
   void gather_state(Simulation<double>& simulation) const;
   // Every object's forces at its positions, complete on rank 0 (collective).
@@ -27,6 +31,7 @@ class DistributedRun {
 
  private:
   std::vector<std::shared_ptr<Distribution>> distributions_;
+  std::vector<ObjectFingerprint> fingerprints_;
 };
 
 }  // namespace fastcorot::cli

@@ -298,10 +298,6 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   const bool writer = process_rank() == 0;
   if (process_count() > 1) {
     if (!options.png_dir.empty()) throw make_error("--png: not in a distributed run (write --vtu frames and draw them)");
-    if (options.checkpoint_every > 0 || !options.resume.empty()) {
-      throw make_error(options.resume.empty() ? "--checkpoint-every" : "--resume",
-                       ": checkpoints are not supported in a distributed run yet (run on one process)");
-    }
   }
   std::unique_ptr<SceneSource> source;
   std::unique_ptr<DistributedRun> distributed;
@@ -354,7 +350,8 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       throw make_error("--resume ", options.resume, ": ", options.scene, " has Python controllers, whose own state "
                        "a checkpoint does not hold: a resumed run could differ; run it from the start");
     }
-    restore_checkpoint(options.resume, simulation);
+    // Every rank reads the checkpoint (on a cluster it must be on a folder every node sees).
+    on_every_rank([&] { restore_checkpoint(options.resume, simulation, distributed->fingerprints()); });
     if (simulation.steps_done() > options.steps) {
       throw make_error("--resume ", options.resume, ": the checkpoint is at step ",
                        simulation.steps_done(), ", past --steps ", options.steps,
@@ -408,8 +405,13 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       write_outputs(options.dump_steps.count(step) || (dump_last && step == options.steps), frame);
       // After the frames, so that a run resumed here finds them in the folder.
       if (options.checkpoint_every > 0 && step % options.checkpoint_every == 0) {
-        write_checkpoint(checkpoint_file, simulation,
-                         options.scene.empty() ? "<built-in cantilever beam>" : options.scene);
+        if (distributed->active()) distributed->gather_state(simulation);
+        on_every_rank([&] {
+          if (!writer) return;
+          write_checkpoint(checkpoint_file, simulation,
+                           options.scene.empty() ? "<built-in cantilever beam>" : options.scene,
+                           distributed->fingerprints());
+        });
       }
       if (show_progress && (elapsed() - last_draw > 0.1 || step == options.steps)) {
         last_draw = elapsed();

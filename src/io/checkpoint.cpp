@@ -126,14 +126,6 @@ std::uint64_t hash_text(std::string_view text, std::uint64_t hash) {
   return fnv1a64(text.data(), text.size(), hash ^ text.size());
 }
 
-struct ObjectFingerprint {
-  std::uint64_t vertices = 0;
-  std::uint64_t tetrahedra = 0;
-  std::uint64_t rest = 0;
-  std::uint64_t elements = 0;
-  std::uint64_t model = 0;
-};
-
 ObjectFingerprint fingerprint(const SimulatedObject<double>& object) {
   const MechanicalSystem<double>& system = object.system;
   ObjectFingerprint print;
@@ -251,8 +243,19 @@ std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t hash) {
   return hash;
 }
 
+std::vector<ObjectFingerprint> scene_fingerprints(const Simulation<double>& simulation) {
+  std::vector<ObjectFingerprint> prints;
+  for (const auto& object : simulation.objects) prints.push_back(fingerprint(object));
+  return prints;
+}
+
 void write_checkpoint(const std::filesystem::path& path, const Simulation<double>& simulation,
-                      const std::string& scene_name) {
+                      const std::string& scene_name, const std::vector<ObjectFingerprint>* fingerprints) {
+  const std::vector<ObjectFingerprint> prints = fingerprints ? *fingerprints : scene_fingerprints(simulation);
+  if (prints.size() != simulation.objects.size()) {
+    throw make_error(path.string(), ": not written: ", prints.size(), " fingerprints for ", simulation.objects.size(),
+                     " objects");
+  }
   for (const auto& object : simulation.objects) {
     for (const auto& field : object.system.force_fields) {
       if (const std::string unsaved = field->unsaved_state(); !unsaved.empty()) {
@@ -270,8 +273,9 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
   out.f64(simulation.dt);
   out.i64(simulation.steps_done());
   out.u32(static_cast<std::uint32_t>(simulation.objects.size()));
-  for (const auto& object : simulation.objects) {
-    const ObjectFingerprint print = fingerprint(object);
+  for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
+    const SimulatedObject<double>& object = simulation.objects[o];
+    const ObjectFingerprint& print = prints[o];
     out.string(object.path);
     out.u64(print.vertices);
     out.u64(print.tetrahedra);
@@ -294,7 +298,8 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
   });
 }
 
-void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& simulation) {
+void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& simulation,
+                        const std::vector<ObjectFingerprint>* fingerprints) {
   const std::string file = path.string();
   const std::string bytes = read_whole_file(path);
   check_frame(bytes, file);
@@ -333,12 +338,16 @@ void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& s
   // Scripted cuts of the steps before the checkpoint, so that the meshes, masses and force fields
   // are those the checkpoint's state belongs to.
   simulation.replay_topology_changes(static_cast<long>(step));
+  const std::vector<ObjectFingerprint> prints = fingerprints ? *fingerprints : scene_fingerprints(simulation);
+  if (prints.size() != count) {
+    throw make_error(file, ": ", prints.size(), " fingerprints given for ", count, " objects");
+  }
 
   // The scene must be the one the checkpoint was made for.
   for (std::size_t o = 0; o < count; ++o) {
     const SavedObject& s = saved[o];
     const SimulatedObject<double>& object = simulation.objects[o];
-    const ObjectFingerprint print = fingerprint(object);
+    const ObjectFingerprint& print = prints[o];
     const std::string where = file + ": " + made_for + ": object " + std::to_string(o) + " ";
     if (s.path != object.path)
       throw make_error(where, "is \"", s.path, "\"; in this scene it is \"", object.path, "\"");

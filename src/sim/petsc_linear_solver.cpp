@@ -142,8 +142,9 @@ struct PetscLinearSolver::Impl {
 
   void build(const MechanicalSystem<double>& system, const Parameters& parameters) {
     release();
-    ++builds;
-    solves_since_setup = 0;
+    // A new pattern (after a topological change) starts the cadence again; the first one keeps
+    // the count a checkpoint restored.
+    if (builds++ > 0) solves_since_setup = 0;
     rows.held = sim_detail::held_points(system);
     {
       const std::vector<std::vector<Index>> pattern = sim_detail::block_pattern(system, rows.held);
@@ -318,6 +319,14 @@ void PetscLinearSolver::distribute(std::shared_ptr<const Distribution> distribut
 }
 
 int PetscLinearSolver::pattern_builds() const { return impl_->builds; }
+
+std::vector<std::int64_t> PetscLinearSolver::carried_state() const { return {impl_->solves_since_setup}; }
+
+void PetscLinearSolver::restore_carried_state(const std::vector<std::int64_t>& state) {
+  check_carried_state(state);
+  if (state[0] < 0) throw make_error("PETScLinearSolver: a negative solve count, ", state[0]);
+  impl_->solves_since_setup = static_cast<long>(state[0]);
+}
 
 std::size_t PetscLinearSolver::memory_bytes() const {
   if (!impl_->matrix) return 0;

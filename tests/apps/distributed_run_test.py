@@ -1,6 +1,6 @@
 """Distributed runs (docs/scaling.md) through mpirun: a 2-rank run of the PETSc beam matches the
-1-rank run and the sparse direct solve; rank 0 alone writes the frames; bad input stops every
-rank with one line and status 2, never a hang.
+1-rank run and the sparse direct solve; rank 0 alone writes the frames; checkpoints of a 2-rank run
+resume on 2 ranks and on 1; bad input stops every rank with one line and status 2, never a hang.
 
 usage: distributed_run_test.py FASTCOROT SCENE WORKDIR
 """
@@ -54,13 +54,36 @@ direct_scene.write_text(SCENE.read_text().replace(
 check("EigenSimplicialLDLT" in direct_scene.read_text(), "the test scene's solver line changed: update this test")
 
 rest, one = trajectory(SCENE, "one_rank")
-_, two = trajectory(SCENE, "two_ranks", ranks=2)
+checkpoint = WORK / "two_ranks.ckpt"
+checkpoint.unlink(missing_ok=True)
+_, two = trajectory(SCENE, "two_ranks", ranks=2, extra=("--checkpoint-every", 10, "--checkpoint", checkpoint))
 _, direct = trajectory(direct_scene, "direct")
 scale = np.abs(one - rest).max()
 check(scale > 1e-3, f"the beam hardly moved ({scale})")
 # Solver tolerance 1e-10: the same displacements to 1e-8 of their size.
 check(np.abs(two - one).max() <= 1e-8 * scale, f"2 ranks vs 1: {np.abs(two - one).max() / scale}")
 check(np.abs(one - direct).max() <= 1e-8 * scale, f"PETSc vs direct: {np.abs(one - direct).max() / scale}")
+
+# Checkpoints: rank 0 writes the gathered state with the fingerprints of the whole scene, so the
+# file is that of a one-process run. A resumed run builds GAMG's interpolation from the matrix of
+# its first step (the uninterrupted one from step 1's), so it continues to the solver's tolerance.
+check(checkpoint.exists(), "2 ranks: no checkpoint written")
+for name, ranks in (("resumed_two_ranks", 2), ("resumed_one_rank", None)):
+    dump = WORK / f"{name}.json"
+    result = run([SCENE, "--steps", 15, "--resume", checkpoint, "--dump-state", dump, "--dump-steps", "15", "--quiet"],
+                 ranks)
+    check(result is not None and result.returncode == 0, f"{name}: {result and result.stderr}")
+    if result is not None and result.returncode == 0:
+        resumed = positions(dump, 15)
+        check(np.abs(resumed - two).max() <= 1e-8 * scale, f"{name}: {np.abs(resumed - two).max() / scale} from the uninterrupted run")
+other = WORK / "other.scn"
+other.write_text(SCENE.read_text().replace('youngModulus="', 'youngModulus="2'))
+check(other.read_text() != SCENE.read_text(), "the test scene has no youngModulus: update this test")
+result = run([other, "--steps", 15, "--resume", checkpoint], ranks=2)
+if result is not None:
+    errors = [line for line in result.stderr.splitlines() if line.startswith("fastcorot")]
+    check(result.returncode == 2 and len(errors) == 1 and "another model" in errors[0],
+          f"resumed with another model: status {result.returncode}, {result.stderr!r}")
 
 # Frames: written once, by rank 0, with every point.
 out = WORK / "frames"

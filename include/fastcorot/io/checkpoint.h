@@ -37,15 +37,35 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace fastcorot {
 
 inline constexpr std::uint32_t kCheckpointVersion = 1;
 
+// What a checkpoint records of one object's scene, to check that a resumed run has the same one:
+// counts, and the fingerprints described above.
+struct ObjectFingerprint {
+  std::uint64_t vertices = 0;
+  std::uint64_t tetrahedra = 0;
+  std::uint64_t rest = 0;
+  std::uint64_t elements = 0;
+  std::uint64_t model = 0;
+  bool operator==(const ObjectFingerprint&) const = default;
+};
+
+// Every object's fingerprint, in scene order. A distributed run (sim/distribution.h) takes them
+// before its objects are shared out, since each rank then holds only part of the elements and
+// masses; it passes them to write_checkpoint and restore_checkpoint below.
+std::vector<ObjectFingerprint> scene_fingerprints(const Simulation<double>& simulation);
+
 // Writes `simulation`'s state to `path` atomically (atomic_file.h). `scene_name` is recorded so
-// that a refused checkpoint can say which scene it belongs to.
+// that a refused checkpoint can say which scene it belongs to. `fingerprints`, when given, are
+// recorded in place of those of `simulation` as it is now (a distributed run's rank 0, whose state
+// was gathered from every rank).
 void write_checkpoint(const std::filesystem::path& path, const Simulation<double>& simulation,
-                      const std::string& scene_name);
+                      const std::string& scene_name,
+                      const std::vector<ObjectFingerprint>* fingerprints = nullptr);
 
 // Reads `path` and restores it into `simulation`, freshly built from the same scene: positions,
 // velocities, solver states and the step counter. Refuses, with a fastcorot::Error naming the file
@@ -53,8 +73,11 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
 // corrupt (checksum), or made for another scene (object paths, vertex or tetrahedron counts, rest
 // positions, elements, model) or another dt. The scene's scripted topological changes up to the
 // checkpoint's step are replayed first (the meshes and masses they leave are part of what is
-// checked); nothing else is changed unless everything checks.
-void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& simulation);
+// checked); nothing else is changed unless everything checks. `fingerprints`, when given, are
+// checked in place of those of `simulation` (a distributed run, which has no topological changes:
+// they would be refused before).
+void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& simulation,
+                        const std::vector<ObjectFingerprint>* fingerprints = nullptr);
 
 // FNV-1a 64 of `size` bytes, continuing from `hash` (the checksum and fingerprints above).
 std::uint64_t fnv1a64(const void* data, std::size_t size,

@@ -47,6 +47,13 @@ class PetscLinearSolver final : public LinearSolver<double> {
   LinearSolveReport solve(const MechanicalSystem<double>& system, const MatrixFactors<double>& factors,
                           std::span<const Vec3<double>> rhs, std::span<Vec3<double>> x) override;
 
+  // The solves since the preconditioner was last rebuilt, so that a resumed run rebuilds it on the
+  // same solves as the uninterrupted one. A resumed run still builds GAMG's interpolation from the
+  // matrix of its first solve (the uninterrupted one from its first solve's): it matches the
+  // uninterrupted run to the solver's tolerance, not bitwise.
+  std::vector<std::int64_t> carried_state() const override;
+  void restore_carried_state(const std::vector<std::int64_t>& state) override;
+
   // Makes the solver distributed (before the first solve): rows and vectors follow `distribution`.
   void distribute(std::shared_ptr<const Distribution> distribution);
 
