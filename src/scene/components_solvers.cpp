@@ -124,7 +124,13 @@ std::vector<ComponentSpec> solver_components() {
         {"tolerance", "real", "1e-8", "stop when |b - A x| / |b| <= tolerance"},
         {"maxIterations", "int", "1000", "most iterations; not converging by then is an error"},
         {"nearNullSpace", "bool", "true", "give the preconditioner the rigid-body modes of the rest shape"},
-        {"rebuildEvery", "int", "10", "rebuild the preconditioner from the current matrix every this many solves"}}},
+        {"rebuildEvery", "int", "0", "rebuild the preconditioner from the current matrix every this many solves (0: not on a schedule)"},
+        {"rebuildGrowth", "real", "1.5",
+         "rebuild the preconditioner after a solve that needed this many times the iterations of the first solve with it "
+         "(and 3 more; 0: never)"},
+        {"matrixFree", "bool", "true",
+         "the Krylov solver's operator is fastcorot's matrix-free product, and the matrix is assembled only for the "
+         "preconditioner; false: the assembled matrix, every solve"}}},
       {"EigenSimplicialLDLT", "linearsolver",
        "Sparse direct LDL^T solve of the assembled system; as a PCGLinearSolver's preconditioner, the factorisation it keeps for update_step solves. SOFA's other exact direct solvers (LLT, LU, QR, SVD) solve the same system: the same solution to round-off.",
        {{"ordering", "string", "AMD", "accepted"},

@@ -216,6 +216,8 @@ class SolverBuilder {
     p.max_iterations = data.whole_number(c, "maxIterations", p.max_iterations);
     p.near_null_space = data.boolean(c, "nearNullSpace", p.near_null_space);
     p.rebuild_every = data.whole_number(c, "rebuildEvery", p.rebuild_every);
+    p.rebuild_growth = data.real(c, "rebuildGrowth", p.rebuild_growth);
+    p.matrix_free = data.boolean(c, "matrixFree", p.matrix_free);
     try {
       return std::make_unique<PetscLinearSolver>(p);
     } catch (const Error& error) {

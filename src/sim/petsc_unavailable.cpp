@@ -35,6 +35,8 @@ LinearSolveReport PetscLinearSolver::solve(const MechanicalSystem<double>&, cons
 }
 void PetscLinearSolver::distribute(std::shared_ptr<const Distribution>) {}
 int PetscLinearSolver::pattern_builds() const { return 0; }
+int PetscLinearSolver::preconditioner_builds() const { return 0; }
+bool PetscLinearSolver::matrix_free() const { return false; }
 std::vector<std::int64_t> PetscLinearSolver::carried_state() const { return {}; }
 void PetscLinearSolver::restore_carried_state(const std::vector<std::int64_t>&) {}
 std::size_t PetscLinearSolver::memory_bytes() const { return 0; }

@@ -96,7 +96,8 @@ TEST(PetscScene, BadValuesNameTheComponent) {
   for (const std::string& solver : {std::string(R"(<PETScLinearSolver maxIterations="0"/>)"),
                                     std::string(R"(<PETScLinearSolver tolerance="-1"/>)"),
                                     std::string(R"(<PETScLinearSolver pc="no_such_pc"/>)"),
-                                    std::string(R"(<PETScLinearSolver rebuildEvery="0"/>)")}) {
+                                    std::string(R"(<PETScLinearSolver rebuildEvery="-1"/>)"),
+                                    std::string(R"(<PETScLinearSolver rebuildGrowth="0.5"/>)")}) {
     const std::string message = testing::scene_error(beam(solver));
     EXPECT_NE(message.find("test.scn:4: PETScLinearSolver"), std::string::npos) << solver << ": " << message;
   }

@@ -18,6 +18,8 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
+#include <tuple>
 #include <vector>
 
 namespace fastcorot {
@@ -70,10 +72,11 @@ Points rhs_of(const MechanicalSystem<double>& system, unsigned seed) {
   return b;
 }
 
-Points direct_solve(const MechanicalSystem<double>& system, const Points& rhs) {
+Points direct_solve(const MechanicalSystem<double>& system, const Points& rhs,
+                    const MatrixFactors<double>& factors = kFactors) {
   SparseDirectSolver<double> direct;
   Points x(rhs.size());
-  direct.solve(system, kFactors, rhs, x);
+  direct.solve(system, factors, rhs, x);
   return x;
 }
 
@@ -88,13 +91,84 @@ PetscLinearSolver::Parameters tight() {
 TEST(PetscLinearSolver, MatchesTheSparseDirectSolve) {
   auto b = beam(1);
   const Points rhs = rhs_of(b.system, 2);
-  PetscLinearSolver solver(tight());
-  Points x(rhs.size(), Vec3<double>(7, 7, 7));
-  const LinearSolveReport report = solver.solve(b.system, kFactors, rhs, x);
-  EXPECT_GT(report.iterations, 0);
-  EXPECT_LE(report.relative_residual, 1e-12);
-  EXPECT_LT(relative_error(flatten(x), flatten(direct_solve(b.system, rhs))), 1e-10);
-  for (Index i : b.system.fixed) EXPECT_EQ(x[static_cast<std::size_t>(i)], Vec3<double>::Zero()) << "point " << i;
+  for (const bool matrix_free : {true, false}) {
+    PetscLinearSolver::Parameters p = tight();
+    p.matrix_free = matrix_free;
+    PetscLinearSolver solver(p);
+    Points x(rhs.size(), Vec3<double>(7, 7, 7));
+    const LinearSolveReport report = solver.solve(b.system, kFactors, rhs, x);
+    EXPECT_EQ(solver.matrix_free(), matrix_free);
+    EXPECT_GT(report.iterations, 0);
+    EXPECT_LE(report.relative_residual, 1e-12);
+    EXPECT_LT(relative_error(flatten(x), flatten(direct_solve(b.system, rhs))), 1e-10) << matrix_free;
+    for (Index i : b.system.fixed) EXPECT_EQ(x[static_cast<std::size_t>(i)], Vec3<double>::Zero()) << "point " << i;
+  }
+}
+
+// The preconditioner of an earlier linearisation still gives the current system's solution, in
+// both operators; with preonly (the preconditioner is the solve) it is rebuilt every solve.
+TEST(PetscLinearSolver, AnOlderPreconditionerStillSolvesTheCurrentSystem) {
+  auto b = beam(12);
+  const Points rhs = rhs_of(b.system, 13);
+  std::mt19937 rng(14);
+  const Points other = testing::perturbed(b.system.state.rest_position, 0.15, rng);
+  for (const auto& [ksp, pc, matrix_free] : {std::tuple{"cg", "gamg", true}, std::tuple{"cg", "gamg", false},
+                                             std::tuple{"cg", "cholesky", true}, std::tuple{"preonly", "cholesky", true},
+                                             std::tuple{"preonly", "cholesky", false}}) {
+    auto system = beam(12).system;
+    PetscLinearSolver::Parameters p = tight();
+    p.ksp = ksp;
+    p.pc = pc;
+    p.matrix_free = matrix_free;
+    p.rebuild_growth = 0;  // never on growth: the second solve uses the first one's preconditioner
+    PetscLinearSolver solver(p);
+    Points x(rhs.size()), f(rhs.size());
+    solver.solve(system, kFactors, rhs, x);
+    system.compute_force(other, f);  // another linearisation
+    solver.solve(system, kFactors, rhs, x);
+    const std::string what = std::string(ksp) + " " + pc + (matrix_free ? " matrix-free" : " assembled");
+    EXPECT_LT(relative_error(flatten(x), flatten(direct_solve(system, rhs))), 1e-10) << what;
+    EXPECT_EQ(solver.preconditioner_builds(), std::string(ksp) == "preonly" ? 2 : 1) << what;
+    EXPECT_EQ(solver.matrix_free(), matrix_free && std::string(ksp) != "preonly") << what;
+  }
+}
+
+// Rebuilds on a schedule, and after a solve whose iterations grew: the matrix changed under a
+// Jacobi preconditioner (mass-dominated, then stiffness-dominated).
+TEST(PetscLinearSolver, RebuildsOnItsScheduleAndWhenIterationsGrow) {
+  auto b = beam(15);
+  const Points rhs = rhs_of(b.system, 16);
+  Points x(rhs.size());
+  PetscLinearSolver::Parameters scheduled = tight();
+  scheduled.rebuild_every = 2;
+  scheduled.rebuild_growth = 0;
+  PetscLinearSolver every_two(scheduled);
+  for (int solve = 1; solve <= 5; ++solve) {
+    every_two.solve(b.system, kFactors, rhs, x);
+    EXPECT_EQ(every_two.preconditioner_builds(), (solve + 1) / 2) << solve;
+  }
+  EXPECT_EQ(every_two.carried_state()[0], 1);  // the 5th solve was the first with its preconditioner
+
+  PetscLinearSolver::Parameters grown = tight();
+  grown.pc = "jacobi";
+  PetscLinearSolver solver(grown);
+  const MatrixFactors<double> soft{1.0, 0.0, -1e-4}, stiff{1e-4, 0.0, -1.0};
+  const LinearSolveReport first = solver.solve(b.system, soft, rhs, x);
+  const LinearSolveReport second = solver.solve(b.system, stiff, rhs, x);
+  ASSERT_GT(second.iterations, 1.5 * first.iterations + 3) << "the test's matrices no longer slow Jacobi down";
+  EXPECT_EQ(solver.preconditioner_builds(), 1);
+  EXPECT_EQ(solver.carried_state(), (std::vector<std::int64_t>{2, first.iterations, 1}));
+  // A checkpoint carries the due rebuild: a solver restored from it rebuilds at its next solve.
+  PetscLinearSolver restored(grown);
+  restored.restore_carried_state(solver.carried_state());
+  solver.solve(b.system, stiff, rhs, x);
+  EXPECT_EQ(solver.preconditioner_builds(), 2);
+  EXPECT_EQ(solver.carried_state()[0], 1);
+  restored.solve(b.system, stiff, rhs, x);
+  EXPECT_EQ(restored.carried_state(), solver.carried_state());
+  EXPECT_LT(relative_error(flatten(x), flatten(direct_solve(b.system, rhs, stiff))), 1e-10);
+  EXPECT_THROW(restored.restore_carried_state({1, 2}), Error);
+  EXPECT_THROW(restored.restore_carried_state({1, 2, 3}), Error);
 }
 
 TEST(PetscLinearSolver, EveryPreconditionerGivesTheSameSolution) {
@@ -181,6 +255,12 @@ TEST(PetscLinearSolver, UnknownTypesAndBadParametersAreErrors) {
   EXPECT_THROW({ PetscLinearSolver solver(p); }, Error);
   p = {};
   p.max_iterations = 0;
+  EXPECT_THROW({ PetscLinearSolver solver(p); }, Error);
+  p = {};
+  p.rebuild_every = -1;
+  EXPECT_THROW({ PetscLinearSolver solver(p); }, Error);
+  p = {};
+  p.rebuild_growth = 0.5;
   EXPECT_THROW({ PetscLinearSolver solver(p); }, Error);
 }
 
