@@ -45,14 +45,15 @@ void configure(KSP ksp, const PetscLinearSolver::Parameters& parameters) {
   PCGAMGSetReuseInterpolation(pc, PETSC_TRUE);
   petsc_check(KSPSetTolerances(ksp, parameters.tolerance, PETSC_DEFAULT, PETSC_DEFAULT, parameters.max_iterations),
               "tolerances");
-  if (KSPSetFromOptions(ksp) != 0) {
-    for (const char* name : {"-ksp_type", "-pc_type"}) {
-      if (const std::string value = option_value(name); !value.empty()) {
-        throw make_error("PETSc option ", name, " ", value, ": unknown type (or a package this PETSc lacks)");
-      }
-    }
-    petsc_check(1, "the -ksp_* and -pc_* options");
+  // The command line's types are tried first: KSPSetFromOptions would fail on an unknown one
+  // halfway through its options (and leak what it had read).
+  for (const char* name : {"-ksp_type", "-pc_type"}) {
+    const std::string value = option_value(name);
+    if (value.empty()) continue;
+    const int code = std::string(name) == "-ksp_type" ? KSPSetType(ksp, value.c_str()) : PCSetType(pc, value.c_str());
+    if (code != 0) throw make_error("PETSc option ", name, " ", value, ": unknown type (or a package this PETSc lacks)");
   }
+  petsc_check(KSPSetFromOptions(ksp), "the -ksp_* and -pc_* options");
   KSPType type = nullptr;
   KSPGetType(ksp, &type);
   // The tolerance is on the true residual, as for the other solvers here (CG's default norm

@@ -114,7 +114,11 @@ MechanicalSystem<double> make_pair_system() {
   for (std::size_t i = 0; i < 8; ++i) system.state.position[i] += Vec3<double>(0.05 * i, -0.02 * i * i, 0.01);
   system.state.rest_position = rest;
   system.force_fields.push_back(std::make_shared<SpringForceField<double>>(mesh, mesh_springs<double>(*mesh, rest, p)));
-  system.mass = Mass<double>::lumped({1, 2, 3, 4, 5, 6, 7, 8});
+  // Masses 1..8, filled in a loop: with GCC 12's AddressSanitizer and detect_stack_use_after_return,
+  // an eight-value initializer list here read its backing array from a bad address.
+  std::vector<double> masses;
+  for (int i = 1; i <= 8; ++i) masses.push_back(i);
+  system.mass = Mass<double>::lumped(std::move(masses));
   return system;
 }
 
