@@ -1,5 +1,5 @@
 """Distributed runs (docs/scaling.md) through mpirun: a 2-rank run of the PETSc beam matches the
-1-rank run and the sparse direct solve; rank 0 alone writes the frames; checkpoints of a 2-rank run
+1-rank run and the sparse direct solve, with the matrix-free and the assembled operator; rank 0 alone writes the frames; checkpoints of a 2-rank run
 resume on 2 ranks and on 1; bad input stops every rank with one line and status 2, never a hang.
 
 usage: distributed_run_test.py FASTCOROT SCENE WORKDIR
@@ -53,16 +53,25 @@ direct_scene.write_text(SCENE.read_text().replace(
     '<PETScLinearSolver ksp="cg" pc="gamg" tolerance="1e-10" maxIterations="500"/>', "<EigenSimplicialLDLT/>"))
 check("EigenSimplicialLDLT" in direct_scene.read_text(), "the test scene's solver line changed: update this test")
 
+# The same beam with the assembled matrix as the Krylov operator (the matrix-free product is the
+# default) and a preconditioner rebuilt every 5 solves.
+assembled_scene = WORK / "assembled.scn"
+assembled_scene.write_text(SCENE.read_text().replace('maxIterations="500"/>',
+                                                     'maxIterations="500" matrixFree="false" rebuildEvery="5"/>'))
+check("matrixFree" in assembled_scene.read_text(), "the test scene's solver line changed: update this test")
+
 rest, one = trajectory(SCENE, "one_rank")
 checkpoint = WORK / "two_ranks.ckpt"
 checkpoint.unlink(missing_ok=True)
 _, two = trajectory(SCENE, "two_ranks", ranks=2, extra=("--checkpoint-every", 10, "--checkpoint", checkpoint))
 _, direct = trajectory(direct_scene, "direct")
+_, assembled = trajectory(assembled_scene, "assembled_two_ranks", ranks=2)
 scale = np.abs(one - rest).max()
 check(scale > 1e-3, f"the beam hardly moved ({scale})")
 # Solver tolerance 1e-10: the same displacements to 1e-8 of their size.
 check(np.abs(two - one).max() <= 1e-8 * scale, f"2 ranks vs 1: {np.abs(two - one).max() / scale}")
 check(np.abs(one - direct).max() <= 1e-8 * scale, f"PETSc vs direct: {np.abs(one - direct).max() / scale}")
+check(np.abs(assembled - one).max() <= 1e-8 * scale, f"assembled on 2 ranks vs 1: {np.abs(assembled - one).max() / scale}")
 
 # Checkpoints: rank 0 writes the gathered state with the fingerprints of the whole scene, so the
 # file is that of a one-process run. A resumed run builds GAMG's interpolation from the matrix of
