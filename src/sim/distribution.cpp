@@ -116,33 +116,62 @@ Distribution::Distribution(const MechanicalSystem<double>& system, const TetMesh
 
 Distribution::~Distribution() = default;
 
+namespace {
+
+// Copies points' values between `values` and the local form of a ghosted vector (owned points,
+// then ghosts, three values each): `in` into the vector, else out of it.
+void copy_ghosted(Vec ghosted, std::span<Vec3<double>> values, const std::vector<Index>& owned,
+                  const std::vector<Index>& ghosts, bool with_owned, bool with_ghosts, bool in) {
+  Vec local = nullptr;
+  petsc_check(VecGhostGetLocalForm(ghosted, &local), "ghosted vector");
+  PetscScalar* a = nullptr;
+  VecGetArray(local, &a);
+  std::size_t k = with_owned ? 0 : owned.size();
+  for (const auto* list : {&owned, &ghosts}) {
+    if ((list == &owned && !with_owned) || (list == &ghosts && !with_ghosts)) continue;
+    for (Index p : *list) {
+      Vec3<double>& value = values[static_cast<std::size_t>(p)];
+      for (int d = 0; d < 3; ++d) {
+        if (in) a[3 * k + static_cast<std::size_t>(d)] = value[d];
+        else value[d] = a[3 * k + static_cast<std::size_t>(d)];
+      }
+      ++k;
+    }
+  }
+  VecRestoreArray(local, &a);
+  VecGhostRestoreLocalForm(ghosted, &local);
+}
+
+void scatter(Vec ghosted, InsertMode mode, ScatterMode direction) {
+  petsc_check(VecGhostUpdateBegin(ghosted, mode, direction), "ghost exchange");
+  petsc_check(VecGhostUpdateEnd(ghosted, mode, direction), "ghost exchange");
+}
+
+}  // namespace
+
 void Distribution::sum_shared(std::span<Vec3<double>> values) const {
   if (ranks_ == 1) return;
-  Vec ghosted = ghost_vector_->ghosted, local = nullptr;
-  auto copy = [&](bool in) {
-    petsc_check(VecGhostGetLocalForm(ghosted, &local), "ghosted vector");
-    PetscScalar* a = nullptr;
-    VecGetArray(local, &a);
-    std::size_t k = 0;
-    for (const auto* list : {&owned_, &ghosts_}) {
-      for (Index p : *list) {
-        Vec3<double>& value = values[static_cast<std::size_t>(p)];
-        for (int d = 0; d < 3; ++d) {
-          if (in) a[3 * k + static_cast<std::size_t>(d)] = value[d];
-          else value[d] = a[3 * k + static_cast<std::size_t>(d)];
-        }
-        ++k;
-      }
-    }
-    VecRestoreArray(local, &a);
-    VecGhostRestoreLocalForm(ghosted, &local);
-  };
-  copy(true);
-  petsc_check(VecGhostUpdateBegin(ghosted, ADD_VALUES, SCATTER_REVERSE), "ghost sums");
-  petsc_check(VecGhostUpdateEnd(ghosted, ADD_VALUES, SCATTER_REVERSE), "ghost sums");
-  petsc_check(VecGhostUpdateBegin(ghosted, INSERT_VALUES, SCATTER_FORWARD), "ghost values");
-  petsc_check(VecGhostUpdateEnd(ghosted, INSERT_VALUES, SCATTER_FORWARD), "ghost values");
-  copy(false);
+  Vec ghosted = ghost_vector_->ghosted;
+  copy_ghosted(ghosted, values, owned_, ghosts_, true, true, true);
+  scatter(ghosted, ADD_VALUES, SCATTER_REVERSE);
+  scatter(ghosted, INSERT_VALUES, SCATTER_FORWARD);
+  copy_ghosted(ghosted, values, owned_, ghosts_, true, true, false);
+}
+
+void Distribution::add_to_owners(std::span<Vec3<double>> values) const {
+  if (ranks_ == 1) return;
+  Vec ghosted = ghost_vector_->ghosted;
+  copy_ghosted(ghosted, values, owned_, ghosts_, true, true, true);
+  scatter(ghosted, ADD_VALUES, SCATTER_REVERSE);
+  copy_ghosted(ghosted, values, owned_, ghosts_, true, false, false);
+}
+
+void Distribution::fill_ghosts(std::span<Vec3<double>> values) const {
+  if (ranks_ == 1) return;
+  Vec ghosted = ghost_vector_->ghosted;
+  copy_ghosted(ghosted, values, owned_, ghosts_, true, false, true);
+  scatter(ghosted, INSERT_VALUES, SCATTER_FORWARD);
+  copy_ghosted(ghosted, values, owned_, ghosts_, false, true, false);
 }
 
 double Distribution::sum(double value) const {

@@ -157,6 +157,14 @@ void MechanicalSystem<Real>::compute_force(std::span<const Vec3<Real>> x, std::s
 template <class Real>
 void MechanicalSystem<Real>::multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
                                       std::span<Vec3<Real>> out) const {
+  multiply_own_part(factors, dx, out);
+  if (exchange) exchange->sum_shared(out);
+  project(out);
+}
+
+template <class Real>
+void MechanicalSystem<Real>::multiply_own_part(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
+                                               std::span<Vec3<Real>> out) const {
   const PhaseTimer timer(timer_slot(&PhaseTimes::matrix_vector));
   if (factors.m != 0 && mass.size() != 0) {
     mass.multiply(dx, out, factors.m, threads_);
@@ -164,8 +172,6 @@ void MechanicalSystem<Real>::multiply(const MatrixFactors<Real>& factors, std::s
     set_zero(out);
   }
   for (const auto& field : force_fields) field->add_dforce(dx, out, factors.k, factors.b);
-  if (exchange) exchange->sum_shared(out);
-  project(out);
 }
 
 template <class Real>

@@ -176,13 +176,14 @@ struct PetscLinearSolver::Impl {
         if (held[i]) df[i] = dx[i];
       }
     } else {
-      // Owned values in, ghost copies zero, then summed: every copy holds its owner's value.
-      for (Index g : distribution->ghost_points()) product_in[static_cast<std::size_t>(g)].setZero();
+      // Owned values in, ghost copies from their owners; this rank's part of the product, whose
+      // values at shared points go to their owners (only owned rows go back to PETSc).
       for (PetscInt k = 0; k < owned; ++k) {
         product_in[static_cast<std::size_t>(matrix->owned_point(k))] = {x[3 * k], x[3 * k + 1], x[3 * k + 2]};
       }
-      distribution->sum_shared(product_in);
-      system->multiply(*factors, product_in, product_out);  // complete at shared points
+      distribution->fill_ghosts(product_in);
+      system->multiply_own_part(*factors, product_in, product_out);
+      distribution->add_to_owners(product_out);
       for (PetscInt k = 0; k < owned; ++k) {
         const auto p = static_cast<std::size_t>(matrix->owned_point(k));
         const Vec3<double>& value = held[p] ? product_in[p] : product_out[p];
@@ -332,8 +333,8 @@ LinearSolveReport PetscLinearSolver::solve(const MechanicalSystem<double>& syste
     x[static_cast<std::size_t>(impl.matrix->owned_point(k))] = {solution[3 * k], solution[3 * k + 1], solution[3 * k + 2]};
   }
   VecRestoreArrayRead(impl.solution, &solution);
-  // Ghost copies get their owners' values (owners' values plus zeros: the same bits).
-  if (impl.distributed()) impl.distribution->sum_shared(x);
+  // Ghost copies get their owners' values.
+  if (impl.distributed()) impl.distribution->fill_ghosts(x);
   return {static_cast<int>(iterations), relative};
 }
 

@@ -45,6 +45,8 @@ struct Distribution::Ghosts {};
 Distribution::Distribution(const MechanicalSystem<double>&, const TetMesh&) { throw make_error("distributed runs: ", kWithout); }
 Distribution::~Distribution() = default;
 void Distribution::sum_shared(std::span<Vec3<double>>) const {}
+void Distribution::add_to_owners(std::span<Vec3<double>>) const {}
+void Distribution::fill_ghosts(std::span<Vec3<double>>) const {}
 double Distribution::sum(double value) const { return value; }
 void Distribution::gather(std::span<const Vec3<double>>, std::span<Vec3<double>>) const {}
 

@@ -44,6 +44,10 @@ class Distribution final : public PointExchange<double> {
   std::span<const std::int64_t> off_diagonal_blocks() const { return off_diagonal_blocks_; }
 
   void sum_shared(std::span<Vec3<double>> values) const override;
+  // The two halves of sum_shared (collective): each owned point gets the sum of every rank's copy
+  // (ghost copies are left as they were); each ghost copy gets its owner's value.
+  void add_to_owners(std::span<Vec3<double>> values) const;
+  void fill_ghosts(std::span<Vec3<double>> values) const;
   double sum(double value) const override;
   // Every point's value, from its owner, into `full` on rank 0 (#points long there; ignored
   // elsewhere). Collective.

@@ -141,6 +141,10 @@ class MechanicalSystem {
   // out = (m M + b B + k K) dx, then projected (fixed entries zero).
   void multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
                 std::span<Vec3<Real>> out) const;
+  // The same product from this process's own masses and elements only, not projected: in a
+  // distributed run, partial at the points shared with other ranks (multiply() completes it).
+  void multiply_own_part(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
+                         std::span<Vec3<Real>> out) const;
 
   // The same matrix assembled (3#V × 3#V); each fixed point's rows and columns are cleared and its
   // diagonal set to 1, as SOFA's projective constraints do to an assembled matrix.
