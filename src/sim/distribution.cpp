@@ -150,12 +150,8 @@ void scatter(Vec ghosted, InsertMode mode, ScatterMode direction) {
 }  // namespace
 
 void Distribution::sum_shared(std::span<Vec3<double>> values) const {
-  if (ranks_ == 1) return;
-  Vec ghosted = ghost_vector_->ghosted;
-  copy_ghosted(ghosted, values, owned_, ghosts_, true, true, true);
-  scatter(ghosted, ADD_VALUES, SCATTER_REVERSE);
-  scatter(ghosted, INSERT_VALUES, SCATTER_FORWARD);
-  copy_ghosted(ghosted, values, owned_, ghosts_, true, true, false);
+  add_to_owners(values);
+  fill_ghosts(values);
 }
 
 void Distribution::add_to_owners(std::span<Vec3<double>> values) const {

@@ -12,6 +12,7 @@
 #include "fastcorot/topology/regular_grid.h"
 #include "support/deformations.h"
 #include "support/finite_difference.h"
+#include "support/random_rhs.h"
 
 #include <gtest/gtest.h>
 
@@ -65,13 +66,6 @@ Beam beam(unsigned seed) {
   return b;
 }
 
-Points rhs_of(const MechanicalSystem<double>& system, unsigned seed) {
-  std::mt19937 rng(seed);
-  Points b = testing::perturbed(Points(static_cast<std::size_t>(system.size()), Vec3<double>::Zero()), 1.0, rng);
-  system.project(b);
-  return b;
-}
-
 Points direct_solve(const MechanicalSystem<double>& system, const Points& rhs,
                     const MatrixFactors<double>& factors = kFactors) {
   SparseDirectSolver<double> direct;
@@ -90,7 +84,7 @@ PetscLinearSolver::Parameters tight() {
 
 TEST(PetscLinearSolver, MatchesTheSparseDirectSolve) {
   auto b = beam(1);
-  const Points rhs = rhs_of(b.system, 2);
+  const Points rhs = testing::projected_rhs(b.system, 2);
   for (const bool matrix_free : {true, false}) {
     PetscLinearSolver::Parameters p = tight();
     p.matrix_free = matrix_free;
@@ -109,7 +103,7 @@ TEST(PetscLinearSolver, MatchesTheSparseDirectSolve) {
 // both operators; with preonly (the preconditioner is the solve) it is rebuilt every solve.
 TEST(PetscLinearSolver, AnOlderPreconditionerStillSolvesTheCurrentSystem) {
   auto b = beam(12);
-  const Points rhs = rhs_of(b.system, 13);
+  const Points rhs = testing::projected_rhs(b.system, 13);
   std::mt19937 rng(14);
   const Points other = testing::perturbed(b.system.state.rest_position, 0.15, rng);
   for (const auto& [ksp, pc, matrix_free] : {std::tuple{"cg", "gamg", true}, std::tuple{"cg", "gamg", false},
@@ -137,7 +131,7 @@ TEST(PetscLinearSolver, AnOlderPreconditionerStillSolvesTheCurrentSystem) {
 // Jacobi preconditioner (mass-dominated, then stiffness-dominated).
 TEST(PetscLinearSolver, RebuildsOnItsScheduleAndWhenIterationsGrow) {
   auto b = beam(15);
-  const Points rhs = rhs_of(b.system, 16);
+  const Points rhs = testing::projected_rhs(b.system, 16);
   Points x(rhs.size());
   PetscLinearSolver::Parameters scheduled = tight();
   scheduled.rebuild_every = 2;
@@ -173,7 +167,7 @@ TEST(PetscLinearSolver, RebuildsOnItsScheduleAndWhenIterationsGrow) {
 
 TEST(PetscLinearSolver, EveryPreconditionerGivesTheSameSolution) {
   auto b = beam(3);
-  const Points rhs = rhs_of(b.system, 4);
+  const Points rhs = testing::projected_rhs(b.system, 4);
   const Points reference = direct_solve(b.system, rhs);
   for (const char* pc : {"gamg", "jacobi", "none", "cholesky"}) {
     PetscLinearSolver::Parameters p = tight();
@@ -188,7 +182,7 @@ TEST(PetscLinearSolver, EveryPreconditionerGivesTheSameSolution) {
 TEST(PetscLinearSolver, BuildsThePatternOnceAndAgainWhenTheTopologyChanges) {
   auto b = beam(5);
   PetscLinearSolver solver(tight());
-  const Points rhs = rhs_of(b.system, 6);
+  const Points rhs = testing::projected_rhs(b.system, 6);
   Points x(rhs.size());
   solver.solve(b.system, kFactors, rhs, x);
   // New values (another linearisation), same pattern: reused.
@@ -213,7 +207,7 @@ TEST(PetscLinearSolver, PartialProjectionsGoThroughTheGeneralAssembly) {
   plane.point = b.system.size() - 1;
   plane.projector = Vec3<double>(1, 1, 0).asDiagonal();
   b.system.projections.push_back(plane);
-  const Points rhs = rhs_of(b.system, 9);
+  const Points rhs = testing::projected_rhs(b.system, 9);
   PetscLinearSolver solver(tight());
   Points x(rhs.size());
   solver.solve(b.system, kFactors, rhs, x);
@@ -227,7 +221,7 @@ TEST(PetscLinearSolver, NotConvergingIsAnErrorNamingPetscsReason) {
   p.pc = "none";
   p.max_iterations = 2;
   PetscLinearSolver solver(p);
-  const Points rhs = rhs_of(b.system, 11);
+  const Points rhs = testing::projected_rhs(b.system, 11);
   Points x(rhs.size());
   try {
     solver.solve(b.system, kFactors, rhs, x);

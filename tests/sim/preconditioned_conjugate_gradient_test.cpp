@@ -9,6 +9,7 @@
 #include "fastcorot/core/error.h"
 #include "support/deformations.h"
 #include "support/mass_system.h"
+#include "support/random_rhs.h"
 
 #include <gtest/gtest.h>
 
@@ -146,13 +147,6 @@ int dense_pcg(const Eigen::MatrixXd& a, const Eigen::MatrixXd& p, const Eigen::V
   return done;
 }
 
-Points projected_rhs(const MechanicalSystem<double>& system, unsigned seed) {
-  std::mt19937 rng(seed);
-  Points b = testing::perturbed(Points(static_cast<std::size_t>(system.size()), Vec3<double>::Zero()), 1.0, rng);
-  for (Index i : system.fixed) b[static_cast<std::size_t>(i)].setZero();
-  return b;
-}
-
 TEST(PreconditionedConjugateGradient, DefaultsAreSofas) {
   // PCGLinearSolver: iterations 25, tolerance 1e-5, update_step 1.
   const PCG::Parameters p;
@@ -180,7 +174,7 @@ TEST(PreconditionedConjugateGradient, MatchesThePlainDenseIterationForEachPrecon
     Points x(static_cast<std::size_t>(system.size()), Vec3<double>(7, 7, 7));  // not a start: overwritten
     for (int solve = 0; solve < 3; ++solve) {
       const MatrixFactors<double> factors{kEuler.m + 0.1 * solve, kEuler.b, kEuler.k * (1 + solve)};
-      const Points b = projected_rhs(system, 10 + static_cast<unsigned>(solve));
+      const Points b = testing::projected_rhs(system, 10 + static_cast<unsigned>(solve));
       const auto report = solver.solve(system, factors, b, x);
       const Eigen::MatrixXd a = dense_matrix(system, factors);
       const int iterations = dense_pcg(a, dense_preconditioner(a, preconditioner), flatten(b), x_reference, 6, 0.0);
@@ -193,7 +187,7 @@ TEST(PreconditionedConjugateGradient, MatchesThePlainDenseIterationForEachPrecon
 
 TEST(PreconditionedConjugateGradient, ConvergesToTheSolutionAndFasterWithBlockJacobi) {
   auto system = small_beam(4);
-  const Points b = projected_rhs(system, 5);
+  const Points b = testing::projected_rhs(system, 5);
   const Eigen::MatrixXd a = dense_matrix(system, kEuler);
   const Eigen::VectorXd exact = a.partialPivLu().solve(flatten(b));
   int iterations[3] = {};
@@ -270,7 +264,7 @@ TEST(PreconditionedConjugateGradient, PreconditionerIsRebuiltEveryUpdateStepSolv
 
 TEST(PreconditionedConjugateGradient, SparseDirectPreconditionerIsTheInverseOfTheMatrixItWasBuiltFrom) {
   auto system = small_beam(8);
-  const Points b = projected_rhs(system, 4);
+  const Points b = testing::projected_rhs(system, 4);
   const Eigen::MatrixXd a = dense_matrix(system, kEuler);
   const Eigen::VectorXd exact = a.partialPivLu().solve(flatten(b));
   // Built from this step's matrix: P = A^-1, one iteration solves it.
@@ -282,7 +276,7 @@ TEST(PreconditionedConjugateGradient, SparseDirectPreconditionerIsTheInverseOfTh
   // The next solve keeps the factorisation of that matrix for a different one (update_step 2): the
   // plain dense iteration with P = the first matrix's inverse, from the previous solution.
   const MatrixFactors<double> later{1.3, -0.05, -0.03};
-  const Points b2 = projected_rhs(system, 5);
+  const Points b2 = testing::projected_rhs(system, 5);
   const Eigen::MatrixXd a2 = dense_matrix(system, later);
   Eigen::VectorXd x_reference = flatten(x);
   PCG two_iterations(parameters(Preconditioner::sparse_ldlt, 2, 0.0, 2), system.size());
@@ -296,7 +290,7 @@ TEST(PreconditionedConjugateGradient, SparseDirectPreconditionerIsTheInverseOfTh
   // The second solve with the first factorisation needs several iterations; the third, rebuilt
   // from the new matrix, one again (a new right-hand side, so that it has something to do).
   EXPECT_GT(solver.solve(system, later, b2, x).iterations, 2);
-  const Points b3 = projected_rhs(system, 6);
+  const Points b3 = testing::projected_rhs(system, 6);
   EXPECT_EQ(solver.solve(system, later, b3, x).iterations, 1);
   const Eigen::VectorXd exact3 = a2.partialPivLu().solve(flatten(b3));
   EXPECT_LT((flatten(x) - exact3).norm() / exact3.norm(), 1e-12);
@@ -324,7 +318,7 @@ Eigen::MatrixXd dense_rotations(const MechanicalSystem<double>& system) {
 TEST(PreconditionedConjugateGradient, PrecomputedWarpIsRTimesTheFirstInverseTimesRTransposed) {
   const Mat3<double> turn = Eigen::AngleAxisd(0.6, Vec3<double>(1, 1, 0).normalized()).toRotationMatrix();
   auto system = small_beam(9, &turn);
-  const Points b = projected_rhs(system, 4);
+  const Points b = testing::projected_rhs(system, 4);
   const Eigen::MatrixXd a0 = dense_matrix(system, kEuler);
   const Eigen::MatrixXd r1 = dense_rotations(system);
   PCG solver(parameters(Preconditioner::precomputed_warp, 3, 0.0), system.size());
@@ -339,7 +333,7 @@ TEST(PreconditionedConjugateGradient, PrecomputedWarpIsRTimesTheFirstInverseTime
   Points f(x.size(), Vec3<double>::Zero());
   system.compute_force(system.state.position, f);
   const MatrixFactors<double> later{1.3, -0.05, -0.03};
-  const Points b2 = projected_rhs(system, 5);
+  const Points b2 = testing::projected_rhs(system, 5);
   const Eigen::MatrixXd r2 = dense_rotations(system);
   ASSERT_GT((r2 - r1).norm(), 1.0);
   solver.solve(system, later, b2, x);
@@ -366,8 +360,8 @@ TEST(PreconditionedConjugateGradient, CarriedStateResumesBitwise) {
     const auto p = parameters(preconditioner, 4, 1e-12, update_step);
     PCG first(p, system.size());
     Points x(static_cast<std::size_t>(system.size()));
-    first.solve(system, kEuler, projected_rhs(system, 1), x);
-    first.solve(system, {1.2, -0.05, -0.02}, projected_rhs(system, 2), x);
+    first.solve(system, kEuler, testing::projected_rhs(system, 1), x);
+    first.solve(system, {1.2, -0.05, -0.02}, testing::projected_rhs(system, 2), x);
     const auto state = first.carried_state();
     const std::size_t matrix_values =
         1 + (3 * x.size() + 1) + 2 * static_cast<std::size_t>(system.assemble(kEuler).nonZeros());
@@ -380,12 +374,12 @@ TEST(PreconditionedConjugateGradient, CarriedStateResumesBitwise) {
     resumed.restore_carried_state(state);
     Points y(x.size());
     const MatrixFactors<double> later{0.9, -0.05, -0.01};
-    first.solve(system, later, projected_rhs(system, 3), x);
-    resumed.solve(system, later, projected_rhs(system, 3), y);
+    first.solve(system, later, testing::projected_rhs(system, 3), x);
+    resumed.solve(system, later, testing::projected_rhs(system, 3), y);
     EXPECT_TRUE(x == y) << preconditioner_name(preconditioner) << " update_step " << update_step;
     // Without the state, the third solve starts elsewhere (and, with update_step 3, builds anew).
     PCG fresh(p, system.size());
-    fresh.solve(system, later, projected_rhs(system, 3), y);
+    fresh.solve(system, later, testing::projected_rhs(system, 3), y);
     EXPECT_FALSE(x == y);
     EXPECT_THROW(resumed.restore_carried_state({}), Error);
     EXPECT_THROW(resumed.restore_carried_state(std::vector<std::int64_t>(state.size() + 1, 0)), Error);
@@ -442,7 +436,7 @@ TEST(PreconditionedConjugateGradient, NonFiniteDiagonalIsNamedAndWrongSizesRejec
 
 TEST(PreconditionedConjugateGradient, FixedPointsStayZero) {
   auto system = small_beam(8);
-  const Points b = projected_rhs(system, 9);
+  const Points b = testing::projected_rhs(system, 9);
   PCG solver(parameters(Preconditioner::block_jacobi, 10, 1e-14), system.size());
   Points x(b.size());
   solver.solve(system, kEuler, b, x);

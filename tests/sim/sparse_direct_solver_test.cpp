@@ -10,6 +10,7 @@
 #include "fastcorot/topology/regular_grid.h"
 #include "support/deformations.h"
 #include "support/finite_difference.h"
+#include "support/random_rhs.h"
 
 #include <gtest/gtest.h>
 
@@ -56,13 +57,6 @@ Beam beam(std::vector<Index> fixed, unsigned seed) {
   return b;
 }
 
-Points projected_rhs(const MechanicalSystem<double>& system, unsigned seed) {
-  std::mt19937 rng(seed);
-  Points b = testing::perturbed(Points(static_cast<std::size_t>(system.size()), Vec3<double>::Zero()), 1.0, rng);
-  system.project(b);
-  return b;
-}
-
 // Implicit Euler's factors for h = 0.05, rs = 0.1, rm = 0.1 (docs/sofa-solvers.md §1.2 step 3).
 constexpr double kH = 0.05;
 constexpr MatrixFactors<double> kFactors{1 + kH * 0.1, -kH, -kH * (kH + 0.1)};
@@ -80,7 +74,7 @@ void expect_solves(const MechanicalSystem<double>& system, const MatrixFactors<d
 
 TEST(SparseDirectSolver, MatchesConjugateGradientAndSatisfiesTheSystem) {
   auto b = beam({0, 1, 2, 3}, 1);  // the z = 0 face
-  const Points rhs = projected_rhs(b.system, 2);
+  const Points rhs = testing::projected_rhs(b.system, 2);
   Points direct(rhs.size(), Vec3<double>(3, 3, 3));
   SparseDirectSolver<double> solver;
   const auto report = solver.solve(b.system, kFactors, rhs, direct);
@@ -100,7 +94,7 @@ TEST(SparseDirectSolver, MatchesConjugateGradientAndSatisfiesTheSystem) {
 TEST(SparseDirectSolver, StaticSystemWithoutMass) {
   // Factors (0, 0, -1): A = -K, as the static solver poses it (docs/sofa-solvers.md §3.1).
   auto b = beam({0, 1, 2, 3}, 3);
-  const Points rhs = projected_rhs(b.system, 4);
+  const Points rhs = testing::projected_rhs(b.system, 4);
   Points x(rhs.size());
   SparseDirectSolver<double> solver;
   solver.solve(b.system, {0.0, 0.0, -1.0}, rhs, x);
@@ -110,7 +104,7 @@ TEST(SparseDirectSolver, StaticSystemWithoutMass) {
 TEST(SparseDirectSolver, ReusesTheAnalysisWhenOnlyValuesChange) {
   auto b = beam({0, 1, 2, 3}, 5);
   SparseDirectSolver<double> solver;
-  const Points rhs = projected_rhs(b.system, 6);
+  const Points rhs = testing::projected_rhs(b.system, 6);
   Points first(rhs.size());
   solver.solve(b.system, kFactors, rhs, first);
   expect_solves(b.system, kFactors, rhs, first);
@@ -139,7 +133,7 @@ TEST(SparseDirectSolver, RedoesTheAnalysisWhenTheFixedSetChanges) {
   for (const auto& fixed : std::vector<std::vector<Index>>{{0, 1, 2, 3}, {8, 9, 10, 11}, {0, 5, 10}, {0, 1, 2, 3}}) {
     b.system.fixed = fixed;
     b.system.finalize();
-    const Points rhs = projected_rhs(b.system, 9);
+    const Points rhs = testing::projected_rhs(b.system, 9);
     Points x(rhs.size(), Vec3<double>(1, 1, 1));
     solver.solve(b.system, kFactors, rhs, x);
     expect_solves(b.system, kFactors, rhs, x);
@@ -149,7 +143,7 @@ TEST(SparseDirectSolver, RedoesTheAnalysisWhenTheFixedSetChanges) {
 TEST(SparseDirectSolver, NoFixedPointsWithMass) {
   // The mass alone makes the system definite; nothing is fixed.
   auto b = beam({}, 10);
-  const Points rhs = projected_rhs(b.system, 11);
+  const Points rhs = testing::projected_rhs(b.system, 11);
   Points x(rhs.size());
   SparseDirectSolver<double> solver;
   solver.solve(b.system, kFactors, rhs, x);
