@@ -165,6 +165,8 @@ TEST(RunVtu, DrawnTetrahedraGoToTheirOwnSeries) {
   EXPECT_FALSE(std::filesystem::exists(dir / "off" / "root_beam_drawing.pvd"));
 }
 
+#ifdef FASTCOROT_WITH_VIEWER
+
 TEST(View, RunsUnderXvfbAndItsScreenshotIsNotBlank) {
   if (shell("command -v xvfb-run").status != 0) {
     GTEST_SKIP() << "xvfb-run not found: install Debian's xvfb and xauth (scripts/setup does) to "
@@ -200,6 +202,18 @@ TEST(View, WithoutADisplayExitsWith2AndSaysWhatToDo) {
   EXPECT_EQ(run_fastcorot("view /nonexistent.scn").status, 2);
   EXPECT_EQ(run_fastcorot("view " + scene + " --size 5x5").status, 2);
 }
+
+#else
+
+TEST(View, WithoutTheViewerInTheBuildIsOneClearLine) {
+  const auto dir = output_dir("view_not_built");
+  const std::string scene = write_scene(dir, testing::small_beam());
+  const auto result = shell(std::string(FASTCOROT_EXECUTABLE) + " view " + scene + " --frames 1");
+  EXPECT_EQ(result.status, 2) << result.output;
+  EXPECT_NE(result.output.find("built without the viewer"), std::string::npos) << result.output;
+}
+
+#endif
 
 }  // namespace
 }  // namespace fastcorot
