@@ -118,26 +118,29 @@ Distribution::~Distribution() = default;
 
 namespace {
 
-// Copies points' values between `values` and the local form of a ghosted vector (owned points,
-// then ghosts, three values each): `in` into the vector, else out of it.
+enum class Part { owned, ghosts, both };
+enum class Direction { into_vector, out_of_vector };
+
+// Copies the values of `part` of the points between `values` and the local form of a ghosted
+// vector (owned points, then ghosts, three values each).
 void copy_ghosted(Vec ghosted, std::span<Vec3<double>> values, const std::vector<Index>& owned,
-                  const std::vector<Index>& ghosts, bool with_owned, bool with_ghosts, bool in) {
+                  const std::vector<Index>& ghosts, Part part, Direction direction) {
   Vec local = nullptr;
   petsc_check(VecGhostGetLocalForm(ghosted, &local), "ghosted vector");
   PetscScalar* a = nullptr;
   VecGetArray(local, &a);
-  std::size_t k = with_owned ? 0 : owned.size();
-  for (const auto* list : {&owned, &ghosts}) {
-    if ((list == &owned && !with_owned) || (list == &ghosts && !with_ghosts)) continue;
-    for (Index p : *list) {
+  const auto copy = [&](const std::vector<Index>& points, std::size_t k) {
+    for (Index p : points) {
       Vec3<double>& value = values[static_cast<std::size_t>(p)];
       for (int d = 0; d < 3; ++d) {
-        if (in) a[3 * k + static_cast<std::size_t>(d)] = value[d];
+        if (direction == Direction::into_vector) a[3 * k + static_cast<std::size_t>(d)] = value[d];
         else value[d] = a[3 * k + static_cast<std::size_t>(d)];
       }
       ++k;
     }
-  }
+  };
+  if (part != Part::ghosts) copy(owned, 0);
+  if (part != Part::owned) copy(ghosts, owned.size());
   VecRestoreArray(local, &a);
   VecGhostRestoreLocalForm(ghosted, &local);
 }
@@ -157,17 +160,17 @@ void Distribution::sum_shared(std::span<Vec3<double>> values) const {
 void Distribution::add_to_owners(std::span<Vec3<double>> values) const {
   if (ranks_ == 1) return;
   Vec ghosted = ghost_vector_->ghosted;
-  copy_ghosted(ghosted, values, owned_, ghosts_, true, true, true);
+  copy_ghosted(ghosted, values, owned_, ghosts_, Part::both, Direction::into_vector);
   scatter(ghosted, ADD_VALUES, SCATTER_REVERSE);
-  copy_ghosted(ghosted, values, owned_, ghosts_, true, false, false);
+  copy_ghosted(ghosted, values, owned_, ghosts_, Part::owned, Direction::out_of_vector);
 }
 
 void Distribution::fill_ghosts(std::span<Vec3<double>> values) const {
   if (ranks_ == 1) return;
   Vec ghosted = ghost_vector_->ghosted;
-  copy_ghosted(ghosted, values, owned_, ghosts_, true, false, true);
+  copy_ghosted(ghosted, values, owned_, ghosts_, Part::owned, Direction::into_vector);
   scatter(ghosted, INSERT_VALUES, SCATTER_FORWARD);
-  copy_ghosted(ghosted, values, owned_, ghosts_, false, true, false);
+  copy_ghosted(ghosted, values, owned_, ghosts_, Part::ghosts, Direction::out_of_vector);
 }
 
 double Distribution::sum(double value) const {

@@ -47,11 +47,14 @@ void configure(KSP ksp, const PetscLinearSolver::Parameters& parameters) {
               "tolerances");
   // The command line's types are tried first: KSPSetFromOptions would fail on an unknown one
   // halfway through its options (and leak what it had read).
-  for (const char* name : {"-ksp_type", "-pc_type"}) {
-    const std::string value = option_value(name);
-    if (value.empty()) continue;
-    const int code = std::string(name) == "-ksp_type" ? KSPSetType(ksp, value.c_str()) : PCSetType(pc, value.c_str());
-    if (code != 0) throw make_error("PETSc option ", name, " ", value, ": unknown type (or a package this PETSc lacks)");
+  const auto unknown = [](const char* name, const std::string& value) {
+    return make_error("PETSc option ", name, " ", value, ": unknown type (or a package this PETSc lacks)");
+  };
+  if (const std::string type = option_value("-ksp_type"); !type.empty() && KSPSetType(ksp, type.c_str()) != 0) {
+    throw unknown("-ksp_type", type);
+  }
+  if (const std::string type = option_value("-pc_type"); !type.empty() && PCSetType(pc, type.c_str()) != 0) {
+    throw unknown("-pc_type", type);
   }
   petsc_check(KSPSetFromOptions(ksp), "the -ksp_* and -pc_* options");
   KSPType type = nullptr;
@@ -165,15 +168,14 @@ struct PetscLinearSolver::Impl {
     PetscScalar* y = nullptr;
     petsc_check(VecGetArrayRead(in, &x), "product");
     petsc_check(VecGetArray(out, &y), "product");
-    const std::vector<bool>& held = matrix->held();
     const PetscInt owned = matrix->owned();
     if (!distributed()) {
       // The vectors' three values per point in point order are the system's own layout.
       const std::span<const Vec3<double>> dx(reinterpret_cast<const Vec3<double>*>(x), static_cast<std::size_t>(owned));
       const std::span<Vec3<double>> df(reinterpret_cast<Vec3<double>*>(y), static_cast<std::size_t>(owned));
       system->multiply(*factors, dx, df);
-      for (std::size_t i = 0; i < held.size(); ++i) {
-        if (held[i]) df[i] = dx[i];
+      for (const auto* points : {&system->fixed, &system->isolated}) {
+        for (Index i : *points) df[static_cast<std::size_t>(i)] = dx[static_cast<std::size_t>(i)];
       }
     } else {
       // Owned values in, ghost copies from their owners; this rank's part of the product, whose
@@ -184,6 +186,7 @@ struct PetscLinearSolver::Impl {
       distribution->fill_ghosts(product_in);
       system->multiply_own_part(*factors, product_in, product_out);
       distribution->add_to_owners(product_out);
+      const std::vector<bool>& held = matrix->held();
       for (PetscInt k = 0; k < owned; ++k) {
         const auto p = static_cast<std::size_t>(matrix->owned_point(k));
         const Vec3<double>& value = held[p] ? product_in[p] : product_out[p];
