@@ -1,11 +1,14 @@
 // What the machine reports beside timings: the thread round trip is a time, and a budget too short
-// for any round trip gives NaN rather than a made-up figure.
+// for any round trip gives NaN rather than a made-up figure; a busy process beside us takes a core.
 #include "fastcorot/core/machine.h"
+
+#include "support/busy_core.h"
 
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
+#include <thread>
 
 namespace fastcorot {
 namespace {
@@ -20,6 +23,20 @@ TEST(Machine, ThreadRoundTripIsAPositiveTime) {
 
 TEST(Machine, NoTimeForAnyRoundTripIsNaN) {
   EXPECT_TRUE(std::isnan(thread_round_trip_ns(1000, std::chrono::nanoseconds(0))));
+}
+
+TEST(Machine, ABusyProcessLeavesACoreLess) {
+  const int cores = machine_cores();
+  const testing::BusyCore busy;
+  // Readings are taken at most every 2 ms and the least of three counts: poll for a while.
+  int left = cores;
+  const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (left >= cores && std::chrono::steady_clock::now() < limit) {
+    left = cores_left_by_other_processes(1);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_LE(left, cores - 1);
+  EXPECT_GE(left, 0);
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 // chunks' partial sums in chunk order, so the result has the same bits on any thread count.
 #include "fastcorot/core/parallel.h"
 
+#include "support/busy_core.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -124,11 +126,69 @@ TEST(RunTasks, ATaskThatThrowsReachesTheCallerAfterTheOthersRan) {
                            }),
                  std::runtime_error)
         << "task " << thrower;
-    // Each share stops at its failing task; the other shares ran whole, and nothing ran twice.
+    // Tasks not started when one failed are skipped; nothing ran twice.
     for (const auto& r : runs) EXPECT_LE(r.load(), 1);
     EXPECT_EQ(runs[static_cast<std::size_t>(thrower)].load(), 1);
   }
   EXPECT_EQ(sum_of_tasks(3, 20), expected_sum(20));  // the team still works
+}
+
+// Which thread runs the task before it must not matter: a task of a worker's share blocks (as if
+// the system had descheduled its thread) until the rest of its share has run, which only another
+// thread can do. With a fixed share per thread (a static schedule) it would wait out the timeout.
+TEST(RunTasks, TasksOfAStalledThreadRunElsewhere) {
+  set_yield_cores_to_other_processes(false);  // two threads even on a busy machine
+  for (int round = 0; round < 20; ++round) {
+    constexpr int kCount = 20;
+    std::vector<std::atomic<int>> runs(kCount);
+    std::atomic<int> rest_of_share{0};
+    std::atomic<bool> timed_out{false};
+    run_tasks(2, kCount, [&](int i) {
+      runs[static_cast<std::size_t>(i)]++;
+      if (i > kCount / 2) ++rest_of_share;
+      if (i != kCount / 2) return;
+      const auto limit = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+      while (rest_of_share.load() < kCount / 2 - 1) {
+        if (std::chrono::steady_clock::now() > limit) {
+          timed_out = true;
+          return;
+        }
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+    });
+    ASSERT_FALSE(timed_out.load()) << "round " << round;
+    for (const auto& r : runs) ASSERT_EQ(r.load(), 1);
+  }
+  set_yield_cores_to_other_processes(true);
+}
+
+TEST(RunTasks, ManyTasksRunInSlices) {
+  // More tasks than one run holds (32767): every task once, on any thread count.
+  for (int threads : {1, 2, 3}) {
+    std::vector<std::atomic<char>> runs(70001);
+    run_tasks(threads, static_cast<int>(runs.size()), [&](int i) { runs[static_cast<std::size_t>(i)]++; });
+    for (const auto& r : runs) ASSERT_EQ(r.load(), 1) << threads;
+  }
+}
+
+TEST(RunTasks, SameBitsWithACoreBusy) {
+  // The same sums whether the loop gives up threads to a busy process or keeps them all.
+  std::vector<double> values(200001);
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::sin(static_cast<double>(i)) * 1e3 / (1.0 + i % 7);
+  auto body = [&](std::size_t begin, std::size_t end) {
+    double s = 0;
+    for (std::size_t i = begin; i < end; ++i) s += values[i] * values[i] - values[i];
+    return s;
+  };
+  const double one = parallel_sum<double>(1, values.size(), body);
+  const testing::BusyCore busy;
+  for (bool yield : {true, false}) {
+    set_yield_cores_to_other_processes(yield);
+    for (int round = 0; round < 200; ++round) {
+      for (int threads : {2, 3}) ASSERT_EQ(parallel_sum<double>(threads, values.size(), body), one) << threads;
+    }
+  }
+  set_yield_cores_to_other_processes(true);
 }
 
 TEST(RunTasks, ForkedChildRunsItsOwnWorkers) {

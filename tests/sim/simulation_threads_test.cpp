@@ -1,7 +1,11 @@
 // A whole simulation gives bitwise the same trajectory on any thread count: one object whose
-// kernels and solver vectors run on several threads, and two objects run concurrently.
+// kernels and solver vectors run on several threads, and two objects run concurrently; also with
+// another process keeping a core busy, whether the loops give up threads to it or not.
+#include "fastcorot/core/parallel.h"
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
+
+#include "support/busy_core.h"
 
 #include <gtest/gtest.h>
 
@@ -44,6 +48,16 @@ TEST(SimulationThreads, OneObjectSameBitsOnOneTwoAndThreeThreads) {
     EXPECT_TRUE(run(beam("beam", method), 3, 4) == one) << method;
     EXPECT_NE(one[0][one[0].size() - 1], run(beam("beam", method), 1, 3)[0][one[0].size() - 1]);  // it moves
   }
+}
+
+TEST(SimulationThreads, SameBitsWithACoreBusy) {
+  const auto one = run(beam("beam", "large"), 1, 6);
+  const testing::BusyCore busy;
+  for (bool yield : {true, false}) {
+    set_yield_cores_to_other_processes(yield);
+    for (int threads : {1, 2, 3}) EXPECT_TRUE(run(beam("beam", "large"), threads, 6) == one) << threads << " " << yield;
+  }
+  set_yield_cores_to_other_processes(true);
 }
 
 TEST(SimulationThreads, PreconditionedSolversSameBitsOnOneAndTwoThreads) {

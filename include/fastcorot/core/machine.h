@@ -29,4 +29,16 @@ std::string cpu_model();
 // a core, it is tens of microseconds.
 double thread_round_trip_ns(int rounds, std::chrono::nanoseconds budget);
 
+// The machine's cores (online processors).
+int machine_cores();
+
+// How many of the machine's cores other processes leave free just now: the cores less the threads
+// the kernel has runnable (Linux: /proc/loadavg's fourth field, every runnable thread of every
+// process, this one's included) less `own_runnable` of them that are this process's. A
+// CPU-bound process beside us shows in every reading, a passing one in few: the figure uses the
+// least count of others of the last three readings, taken at most every 2 ms (calls in between
+// answer the last figure, cheaply). All cores where the count cannot be read. Safe to call from
+// any thread.
+int cores_left_by_other_processes(int own_runnable);
+
 }  // namespace fastcorot

@@ -1,9 +1,14 @@
 // Deterministic parallel loops. Work is cut into tasks whose boundaries depend on the problem size
 // only, never on the thread count, and anything combined across tasks (sums, scatters into shared
-// arrays) is combined in task order. So results are bitwise the same for 1 thread or many.
-// Threads are a team of workers per concurrent caller (src/core/parallel.cpp) that spin briefly
-// between the short parallel loops of a time step, so that starting one costs well under a
-// microsecond (OpenMP's regions cost about two on the 2-core VM), then sleep.
+// arrays) is combined in task order. So results are bitwise the same for 1 thread or many, and
+// whichever thread runs a task.
+// Threads are a team of workers per concurrent caller (src/core/parallel.cpp). A loop gives each
+// thread a share of its tasks, and a thread that has finished its share takes the tasks of shares
+// whose thread has not started or makes no progress (one the system has descheduled), so a busy
+// core holds a loop up for at most the task its thread is running. Workers spin briefly between
+// the short parallel loops of a time step, so that starting one costs well under a microsecond,
+// then sleep. While other processes keep cores busy, loops use no more threads than the cores
+// left free (set_yield_cores_to_other_processes).
 #pragma once
 
 #include <algorithm>
@@ -12,13 +17,19 @@
 
 namespace fastcorot {
 
+// Whether parallel loops give up threads while other processes keep cores busy (the default):
+// a loop then runs on no more threads than the cores left free (cores_left_by_other_processes in
+// core/machine.h), down to its caller alone. Results are the same bits either way; off, loops
+// always use the threads asked for (as when timing a fixed thread count on purpose).
+void set_yield_cores_to_other_processes(bool yield);
+
 namespace detail {
 void run_tasks(int threads, int count, void (*call)(const void*, int), const void* context);
 }  // namespace detail
 
 // Calls task(i) for every i in [0, count), on up to `threads` threads; returns when all are done.
-// Tasks that run concurrently must write disjoint memory. If a task throws, the rest of its thread's
-// share is skipped, the other threads finish theirs, and the first exception reaches the caller.
+// Tasks that run concurrently must write disjoint memory. If a task throws, the tasks not yet
+// started are skipped, those running end, and the first exception reaches the caller.
 template <class Task>
 void run_tasks(int threads, int count, const Task& task) {
   if (threads <= 1 || count <= 1) {
