@@ -3,6 +3,7 @@
 #include "default_scene.h"
 #include "json_io.h"
 #include "run_command.h"
+#include "thread_count.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/core/machine.h"
@@ -82,14 +83,14 @@ void write_frame(const std::string& dir, const Simulation<double>& simulation) {
 void bench(const BenchOptions& options, std::ostream& out) {
   if (options.steps < 1) throw make_error("--steps ", options.steps, ": must be >= 1");
   if (options.warmup < 0) throw make_error("--warmup ", options.warmup, ": must be >= 0");
-  if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
+  const int threads = threads_to_run(options.threads);
   if (!options.beam.empty() && !options.scene.empty()) throw make_error("--beam replaces SCENE: give one of them");
   LoadedScene scene = options.beam.empty()
                           ? load_scene_argument(options.scene, options.strict)
                           : build_scene(parse_scene_text(beam_scene_text(options.beam), "<built-in beam " + options.beam + ">"));
   for (const auto& line : scene.warnings) std::cerr << "warning: " << line << '\n';
   Simulation<double>& simulation = scene.simulation;
-  simulation.threads = options.threads;
+  simulation.threads = threads;
   if (!options.vtu_dir.empty()) make_output_folder(options.vtu_dir, "--vtu");
   const std::string name = !options.beam.empty() ? "beam " + options.beam
                            : options.scene.empty() ? "built-in beam 40x10x10" : options.scene;
@@ -98,7 +99,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
   // round trip within the budget on a busy machine). Before the warm-up, while no worker of the
   // simulation's own spins beside the two.
   constexpr auto kRoundTripBudget = std::chrono::milliseconds(100);
-  const double round_trip_ns = options.threads > 1 ? thread_round_trip_ns(20000, kRoundTripBudget)
+  const double round_trip_ns = threads > 1 ? thread_round_trip_ns(20000, kRoundTripBudget)
                                                    : std::numeric_limits<double>::quiet_NaN();
   for (long step = 0; step < options.warmup; ++step) simulation.step();
   // Each object adds to its own phase times (objects may run concurrently).
@@ -143,7 +144,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
     json result = {{"scene", name},
                    {"steps", options.steps},
                    {"warmup", options.warmup},
-                   {"threads", options.threads},
+                   {"threads", threads},
                    {"points", size.points},
                    {"tetrahedra", size.tetrahedra},
                    {"edges", size.edges},
@@ -171,7 +172,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
     return;
   }
   out << "fastcorot bench: " << name << ", " << size.points << " points, " << size.tetrahedra << " tetrahedra, "
-      << size.edges << " edges, " << options.threads << " thread(s)\n"
+      << size.edges << " edges, " << threads << " thread(s)\n"
       << std::fixed << std::setprecision(1) << options.steps << " steps in " << std::setprecision(3) << seconds
       << " s: " << std::setprecision(1) << steps_per_second << " steps/s, " << std::setprecision(3)
       << seconds * per_step << " ms per step\n";
@@ -196,7 +197,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
   if (std::isfinite(round_trip_ns)) {
     out << "threads: a value written by one reaches another and comes back in " << round_trip_ns
         << " ns (measured before the steps; two-thread figures depend on it)\n";
-  } else if (options.threads > 1) {
+  } else if (threads > 1) {
     out << "threads: no round trip between two of them within " << kRoundTripBudget.count()
         << " ms (a busy machine)\n";
   }

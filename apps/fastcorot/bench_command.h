@@ -15,7 +15,7 @@ struct BenchOptions {
   long steps = 200;
   long warmup = 10;
   bool strict = false;  // warnings (unknown attributes) are errors
-  int threads = 1;
+  int threads = 0;  // 0: every core (thread_count.h)
   std::string vtu_dir;  // empty: no output
   bool json = false;
 };

@@ -2,6 +2,7 @@
 
 #include "default_scene.h"
 #include "distributed_run.h"
+#include "thread_count.h"
 #include "json_io.h"
 #include "picture_series.h"
 #include "scene_source.h"
@@ -286,7 +287,7 @@ void progress(std::ostream& err, long done, long total, double seconds) {
 void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.steps < 0) throw make_error("--steps ", options.steps, ": must be >= 0");
   if (options.every < 1) throw make_error("--every ", options.every, ": must be >= 1");
-  if (options.threads < 1) throw make_error("--threads ", options.threads, ": must be >= 1");
+  const int threads = threads_to_run(options.threads, process_count() > 1);
   if (options.checkpoint_every < 0)
     throw make_error("--checkpoint-every ", options.checkpoint_every, ": must be >= 1");
   if (!(options.divergence_factor >= 0)) {
@@ -311,7 +312,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (!(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
     simulation.dt = *options.dt;
   }
-  simulation.threads = options.threads;
+  simulation.threads = threads;
   simulation.divergence_factor = options.divergence_factor;
   const std::string checkpoint_file =
       options.checkpoint_file.empty()

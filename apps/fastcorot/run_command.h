@@ -28,7 +28,7 @@ struct RunOptions {
   long every = 1;  // write VTU frames every K steps (and the last)
   std::string dump_state;
   std::set<long> dump_steps = {0, 1, 10, 100};
-  int threads = 1;
+  int threads = 0;  // 0: every core (thread_count.h)
   bool quiet = false;
   bool strict = false;  // warnings (unknown attributes) are errors
   std::string png_dir;     // empty: no pictures; else one PNG per written frame

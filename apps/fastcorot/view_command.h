@@ -28,7 +28,7 @@ struct ViewOptions {
   long frames = 0;  // > 0: close after this many frames
   std::string screenshot;
   std::optional<double> dt;
-  int threads = 1;
+  int threads = 0;  // 0: every core (thread_count.h)
 };
 
 // Opens the window and runs until it is closed (or `frames` are shown). Throws fastcorot::Error on

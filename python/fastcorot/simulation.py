@@ -11,6 +11,7 @@ stepping is fastcorot.SimulationError (a RuntimeError) naming the step and the o
 """
 
 import numbers
+import os
 
 from . import _core
 from .scene import Node, walk
@@ -22,14 +23,16 @@ class Simulation:
     velocity become views of it) and the root's dt and gravity to the simulation's; a later
     Simulation built from the same tree takes the bindings over."""
 
-    def __init__(self, root, threads=1, strict=True, allow_empty=False):
-        """`strict`: unknown attributes are errors (False: warnings, listed in `warnings`, as SOFA and
-        `fastcorot run` take them); `allow_empty`: a scene with nothing to simulate steps only time."""
+    def __init__(self, root, threads=None, strict=True, allow_empty=False):
+        """`threads`: None (the default) for every core of the machine, as `fastcorot run`; parallel
+        loops use fewer while other processes keep cores busy. `strict`: unknown attributes are
+        errors (False: warnings, listed in `warnings`, as SOFA and `fastcorot run` take them);
+        `allow_empty`: a scene with nothing to simulate steps only time."""
         if not isinstance(root, Node):
             raise TypeError(f"Simulation: expected a fastcorot.Node, got {type(root).__name__}")
         objects = []
         core = _core.SimulationCore(root._tree(objects), strict, allow_empty)
-        core.threads = threads
+        core.threads = threads if threads is not None else max(1, os.cpu_count() or 1)
         for node in walk(root):
             object.__setattr__(node, "_core", None)
             for obj in node._objects:
@@ -111,7 +114,8 @@ class Simulation:
     @property
     def threads(self):
         """Threads: independent objects (one per solver node) concurrently, the rest to each object's
-        kernels; results are bitwise the same for any count."""
+        kernels; results are bitwise the same for any count. Loops use fewer while other processes
+        keep cores busy."""
         return self._core.threads
 
     @threads.setter

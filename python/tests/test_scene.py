@@ -2,6 +2,7 @@
 exactly as the same scene read from its file, through the module and through `fastcorot run`; data
 are read and written by name; simulated positions and velocities are views of the state."""
 
+import os
 import threading
 import time
 
@@ -145,6 +146,23 @@ def test_dt_and_gravity_of_the_root_are_the_simulations():
     assert sim.time == pytest.approx(0.02)
     sim.gravity = [0, 0, 0]
     np.testing.assert_array_equal(root.gravity, [0, 0, 0])
+
+
+def test_threads_default_to_every_core_and_give_the_same_bits():
+    """No `threads` means the machine's cores (as `fastcorot run` without --threads); any count
+    steps to the same bits."""
+    root = python_beam()
+    assert fastcorot.Simulation(root).threads == max(1, os.cpu_count() or 1)
+    states = {}
+    for threads in (1, 2, 3):
+        root = python_beam()
+        sim = fastcorot.Simulation(root, threads=threads)
+        sim.step(3)
+        states[threads] = root.beam.state.position.copy()
+    np.testing.assert_array_equal(states[2], states[1])
+    np.testing.assert_array_equal(states[3], states[1])
+    with pytest.raises(ValueError, match="threads = 0: must be at least 1"):
+        fastcorot.Simulation(python_beam(), threads=0)
 
 
 def test_the_gil_is_released_while_stepping():

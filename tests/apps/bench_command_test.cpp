@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace fastcorot {
@@ -64,10 +65,10 @@ TEST(Bench, JsonFiguresAddUpAndDescribeTheBeam) {
 }
 
 TEST(Bench, RoundTripOnlyWithThreads) {
-  const auto result = run_fastcorot("bench --beam 5x2x2 --steps 2 --json");
+  const auto result = run_fastcorot("bench --beam 5x2x2 --steps 2 --threads 1 --json");
   ASSERT_EQ(result.status, 0) << result.output;
   EXPECT_TRUE(json::parse(result.output)["thread_round_trip_ns"].is_null());
-  const auto one = run_fastcorot("bench --beam 5x2x2 --steps 2");
+  const auto one = run_fastcorot("bench --beam 5x2x2 --steps 2 --threads 1");
   ASSERT_EQ(one.status, 0) << one.output;
   EXPECT_EQ(one.output.find("\nthreads: "), std::string::npos) << one.output;
   const auto text = run_fastcorot("bench --beam 5x2x2 --steps 2 --threads 2");
@@ -93,13 +94,21 @@ TEST(Bench, TextReportNamesEveryPhase) {
   }
 }
 
+TEST(Bench, ThreadsAbsentOrZeroMeanEveryCore) {
+  for (const char* threads : {"", " --threads 0"}) {
+    const auto result = run_fastcorot(std::string("bench --beam 5x2x2 --steps 2 --json") + threads);
+    ASSERT_EQ(result.status, 0) << result.output;
+    EXPECT_EQ(json::parse(result.output)["threads"], std::max(1u, std::thread::hardware_concurrency())) << threads;
+  }
+}
+
 TEST(Bench, BadOptionsAreErrors) {
   for (const auto& [arguments, message] :
        std::initializer_list<std::pair<const char*, const char*>>{
            {"bench --beam 40x10", "--beam \"40x10\": expected NXxNYxNZ"},
            {"bench --beam 1x10x10", "three numbers of grid points >= 2"},
            {"bench --steps 0", "--steps 0: must be >= 1"},
-           {"bench --threads 0", "--threads 0: must be >= 1"},
+           {"bench --threads -1", "--threads -1: must be >= 1 (or 0: every core)"},
            {"bench --beam 4x4x4 some.scn", "--beam replaces SCENE"},
            {"bench missing.scn", "missing.scn"}}) {
     const auto result = run_fastcorot(arguments);

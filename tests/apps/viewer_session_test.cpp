@@ -86,7 +86,7 @@ TEST(ViewerSession, DivergencePausesWithAMessage) {
 
 TEST(ViewerSession, BadOptionsAreErrors) {
   ViewOptions options = options_for("session_bad", testing::small_beam());
-  options.threads = 0;
+  options.threads = -1;
   EXPECT_THROW(ViewerSession{options}, Error);
   options.threads = 1;
   options.dt = -1.0;
