@@ -26,7 +26,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 59> kIgnored = {
+constexpr std::array<std::string_view, 58> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -38,7 +38,7 @@ constexpr std::array<std::string_view, 59> kIgnored = {
     "PositionalLight", "BackgroundSetting", "Camera", "OglLabel", "ConstraintAttachButtonSetting",
     "AttachBodyButtonSetting", "Visual3DText", "OglShader", "OglShadowShader", "VisualMesh", "WriteState", "MeshExporter",
     "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyContainer", "EdgeSetTopologyModifier",
-    "EdgeSetGeometryAlgorithms", "PlaneConstraint", "ValuesFromPositions", "NaturalOrderingMethod",
+    "EdgeSetGeometryAlgorithms", "ValuesFromPositions", "NaturalOrderingMethod",
     "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod", "TaskSchedulerSettings",
     "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase"};
 
@@ -75,12 +75,6 @@ bool is_ignored_component(std::string_view name) {
 
 std::span<const std::string_view> ignored_components() { return kIgnored; }
 
-bool is_unknown_to_sofa(std::string_view name) {
-  // Names SOFA's own example scenes carry but SOFA's object factory does not know: SOFA reports an
-  // error for each and runs the scene without it.
-  static constexpr std::array<std::string_view, 1> kUnknown = {"PlaneConstraint"};
-  return std::find(kUnknown.begin(), kUnknown.end(), name) != kUnknown.end();
-}
 
 bool is_collision_component(std::string_view name) {
   static constexpr std::array<std::string_view, 19> kCollision = {
@@ -137,7 +131,7 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
-  static const std::array<std::pair<std::string_view, std::string_view>, 16> kRefused = {{
+  static const std::array<std::pair<std::string_view, std::string_view>, 15> kRefused = {{
       {"FreeMotionAnimationLoop", "constraint-based animation (Lagrangian constraints) is not simulated"},
       {"GenericConstraintSolver", "Lagrangian constraint solvers are not simulated"},
       {"BlockGaussSeidelConstraintSolver", "Lagrangian constraint solvers are not simulated"},
@@ -162,6 +156,10 @@ std::string_view refusal_reason(std::string_view type) {
     if (name == type) return reason;
   }
   return {};
+}
+
+bool is_known_component(std::string_view name) {
+  return find_component(name) || is_ignored_component(name) || !refusal_reason(name).empty();
 }
 
 const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<std::string>* warnings) {

@@ -21,12 +21,40 @@ std::vector<ComponentSpec> engine_components() {
         {"position", "vec3s", "", "points to test (default: the node's rest positions)"},
         {"meshPosition", "vec3s", "", "accepted"},
         {"drawSize", "real", "", "accepted (display)"}}},
-      {"BoxROI", "engine", "Selects the points (and tetrahedra) inside axis-aligned boxes, bounds included.",
-       {{"box", "reals", "0 0 0 1 1 1", "xmin ymin zmin xmax ymax zmax, 6 numbers per box"},
+      {"BoxROI", "engine",
+       "Selects the points and elements inside axis-aligned and oriented boxes, bounds included; outputs indices, "
+       "pointsInROI, nbIndices, indicesOut, pointsOutROI, and per element kind its indices, the elements in (and "
+       "out: edges, triangles, tetrahedra) of the region (edgeIndices, edgesInROI, edgeOutIndices, edgesOutROI, "
+       "triangle..., quadIndices, quadsInROI, tetrahedron..., hexahedronIndices, hexahedraInROI).",
+       {{"box", "reals", "0 0 0 1 1 1", "xmin ymin zmin xmax ymax zmax, 6 numbers per box (no default with orientedBox)"},
+        {"orientedBox", "reals", "", "p0 p1 p2 depth, 10 numbers per box: the parallelogram p0 p1 p2 (p0 + p2 - p1), depth thick"},
         {"position", "vec3s", "", "points to test (default: the node's rest positions)"},
-        {"strict", "bool", "true", "a tetrahedron or triangle is inside when all its vertices are (else its barycentre)"},
-        {"triangles", "indices", "", "triangles to test for triangleIndices (default: the node's triangle container's, else its topology's)"},
-        {"doUpdate", "bool", "true", "accepted; the selection is made at init"}}}
+        {"strict", "bool", "true", "an element is inside when all its points are (else its centre)"},
+        {"edges", "indices", "", "edges to test (default: the node's topology's)"},
+        {"triangles", "indices", "", "triangles to test (default: the node's triangle container's, else its topology's)"},
+        {"quads", "indices", "", "quads to test (default: the node's topology's); also quad"},
+        {"quad", "indices", "", "quads (SOFA's other name)"},
+        {"tetrahedra", "indices", "", "tetrahedra to test (default: the node's topology's)"},
+        {"hexahedra", "indices", "", "hexahedra to test (default: the node's topology's)"},
+        {"computeEdges", "bool", "true", "select edges"},
+        {"computeTriangles", "bool", "true", "select triangles"},
+        {"computeQuads", "bool", "true", "select quads; also computeQuad"},
+        {"computeQuad", "bool", "true", "computeQuads (SOFA's other name)"},
+        {"computeTetrahedra", "bool", "true", "select tetrahedra"},
+        {"computeHexahedra", "bool", "true", "select hexahedra"},
+        {"doUpdate", "bool", "true", "accepted; the selection is made at init"}}},
+      {"PlaneROI", "engine",
+       "Selects the points inside slabs over parallelograms, bounds included, and the edges, triangles and "
+       "tetrahedra with all their points in one slab; outputs indices, pointsInROI, edgeIndices, edgesInROI, "
+       "triangleIndices, trianglesInROI, tetrahedronIndices, tetrahedraInROI.",
+       {{"plane", "reals", "0 0 0 0 0 0 0 0 0 0", "p0 p1 p2 depth, 10 numbers per slab: the parallelogram p0 p1 p2 (p0 + p2 - p1), depth thick"},
+        {"position", "vec3s", "", "points to test (default: the node's rest positions)"},
+        {"edges", "indices", "", "edges to test (default: the node's topology's)"},
+        {"triangles", "indices", "", "triangles to test (default: the node's triangle container's, else its topology's)"},
+        {"tetrahedra", "indices", "", "tetrahedra to test (default: the node's topology's)"},
+        {"computeEdges", "bool", "true", "select edges"},
+        {"computeTriangles", "bool", "true", "select triangles"},
+        {"computeTetrahedra", "bool", "true", "select tetrahedra"}}}
   };
 }
 

@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <functional>
@@ -68,12 +69,6 @@ std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNo
     if (!component->spec && is_collision_component(object.type)) {
       const std::string line = object.location.to_string() + ": " + object.type +
                                " ignored: collisions and contacts are not simulated by fastcorot";
-      if (!warnings_) throw make_error(line);
-      warnings_->push_back(line);
-    } else if (!component->spec && is_unknown_to_sofa(object.type)) {
-      const std::string line = object.location.to_string() + ": " + object.type +
-                               " skipped: SOFA has no component of that name (its factory reports an error and SOFA "
-                               "runs the scene without it)";
       if (!warnings_) throw make_error(line);
       warnings_->push_back(line);
     } else if (!component->spec) {
@@ -334,27 +329,6 @@ CylinderGrid SceneData::cylinder_grid(Component& c) {
   return cylinder;
 }
 
-Numbers SceneData::cells_inside(Component& c, const Numbers& cells, int corners, const char* kind,
-                                const std::vector<Vec3<double>>& positions,
-                                const std::function<bool(const Vec3<double>&)>& inside) {
-  // SOFA's BoxROI: with `strict`, a cell whose corners are all inside; else one whose centre is.
-  const bool strict = boolean(c, "strict", true);
-  const auto n = static_cast<std::size_t>(corners);
-  Numbers out;
-  for (std::size_t t = 0; t + n - 1 < cells.size(); t += n) {
-    bool all = true;
-    Vec3<double> centre = Vec3<double>::Zero();
-    for (std::size_t j = 0; j < n; ++j) {
-      const auto v = static_cast<std::size_t>(cells[t + j]);
-      if (v >= positions.size()) throw make_error(c.where(), ": ", kind, " ", t / n, " has a vertex out of range");
-      all = all && inside(positions[v]);
-      centre += positions[v] / static_cast<double>(corners);
-    }
-    if (strict ? all : inside(centre)) out.push_back(static_cast<double>(t / n));
-  }
-  return out;
-}
-
 Numbers SceneData::rest_positions_around(Component& c) {
   for (const GraphNode* scope = c.node; scope; scope = scope->parent) {
     const auto states = scope->of_category("state");
@@ -432,9 +406,17 @@ int SceneData::whole_number(Component& c, const std::string& name, int fallback)
 bool SceneData::boolean(Component& c, const std::string& name, bool fallback) {
   const auto it = c.object->attributes.find(name);
   if (it == c.object->attributes.end()) return fallback;
+  // As SOFA's Data<bool> reads it: by the first character, t or T true, f or F false, and a
+  // number (strtol: what follows it is ignored) true unless 0. SOFA warns on anything else and
+  // keeps the default; fastcorot stops there.
   const std::string& v = it->second;
-  if (v == "1" || v == "true" || v == "True" || v == "TRUE") return true;
-  if (v == "0" || v == "false" || v == "False" || v == "FALSE") return false;
+  if (!v.empty() && (v[0] == 't' || v[0] == 'T')) return true;
+  if (!v.empty() && (v[0] == 'f' || v[0] == 'F')) return false;
+  if (!v.empty() && (std::isdigit(static_cast<unsigned char>(v[0])) || v[0] == '-')) {
+    char* end = nullptr;
+    const long number = std::strtol(v.c_str(), &end, 10);
+    if (end != v.c_str()) return number != 0;
+  }
   throw make_error(c.where(), ": ", name, " = \"", v, "\": expected true/false or 1/0");
 }
 

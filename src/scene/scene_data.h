@@ -107,9 +107,8 @@ class SceneData {
   // What an ROI engine selects from by default: the rest positions of the nearest MechanicalObject
   // at or above its node, else its node's loader's positions.
   Numbers rest_positions_around(Component& c);
-  // The indices of the cells (`corners` point indices each) that BoxROI c selects with `inside`.
-  Numbers cells_inside(Component& c, const Numbers& cells, int corners, const char* kind,
-                       const std::vector<Vec3<double>>& positions, const std::function<bool(const Vec3<double>&)>& inside);
+  // Data `name` of BoxROI or PlaneROI c (its defaults and outputs: regions_of_interest.cpp).
+  Numbers region_of_interest(Component& c, const std::string& name);
   // A topology's tetrahedra (4 indices each, checked).
   std::vector<Tetrahedron> tetrahedra_of(Component& topology);
   // Translation, rotation or scale3d of c, or their short forms (dx dy dz, rx ry rz, scale or sx sy

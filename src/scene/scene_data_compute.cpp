@@ -171,52 +171,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     }
     return {};
   }
-  if (type == "BoxROI") {
-    if (name == "box") return {0, 0, 0, 1, 1, 1};
-    if (name == "position") return rest_positions_around(c);
-    const Numbers& box = data(c, "box");
-    if (box.size() % 6 != 0 || box.empty()) {
-      throw make_error(c.where(), ": box needs 6 numbers per box (xmin ymin zmin xmax ymax zmax), got ", box.size());
-    }
-    auto inside = [&](const Vec3<double>& p) {
-      for (std::size_t b = 0; b < box.size(); b += 6) {
-        bool in = true;
-        for (int k = 0; k < 3; ++k) {
-          const double lo = std::min(box[b + k], box[b + 3 + k]);
-          const double hi = std::max(box[b + k], box[b + 3 + k]);
-          in = in && lo <= p[k] && p[k] <= hi;
-        }
-        if (in) return true;
-      }
-      return false;
-    };
-    const auto positions = points(c, "position");
-    if (name == "indices") {
-      Numbers out;
-      for (std::size_t i = 0; i < positions.size(); ++i) {
-        if (inside(positions[i])) out.push_back(static_cast<double>(i));
-      }
-      return out;
-    }
-    if (name == "triangleIndices") {
-      // The triangles given, else those of the node's triangle container, else of its topology.
-      Numbers triangles;
-      if (c.has("triangles")) {
-        triangles = data(c, "triangles");
-      } else if (Component* container = triangle_container_of(*c.node)) {
-        triangles = data(*container, "triangles");
-      } else if (Component* topology = topology_of(*c.node)) {
-        triangles = data(*topology, "triangles");
-      }
-      if (triangles.size() % 3 != 0) throw make_error(c.where(), ": triangles needs 3 indices per triangle");
-      return cells_inside(c, triangles, 3, "triangle", positions, inside);
-    }
-    if (name == "tetrahedronIndices") {
-      Component* topology = topology_of(*c.node);
-      if (!topology) return {};
-      return cells_inside(c, data(*topology, "tetrahedra"), 4, "tetrahedron", positions, inside);
-    }
-  }
+  if (type == "BoxROI" || type == "PlaneROI") return region_of_interest(c, name);
   return {};
 }
 

@@ -1,10 +1,14 @@
 #include "fastcorot/scene/scene_graph.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/scene/component_table.h"
 
 #include <tinyxml2.h>
 
 #include <cstdlib>
+#include <map>
+#include <optional>
+#include <string_view>
 #include <fstream>
 #include <sstream>
 
@@ -66,8 +70,6 @@ class Parser {
         node.children.push_back(read_node(*child, file));
       } else if (tag == "include" || tag == "Include") {
         expand_include(*child, file, node);
-      } else if (tag == "BoxConstraint") {
-        expand_box_constraint(*child, file, node);
       } else {
         SceneObject object;
         object.type = tag;
@@ -78,6 +80,7 @@ class Parser {
           object.type = object.attributes["type"];
           object.attributes.erase("type");
         }
+        if (!is_known_component(object.type) && replace_by_object_file(*child, object.type, file, node)) continue;
         node.objects.push_back(std::move(object));
       }
     }
@@ -93,17 +96,61 @@ class Parser {
       throw make_error(file.string(), ":", element.GetLineNum(), ": cannot read included file ", href, " (",
                        error.what(), ")");
     }
-    const auto canonical = std::filesystem::weakly_canonical(path);
-    for (const auto& open : files_) {
-      if (open == canonical) {
-        throw make_error(file.string(), ":", element.GetLineNum(), ": include cycle through ", path.string());
-      }
-    }
     std::string text;
     try {
       text = read_text_file(path);
     } catch (const Error&) {
       throw make_error(file.string(), ":", element.GetLineNum(), ": cannot read included file ", path.string());
+    }
+    include_text(element, file, text, path, node);
+  }
+
+  // SOFA's loader replaces an element whose type its object factory does not know by the node of
+  // the file Objects/<type>.xml on its data path, as an <include> of that file with the element's
+  // attributes (the scene's folder first, then the data path: find_data_file). SOFA ships two such
+  // files, BoxConstraint.xml and PlaneConstraint.xml; their nodes are built in for scenes read
+  // away from SOFA's folders. False when there is no such file.
+  bool replace_by_object_file(const tinyxml2::XMLElement& element, const std::string& type,
+                              const std::filesystem::path& file, SceneNode& node) {
+    const std::string name = "Objects/" + type + ".xml";
+    std::filesystem::path path;
+    try {
+      path = find_data_file(file, name);
+    } catch (const Error&) {
+      const auto builtin = builtin_object_files().find(type);
+      if (builtin == builtin_object_files().end()) return false;
+      include_text(element, file, std::string(builtin->second), "<built-in " + name + ">", node,
+                   SourceLocation{file, element.GetLineNum()});
+      return true;
+    }
+    include_text(element, file, read_text_file(path), path, node);
+    return true;
+  }
+
+  static const std::map<std::string, std::string_view>& builtin_object_files() {
+    // The same elements as SOFA's examples/Objects files: a region of interest and the
+    // FixedProjectiveConstraint of the points it selects (`@[-1]`: the object just before).
+    static const std::map<std::string, std::string_view> files = {
+        {"BoxConstraint",
+         R"(<Node name="Group"><BoxROI name="box_roi" box="0 0 0 1 1 1" drawBoxes="0"/>)"
+         R"(<FixedProjectiveConstraint indices="@[-1].indices"/></Node>)"},
+        {"PlaneConstraint",
+         R"(<Node name="Group"><PlaneROI name="box_roi" plane="-4 3 0 1 2 1 0 0 1 2" drawSize="0"/>)"
+         R"(<FixedProjectiveConstraint indices="@[-1].indices" drawSize="0"/></Node>)"}};
+    return files;
+  }
+
+  // Includes the scene text `text` of file `path` (its root a <Node> or <Group>) where `element`
+  // stands, with the element's attributes. What built-in text holds is placed at `built_in`: the
+  // scene's element, which errors then name.
+  void include_text(const tinyxml2::XMLElement& element, const std::filesystem::path& file, const std::string& text,
+                    const std::filesystem::path& path, SceneNode& node,
+                    const std::optional<SourceLocation>& built_in = std::nullopt) {
+    const auto canonical = std::filesystem::weakly_canonical(path);
+    for (const auto& open : files_) {
+      if (open == canonical) {
+        throw make_error(file.string(), ":", element.GetLineNum(), ": include cycle through ", path.string());
+      }
     }
     tinyxml2::XMLDocument document;
     if (document.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
@@ -124,30 +171,25 @@ class Parser {
       throw make_error(path.string(), ":", root->GetLineNum(), ": an included file's root must be a <Node> or <Group>");
     }
     files_.pop_back();
+    if (built_in) place_at(included, *built_in);
     add_included(element, std::move(included), node);
   }
 
-  // SOFA's BoxConstraint, a scene element its XML loader replaces by SOFA's examples/Objects/
-  // BoxConstraint.xml: a BoxROI and a FixedProjectiveConstraint of the points in its box, with the
-  // element's attributes applied as an include's are.
-  void expand_box_constraint(const tinyxml2::XMLElement& element, const std::filesystem::path& file, SceneNode& node) {
-    SceneNode group;
-    group.name = "Group";
-    group.location = {file, element.GetLineNum()};
-    // SOFA's file names it box_roi and links it as the previous object; a node may hold several.
-    const std::string roi = "box_roi_" + std::to_string(element.GetLineNum());
-    group.objects.push_back({"BoxROI", {{"name", roi}, {"box", "0 0 0 1 1 1"}, {"drawBoxes", "0"}}, group.location});
-    group.objects.push_back({"FixedProjectiveConstraint", {{"indices", "@" + roi + ".indices"}}, group.location});
-    add_included(element, std::move(group), node);
+  static void place_at(SceneNode& node, const SourceLocation& location) {
+    node.location = location;
+    for (auto& object : node.objects) object.location = location;
+    for (auto& child : node.children) place_at(child, location);
   }
 
   // The include's attributes: a name renames the included node; any other replaces the values of
   // the attributes of that name in the included nodes and objects (NODE__attribute: in the node or
-  // object NODE only); a node named Group joins the including node.
+  // object NODE only). A node named Group (as the file names it: a name given by the include does
+  // not change that, as in SOFA) joins the including node.
   static void add_included(const tinyxml2::XMLElement& element, SceneNode included, SceneNode& node) {
+    const bool group = included.name == "Group" || included.name == "_Group_";
     for (const auto* a = element.FirstAttribute(); a; a = a->Next()) {
       const std::string attribute = a->Name();
-      if (attribute == "href") continue;
+      if (attribute == "href" || attribute == "type") continue;
       if (attribute == "name") {
         included.name = a->Value();
         included.attributes["name"] = a->Value();
@@ -161,7 +203,7 @@ class Parser {
         replace_attribute(included, attribute.substr(separator + 2), a->Value(), &target);
       }
     }
-    if (included.name == "Group" || included.name == "_Group_") {
+    if (group) {
       for (auto& object : included.objects) node.objects.push_back(std::move(object));
       for (auto& child : included.children) node.children.push_back(std::move(child));
     } else {

@@ -108,22 +108,28 @@ TEST_F(SceneFiles, IncludeAttributesReplaceThoseOfTheIncludedObjectsAsInSofa) {
   EXPECT_EQ(root.children[0].objects[0].attributes.count("color"), 0u);
 }
 
-TEST(SceneGraph, BoxConstraintIsSofasBoxRoiAndFixedConstraint) {
+TEST(SceneGraph, BoxAndPlaneConstraintAreSofasObjectFilesBuiltIn) {
+  // Read away from SOFA's folders: the nodes of SOFA's examples/Objects/BoxConstraint.xml and
+  // PlaneConstraint.xml, with the element's attributes where the files' objects have them.
   const SceneNode root = parse_scene_text(R"(<Node name="root">
   <BoxConstraint box="-1 -1 -1 1 1 1" fixAll="0"/>
-  <BoxConstraint box="2 2 2 3 3 3" drawBoxes="1"/>
+  <BoxConstraint name="second" box="2 2 2 3 3 3" drawBoxes="1"/>
+  <PlaneConstraint plane="0 0 0 1 0 0 1 1 0 0.5"/>
 </Node>)",
                                           "b.scn");
-  ASSERT_EQ(root.objects.size(), 4u);
+  ASSERT_EQ(root.objects.size(), 6u);
+  EXPECT_TRUE(root.children.empty());  // a Group joins the node, named or not (as in SOFA)
   EXPECT_EQ(root.objects[0].type, "BoxROI");
   EXPECT_EQ(root.objects[0].attributes.at("box"), "-1 -1 -1 1 1 1");
   EXPECT_EQ(root.objects[0].attributes.count("fixAll"), 0u);  // only attributes SOFA's file has are set
   EXPECT_EQ(root.objects[1].type, "FixedProjectiveConstraint");
-  EXPECT_EQ(root.objects[1].attributes.at("indices"), "@" + root.objects[0].name() + ".indices");
+  EXPECT_EQ(root.objects[1].attributes.at("indices"), "@[-1].indices");
   EXPECT_EQ(root.objects[2].attributes.at("drawBoxes"), "1");
-  EXPECT_EQ(root.objects[3].attributes.at("indices"), "@" + root.objects[2].name() + ".indices");
-  EXPECT_NE(root.objects[0].name(), root.objects[2].name());
-  EXPECT_EQ(root.objects[2].location.line, 3);
+  EXPECT_EQ(root.objects[2].attributes.at("box"), "2 2 2 3 3 3");
+  EXPECT_EQ(root.objects[2].location.line, 3);  // errors name the scene's element
+  EXPECT_EQ(root.objects[4].type, "PlaneROI");
+  EXPECT_EQ(root.objects[4].attributes.at("plane"), "0 0 0 1 0 0 1 1 0 0.5");
+  EXPECT_EQ(root.objects[5].type, "FixedProjectiveConstraint");
 }
 
 TEST_F(SceneFiles, DataFilesAreFoundAsSofasRepositoriesFindThem) {
@@ -153,6 +159,38 @@ TEST_F(SceneFiles, DataFilesAreFoundAsSofasRepositoriesFindThem) {
   } catch (const Error& error) {
     EXPECT_NE(std::string(error.what()).find("mesh/absent.obj: no such file (looked for"), std::string::npos) << error.what();
   }
+}
+
+TEST_F(SceneFiles, AnUnknownTagIsReplacedByItsObjectsFileOnTheDataPath) {
+  // As SOFA's loader does: Objects/<tag>.xml found from the scene (its folder, then the data path)
+  // replaces the element, as an include with the element's attributes; a file on the path wins
+  // over the built-in BoxConstraint.
+  std::filesystem::create_directories(dir_ / "examples/Objects");
+  std::filesystem::create_directories(dir_ / "examples/Component");
+  write("examples/Objects/Clamp.xml", R"(<Node name="Group">
+  <BoxROI name="clamp_box" box="0 0 0 1 1 1"/>
+  <FixedProjectiveConstraint indices="@[-1].indices"/>
+</Node>)");
+  write("examples/Objects/BoxConstraint.xml", R"(<Node name="Group"><BoxROI box="0 0 0 1 1 1" strict="0"/></Node>)");
+  write("examples/Objects/Tool.xml", R"(<Node name="Tool"><MechanicalObject position="0 0 0"/></Node>)");
+  const auto scene = write("examples/Component/scene.scn", R"(<Node name="root">
+  <Clamp box="-1 -1 -1 0 0 0" color="red"/>
+  <BoxConstraint box="5 5 5 6 6 6"/>
+  <Object type="Tool" name="tool"/>
+  <Undefined size="3"/>
+</Node>)");
+  const SceneNode root = parse_scene_file(scene);
+  ASSERT_EQ(root.objects.size(), 4u);
+  EXPECT_EQ(root.objects[0].type, "BoxROI");
+  EXPECT_EQ(root.objects[0].attributes.at("box"), "-1 -1 -1 0 0 0");
+  EXPECT_EQ(root.objects[0].attributes.count("color"), 0u);
+  EXPECT_EQ(root.objects[0].location.file, dir_ / "examples/Objects/Clamp.xml");
+  EXPECT_EQ(root.objects[1].type, "FixedProjectiveConstraint");
+  EXPECT_EQ(root.objects[2].attributes.at("strict"), "0");  // the file on the path, not the built-in
+  EXPECT_EQ(root.objects[2].attributes.at("box"), "5 5 5 6 6 6");
+  ASSERT_EQ(root.children.size(), 1u);  // not a Group: a child node, renamed by the element
+  EXPECT_EQ(root.children[0].name, "tool");
+  EXPECT_EQ(root.objects[3].type, "Undefined");  // no file: left for the builder to report
 }
 
 TEST_F(SceneFiles, IncludeErrors) {

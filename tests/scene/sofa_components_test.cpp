@@ -112,6 +112,14 @@ TEST(SofaProjectiveConstraints, FixedPlaneSelectsBetweenDminAndDmaxStrictly) {
   EXPECT_TRUE(system.placements.empty());
 }
 
+TEST(SofaProjectiveConstraints, PlaneConstraintFixesThePointsInItsSlab) {
+  // SOFA's Objects/PlaneConstraint.xml (built in): a PlaneROI and a FixedProjectiveConstraint. The
+  // slab over the rectangle x in [-0.5, 0.5], y in [-0.5, 1.5] at z = 0, 0.2 thick, holds the points
+  // (0, 0, 0) and (0, 1, 0): indices 0 and 3 of the 3×2×2 grid.
+  const LoadedScene scene = build(beam("<PlaneConstraint plane=\"-0.5 -0.5 0 0.5 -0.5 0 0.5 1.5 0 0.2\"/>"));
+  EXPECT_EQ(scene.simulation.objects[0].system.fixed, (std::vector<Index>{0, 3}));
+}
+
 TEST(SofaProjectiveConstraints, PlaneAndLineProjectIncrementsAndPlacePoints) {
   const LoadedScene scene = build(beam("<PlaneProjectiveConstraint indices=\"1\" normal=\"0 0 2\" origin=\"0 0 0.25\"/>"
                                        "<LineProjectiveConstraint indices=\"2\" direction=\"0 3 0\" origin=\"2 0 0\"/>"));

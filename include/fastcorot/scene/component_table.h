@@ -39,9 +39,11 @@ std::span<const std::string_view> ignored_components();
 // Ignored components that change SOFA's mechanics (collision detection and contact response): the
 // scene loads, with a warning that contacts are not simulated.
 bool is_collision_component(std::string_view name);
-// Ignored components that SOFA itself does not know (its factory skips them with an error, and the
-// scene runs without them): the scene loads, with a warning saying so.
-bool is_unknown_to_sofa(std::string_view name);
+// Whether a component of this name is one fastcorot reads as SOFA's object factory would create it:
+// supported, ignored or refused with a reason. A scene element of any other type is replaced, as
+// SOFA's loader replaces it, by the file Objects/<type>.xml on the data path when there is one
+// (scene_graph.h); otherwise it is an unknown component.
+bool is_known_component(std::string_view name);
 
 // Attributes every component accepts (name, template, tags, printLog, ...) and the rule that
 // attributes beginning with "draw" or "show" are display options with no effect on mechanics.
