@@ -184,7 +184,7 @@ class Team {
       workers_.emplace_back([this, index, seen = signal_.load()] { work(index, seen); });
     }
     const RunWord run{RunWord::unpack(signal_.load(std::memory_order_relaxed)).run + 1, threads, count};
-    for (int k = 0; k < threads; ++k) {
+    for (int k = 1; k < threads; ++k) {  // the caller's share (0) has no word
       auto& last = last_run_of_share_[static_cast<std::size_t>(k)];
       if (run.run - last > (std::uint32_t{1} << 30)) shares_[static_cast<std::size_t>(k)].restamp(run.run - 1);
       last = run.run;
