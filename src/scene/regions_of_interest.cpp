@@ -1,11 +1,13 @@
 // SOFA's regions of interest (Sofa.Component.Engine.Select): BoxROI (axis-aligned and oriented
-// boxes) and PlaneROI (slabs over a parallelogram), with their outputs: the points and elements
-// (edges, triangles, quads, tetrahedra, hexahedra) inside, and for BoxROI those outside. Read from
+// boxes), PlaneROI (slabs over a parallelogram) and PairBoxROI (the shell between two boxes), with
+// their outputs: the points and elements (edges, triangles, quads, tetrahedra, hexahedra) inside,
+// and for BoxROI those outside. Read from
 // SOFA's BoxROI.inl, BaseROI.inl and PlaneROI.inl (master 2a278d891f): bounds are inclusive, a
 // point is in the region when it is in any of the shapes, outputs keep the input order, and each
 // point or element appears once.
 #include "scene_data.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -65,6 +67,25 @@ struct Slab {
   }
 };
 
+// An axis-aligned box from 6 numbers (xmin ymin zmin xmax ymax zmax), reversed bounds swapped as
+// SOFA does at init; bounds inclusive.
+struct AlignedBox {
+  std::array<double, 3> low{}, high{};
+
+  explicit AlignedBox(const double* v) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      low[k] = std::min(v[k], v[k + 3]);
+      high[k] = std::max(v[k], v[k + 3]);
+    }
+  }
+  bool contains(const Vec3<double>& p) const {
+    for (int k = 0; k < 3; ++k) {
+      if (p[k] < low[static_cast<std::size_t>(k)] || p[k] > high[static_cast<std::size_t>(k)]) return false;
+    }
+    return true;
+  }
+};
+
 struct ElementKind {
   const char* elements;    // input data, e.g. "triangles"
   const char* compute;     // its flag, e.g. "computeTriangles"
@@ -99,11 +120,32 @@ Numbers SceneData::region_of_interest(Component& c, const std::string& asked) {
   const bool box_roi = c.type() == "BoxROI";
   const std::string name = canonical_name(asked);
   if (name == "position") return rest_positions_around(c);
+  if (c.type() == "PairBoxROI") {
+    // The points in inclusiveBox and not in includedBox.
+    if (name != "indices" && name != "pointsInROI") return {};
+    const Numbers& outer = data(c, "inclusiveBox");
+    const Numbers& inner = data(c, "includedBox");
+    if (outer.size() != 6 || inner.size() != 6) {
+      throw make_error(c.where(), ": inclusiveBox and includedBox need 6 numbers each");
+    }
+    const AlignedBox inclusive(outer.data()), included(inner.data());
+    const auto positions = points(c, "position");
+    Numbers out;
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      if (!inclusive.contains(positions[i]) || included.contains(positions[i])) continue;
+      if (name == "indices") {
+        out.push_back(static_cast<double>(i));
+      } else {
+        out.insert(out.end(), {positions[i].x(), positions[i].y(), positions[i].z()});
+      }
+    }
+    return out;
+  }
   if (box_roi && name == "box") return c.has("orientedBox") ? Numbers{} : Numbers{0, 0, 0, 1, 1, 1};
   if (!box_roi && name == "plane") return Numbers(10, 0.0);  // SOFA's default: one all-zero plane
 
   // The shapes.
-  std::vector<std::array<double, 6>> boxes;
+  std::vector<AlignedBox> boxes;
   std::vector<Slab> slabs;
   const auto read_slabs = [&](const char* data_name) {
     const Numbers& values = data(c, data_name);
@@ -118,21 +160,14 @@ Numbers SceneData::region_of_interest(Component& c, const std::string& asked) {
     if (box.size() % 6 != 0) {
       throw make_error(c.where(), ": box needs 6 numbers per box (xmin ymin zmin xmax ymax zmax), got ", box.size());
     }
-    for (std::size_t b = 0; b < box.size(); b += 6) {
-      std::array<double, 6> bounds{};
-      for (std::size_t k = 0; k < 3; ++k) {  // SOFA swaps reversed bounds at init
-        bounds[k] = std::min(box[b + k], box[b + 3 + k]);
-        bounds[k + 3] = std::max(box[b + k], box[b + 3 + k]);
-      }
-      boxes.push_back(bounds);
-    }
+    for (std::size_t b = 0; b < box.size(); b += 6) boxes.emplace_back(&box[b]);
     if (c.has("orientedBox")) read_slabs("orientedBox");
   } else {
     read_slabs("plane");
   }
   const auto in_box = [&](const Vec3<double>& p) {
-    for (const auto& b : boxes) {
-      if (b[0] <= p.x() && p.x() <= b[3] && b[1] <= p.y() && p.y() <= b[4] && b[2] <= p.z() && p.z() <= b[5]) return true;
+    for (const auto& box : boxes) {
+      if (box.contains(p)) return true;
     }
     for (const auto& slab : slabs) {
       if (slab.contains(p)) return true;

@@ -141,37 +141,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (name == "tetrahedra") return flatten_indices(mesh.tetrahedra);
     return {};
   }
-  if (type == "PairBoxROI") {
-    // The points in inclusiveBox and not in includedBox, bounds included (SOFA's PairBoxROI).
-    if (name == "position") return rest_positions_around(c);
-    if (name == "indices" || name == "pointsInROI") {
-      Numbers outer = data(c, "inclusiveBox"), inner = data(c, "includedBox");
-      if (outer.size() != 6 || inner.size() != 6) throw make_error(c.where(), ": inclusiveBox and includedBox need 6 numbers each");
-      for (Numbers* box : {&outer, &inner}) {
-        for (int k = 0; k < 3; ++k) {
-          if ((*box)[static_cast<std::size_t>(k)] > (*box)[static_cast<std::size_t>(k + 3)]) {
-            std::swap((*box)[static_cast<std::size_t>(k)], (*box)[static_cast<std::size_t>(k + 3)]);
-          }
-        }
-      }
-      const auto in = [](const Vec3<double>& p, const Numbers& b) {
-        return p[0] >= b[0] && p[0] <= b[3] && p[1] >= b[1] && p[1] <= b[4] && p[2] >= b[2] && p[2] <= b[5];
-      };
-      Numbers out;
-      const auto positions = points(c, "position");
-      for (std::size_t i = 0; i < positions.size(); ++i) {
-        if (!in(positions[i], outer) || in(positions[i], inner)) continue;
-        if (name == "indices") {
-          out.push_back(static_cast<double>(i));
-        } else {
-          out.insert(out.end(), {positions[i].x(), positions[i].y(), positions[i].z()});
-        }
-      }
-      return out;
-    }
-    return {};
-  }
-  if (type == "BoxROI" || type == "PlaneROI") return region_of_interest(c, name);
+  if (type == "BoxROI" || type == "PlaneROI" || type == "PairBoxROI") return region_of_interest(c, name);
   return {};
 }
 
