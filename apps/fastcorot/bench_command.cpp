@@ -83,13 +83,14 @@ void write_frame(const std::string& dir, const Simulation<double>& simulation) {
 void bench(const BenchOptions& options, std::ostream& out) {
   if (options.steps < 1) throw make_error("--steps ", options.steps, ": must be >= 1");
   if (options.warmup < 0) throw make_error("--warmup ", options.warmup, ": must be >= 0");
-  const int threads = threads_to_run(options.threads);
+  threads_to_run(options.threads, false, 0);  // checks it before the scene loads
   if (!options.beam.empty() && !options.scene.empty()) throw make_error("--beam replaces SCENE: give one of them");
   LoadedScene scene = options.beam.empty()
                           ? load_scene_argument(options.scene, options.strict)
                           : build_scene(parse_scene_text(beam_scene_text(options.beam), "<built-in beam " + options.beam + ">"));
   for (const auto& line : scene.warnings) std::cerr << "warning: " << line << '\n';
   Simulation<double>& simulation = scene.simulation;
+  const int threads = threads_to_run(options.threads, false, simulated_points(simulation));
   simulation.threads = threads;
   if (!options.vtu_dir.empty()) make_output_folder(options.vtu_dir, "--vtu");
   const std::string name = !options.beam.empty() ? "beam " + options.beam

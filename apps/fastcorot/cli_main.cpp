@@ -94,8 +94,8 @@ int run_cli(int argc, char** argv) {
   run->add_option("--dump-state", run_options.dump_state, "write positions as JSON to FILE");
   run->add_option("--dump-steps", dump_steps, "steps to dump, e.g. 0,1,10,100 (default; the last step is always dumped)");
   run->add_option("--threads", run_options.threads,
-                  "threads: independent objects concurrently, then each object's kernels (0: every core, fewer "
-                  "while other processes keep cores busy; 1 per rank under mpirun)")
+                  "threads: independent objects concurrently, then each object's kernels (0: one per 2000 points, "
+                  "at most every core; fewer while other processes keep cores busy; 1 per rank under mpirun)")
       ->capture_default_str();
   run->add_flag("--quiet", run_options.quiet, "no progress bar, info lines or summary");
   run->add_flag("--strict", run_options.strict, "treat warnings (unknown attributes) as errors");
@@ -130,7 +130,7 @@ int run_cli(int argc, char** argv) {
       ->capture_default_str();
   view->add_option("--screenshot", view_options.screenshot, "save the last frame shown as PNG");
   auto* view_dt_option = view->add_option("--dt", view_dt, "time step (default: the scene's)");
-  view->add_option("--threads", view_options.threads, "threads: objects, then each object's kernels (0: every core)")->capture_default_str();
+  view->add_option("--threads", view_options.threads, "threads: objects, then each object's kernels (0: one per 2000 points, at most every core)")->capture_default_str();
 
   fastcorot::cli::BenchOptions bench_options;
   CLI::App* bench = app.add_subcommand(
@@ -139,7 +139,7 @@ int run_cli(int argc, char** argv) {
   bench->add_option("--beam", bench_options.beam, "the built-in beam with NXxNYxNZ grid points, e.g. 76x16x16");
   bench->add_option("--steps", bench_options.steps, "timed steps")->capture_default_str();
   bench->add_option("--warmup", bench_options.warmup, "untimed steps first")->capture_default_str();
-  bench->add_option("--threads", bench_options.threads, "threads: objects, then each object's kernels (0: every core)")
+  bench->add_option("--threads", bench_options.threads, "threads: objects, then each object's kernels (0: one per 2000 points, at most every core)")
       ->capture_default_str();
   bench->add_option("--vtu", bench_options.vtu_dir, "write a VTU frame per step to DIR (timed as output)");
   bench->add_flag("--json", bench_options.json, "print the figures as JSON");

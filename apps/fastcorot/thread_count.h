@@ -1,7 +1,8 @@
-// --threads of run, view and bench: 0, the default, means every core of the machine, or one per
-// rank in a distributed run (its ranks share the cores). Parallel loops then use fewer while other
-// processes keep cores busy (core/parallel.h), so all cores are the fastest choice on a free
-// machine and on a loaded one alike (docs/performance.md, "Threads on a busy machine").
+// --threads of run, view and bench: 0, the default, means fastcorot's choice for the scene's size
+// (default_thread_count in core/machine.h: one thread per 2,000 points, at most every core), or one
+// per rank in a distributed run (its ranks share the cores). Parallel loops then use fewer while
+// other processes keep cores busy (core/parallel.h), so the choice is the fastest on a free machine
+// and on a loaded one alike (docs/performance.md, "Threads on a busy machine").
 #pragma once
 
 #include "fastcorot/core/error.h"
@@ -9,10 +10,18 @@
 
 namespace fastcorot::cli {
 
-inline int threads_to_run(int requested, bool distributed = false) {
-  if (requested < 0) throw make_error("--threads ", requested, ": must be >= 1 (or 0: every core)");
+inline int threads_to_run(int requested, bool distributed, long points) {
+  if (requested < 0) throw make_error("--threads ", requested, ": must be >= 1 (or 0: fastcorot's choice)");
   if (requested > 0) return requested;
-  return distributed ? 1 : machine_cores();
+  return distributed ? 1 : default_thread_count(points);
+}
+
+// The points of every simulated object of a scene.
+template <class Simulation>
+long simulated_points(const Simulation& simulation) {
+  long points = 0;
+  for (const auto& object : simulation.objects) points += static_cast<long>(object.system.size());
+  return points;
 }
 
 }  // namespace fastcorot::cli

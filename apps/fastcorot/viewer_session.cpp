@@ -17,7 +17,7 @@ namespace fastcorot::cli {
 ViewerSession::ViewerSession(const ViewOptions& options) : options_(options) {
   draw = draw_options(options.picture);
   playing = !options.paused;
-  threads_to_run(options.threads);  // checks it
+  threads_to_run(options.threads, false, 0);  // checks it
   if (options.dt && !(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
   load(false);
   // A brush of 1.5 % of the scene's diagonal takes a few tetrahedra of a typical mesh per cut, so
@@ -32,7 +32,7 @@ void ViewerSession::load(bool again) {
   LoadedScene& scene = again ? source_->reload() : source_->scene();
   warnings = scene.warnings;
   if (options_.dt) scene.simulation.dt = *options_.dt;
-  scene.simulation.threads = threads_to_run(options_.threads);
+  scene.simulation.threads = threads_to_run(options_.threads, false, simulated_points(scene.simulation));
   materials.clear();
   for (const auto& object : scene.simulation.objects) {
     ObjectMaterial material;

@@ -24,15 +24,19 @@ class Simulation:
     Simulation built from the same tree takes the bindings over."""
 
     def __init__(self, root, threads=None, strict=True, allow_empty=False):
-        """`threads`: None (the default) for every core of the machine, as `fastcorot run`; parallel
-        loops use fewer while other processes keep cores busy. `strict`: unknown attributes are
+        """`threads`: None (the default) for fastcorot's choice, as `fastcorot run` makes it: one
+        thread per 2,000 simulated points, at most every core; parallel loops use fewer while other
+        processes keep cores busy. `strict`: unknown attributes are
         errors (False: warnings, listed in `warnings`, as SOFA and `fastcorot run` take them);
         `allow_empty`: a scene with nothing to simulate steps only time."""
         if not isinstance(root, Node):
             raise TypeError(f"Simulation: expected a fastcorot.Node, got {type(root).__name__}")
         objects = []
         core = _core.SimulationCore(root._tree(objects), strict, allow_empty)
-        core.threads = threads if threads is not None else max(1, os.cpu_count() or 1)
+        if threads is None:
+            points = sum(size for _, _, _, size in core.state_parts)
+            threads = min(max(1, os.cpu_count() or 1), max(1, points // 2000))
+        core.threads = threads
         for node in walk(root):
             object.__setattr__(node, "_core", None)
             for obj in node._objects:

@@ -116,6 +116,11 @@ int machine_cores() {
   return cores;
 }
 
+int default_thread_count(long points) {
+  constexpr long kPointsPerThread = 2000;
+  return static_cast<int>(std::clamp<long>(points / kPointsPerThread, 1, machine_cores()));
+}
+
 namespace {
 
 // The kernel's count of runnable threads, or -1. The file stays open: each read at offset 0

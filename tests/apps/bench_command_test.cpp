@@ -94,11 +94,15 @@ TEST(Bench, TextReportNamesEveryPhase) {
   }
 }
 
-TEST(Bench, ThreadsAbsentOrZeroMeanEveryCore) {
+TEST(Bench, ThreadsAbsentOrZeroMeanOnePer2000PointsAtMostEveryCore) {
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   for (const char* threads : {"", " --threads 0"}) {
-    const auto result = run_fastcorot(std::string("bench --beam 5x2x2 --steps 2 --json") + threads);
-    ASSERT_EQ(result.status, 0) << result.output;
-    EXPECT_EQ(json::parse(result.output)["threads"], std::max(1u, std::thread::hardware_concurrency())) << threads;
+    // 20 points: one thread; 6,000: three, or every core when there are fewer.
+    for (const auto& [beam, expected] : {std::pair<std::string, int>{"5x2x2", 1}, {"60x10x10", std::min(cores, 3)}}) {
+      const auto result = run_fastcorot("bench --beam " + beam + " --steps 1 --warmup 0 --json" + threads);
+      ASSERT_EQ(result.status, 0) << result.output;
+      EXPECT_EQ(json::parse(result.output)["threads"], expected) << beam << threads;
+    }
   }
 }
 
@@ -108,7 +112,7 @@ TEST(Bench, BadOptionsAreErrors) {
            {"bench --beam 40x10", "--beam \"40x10\": expected NXxNYxNZ"},
            {"bench --beam 1x10x10", "three numbers of grid points >= 2"},
            {"bench --steps 0", "--steps 0: must be >= 1"},
-           {"bench --threads -1", "--threads -1: must be >= 1 (or 0: every core)"},
+           {"bench --threads -1", "--threads -1: must be >= 1 (or 0: fastcorot's choice)"},
            {"bench --beam 4x4x4 some.scn", "--beam replaces SCENE"},
            {"bench missing.scn", "missing.scn"}}) {
     const auto result = run_fastcorot(arguments);

@@ -25,6 +25,14 @@ TEST(Machine, NoTimeForAnyRoundTripIsNaN) {
   EXPECT_TRUE(std::isnan(thread_round_trip_ns(1000, std::chrono::nanoseconds(0))));
 }
 
+TEST(Machine, DefaultThreadsAreOnePer2000PointsAtMostEveryCore) {
+  const int cores = machine_cores();
+  EXPECT_EQ(default_thread_count(0), 1);
+  EXPECT_EQ(default_thread_count(3999), 1);
+  EXPECT_EQ(default_thread_count(4000), std::min(cores, 2));
+  EXPECT_EQ(default_thread_count(1L << 40), cores);
+}
+
 TEST(Machine, ABusyProcessLeavesACoreLess) {
   const int cores = machine_cores();
   const testing::BusyCore busy;

@@ -32,6 +32,13 @@ double thread_round_trip_ns(int rounds, std::chrono::nanoseconds budget);
 // The machine's cores (online processors).
 int machine_cores();
 
+// The thread count fastcorot chooses for a simulation of `points` points when none is asked for:
+// one thread per 2,000 points, at least one, at most every core. A parallel loop costs about a
+// microsecond of hand-over between two threads on the 2-core VM, which smaller scenes do not win
+// back (docs/performance.md, "Threads on a busy machine": 1,920 points ran faster on one thread,
+// 4,000 on two).
+int default_thread_count(long points);
+
 // How many of the machine's cores other processes leave free just now: the cores less the threads
 // the kernel has runnable (Linux: /proc/loadavg's fourth field, every runnable thread of every
 // process, this one's included) less `own_runnable` of them that are this process's. A
