@@ -83,7 +83,7 @@ void write_frame(const std::string& dir, const Simulation<double>& simulation) {
 void bench(const BenchOptions& options, std::ostream& out) {
   if (options.steps < 1) throw make_error("--steps ", options.steps, ": must be >= 1");
   if (options.warmup < 0) throw make_error("--warmup ", options.warmup, ": must be >= 0");
-  threads_to_run(options.threads, false, 0);  // checks it before the scene loads
+  check_threads_option(options.threads);
   if (!options.beam.empty() && !options.scene.empty()) throw make_error("--beam replaces SCENE: give one of them");
   LoadedScene scene = options.beam.empty()
                           ? load_scene_argument(options.scene, options.strict)

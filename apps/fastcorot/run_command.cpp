@@ -287,7 +287,7 @@ void progress(std::ostream& err, long done, long total, double seconds) {
 void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (options.steps < 0) throw make_error("--steps ", options.steps, ": must be >= 0");
   if (options.every < 1) throw make_error("--every ", options.every, ": must be >= 1");
-  threads_to_run(options.threads, false, 0);  // checks it before the scene loads
+  check_threads_option(options.threads);
   if (options.checkpoint_every < 0)
     throw make_error("--checkpoint-every ", options.checkpoint_every, ": must be >= 1");
   if (!(options.divergence_factor >= 0)) {

@@ -10,8 +10,13 @@
 
 namespace fastcorot::cli {
 
-inline int threads_to_run(int requested, bool distributed, long points) {
+// Throws for a --threads value that is neither a count nor 0 (checked before a scene loads).
+inline void check_threads_option(int requested) {
   if (requested < 0) throw make_error("--threads ", requested, ": must be >= 1 (or 0: fastcorot's choice)");
+}
+
+inline int threads_to_run(int requested, bool distributed, long points) {
+  check_threads_option(requested);
   if (requested > 0) return requested;
   return distributed ? 1 : default_thread_count(points);
 }

@@ -17,7 +17,7 @@ namespace fastcorot::cli {
 ViewerSession::ViewerSession(const ViewOptions& options) : options_(options) {
   draw = draw_options(options.picture);
   playing = !options.paused;
-  threads_to_run(options.threads, false, 0);  // checks it
+  check_threads_option(options.threads);
   if (options.dt && !(*options.dt > 0)) throw make_error("--dt ", *options.dt, ": must be > 0");
   load(false);
   // A brush of 1.5 % of the scene's diagonal takes a few tetrahedra of a typical mesh per cut, so
