@@ -11,7 +11,6 @@ stepping is fastcorot.SimulationError (a RuntimeError) naming the step and the o
 """
 
 import numbers
-import os
 
 from . import _core
 from .scene import Node, walk
@@ -34,8 +33,7 @@ class Simulation:
         objects = []
         core = _core.SimulationCore(root._tree(objects), strict, allow_empty)
         if threads is None:
-            points = sum(size for _, _, _, size in core.state_parts)
-            threads = min(max(1, os.cpu_count() or 1), max(1, points // 2000))
+            threads = _core.default_thread_count(sum(size for _, _, _, size in core.state_parts))
         core.threads = threads
         for node in walk(root):
             object.__setattr__(node, "_core", None)

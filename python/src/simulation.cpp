@@ -8,6 +8,7 @@
 #include "simulation_core.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/machine.h"
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/scene/scene_builder.h"
 
@@ -81,6 +82,8 @@ Vec3<double> vec3_of(py::handle value, const std::string& what) {
 }  // namespace
 
 void bind_simulation(py::module_& m) {
+  m.def("default_thread_count", &default_thread_count, py::arg("points"),
+        "The threads fastcorot chooses for a simulation of this many points (core/machine.h).");
   py::class_<SimulationCore> core(m, "SimulationCore",
                                   "The compiled simulation behind fastcorot.Simulation (built from a scene tree).");
   bind_matrices(core);
