@@ -266,10 +266,24 @@ class ObjSeries {
   std::vector<std::vector<Triangle>> boundaries_;
 };
 
-void record(json& steps, const Simulation<double>& simulation) {
+// A dumped step: `steps` the positions of each simulated object under its path (the first format,
+// kept for the files written before velocities were dumped), `states` every MechanicalObject,
+// mapped ones included, under "node path/object name" in scene order (docs/cli.md).
+void record(json& steps, nlohmann::ordered_json& states, const Simulation<double>& simulation) {
   json frame = json::object();
-  for (const auto& object : simulation.objects) frame[object.path] = points_to_json(object.system.state.position);
+  nlohmann::ordered_json all = nlohmann::ordered_json::object();
+  for (const auto& object : simulation.objects) {
+    frame[object.path] = points_to_json(object.system.state.position);
+    for (const StateSnapshot& state : state_snapshots(object)) {
+      all[state.key()] = {{"node", state.node},
+                          {"object", state.name},
+                          {"mapped", state.mapped},
+                          {"position", points_to_json(state.position)},
+                          {"velocity", points_to_json(state.velocity)}};
+    }
+  }
   steps[std::to_string(simulation.steps_done())] = std::move(frame);
+  states[std::to_string(simulation.steps_done())] = std::move(all);
 }
 
 void progress(std::ostream& err, long done, long total, double seconds) {
@@ -330,9 +344,10 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     for (const auto& line : scene.info) err << "info: " << line << '\n';
   }
   json steps = json::object();
+  nlohmann::ordered_json states = nlohmann::ordered_json::object();
   auto write_dump = [&] {
     if (options.dump_state.empty()) return;
-    json dump = {{"dt", simulation.dt}, {"steps", steps}};
+    nlohmann::ordered_json dump = {{"dt", simulation.dt}, {"steps", steps}, {"states", states}};
     write_text(dump.dump(), options.dump_state);
   };
   // Outputs are set up on the scene as built (the pictures' camera is framed on it), also when
@@ -361,7 +376,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (vtu) vtu->adopt_earlier_frames(simulation, options.every);
     if (options.dump_steps.count(simulation.steps_done()) ||
         (dump_last && options.steps == simulation.steps_done())) {
-      record(steps, simulation);
+      record(steps, states, simulation);
     }
   }
   // Frames and dumps of the step just done: a distributed run first gathers the state on rank 0
@@ -374,7 +389,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
     on_every_rank([&] {
       if (!writer) return;
-      if (dump) record(steps, simulation);
+      if (dump) record(steps, states, simulation);
       if (vtu && frame) vtu->write(simulation, distributed->active() ? &forces : nullptr);
       if (obj && frame) obj->write(simulation);
       if (pictures && frame) pictures->write(simulation);

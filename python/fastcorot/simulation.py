@@ -84,6 +84,14 @@ class Simulation:
         """The node path of each simulated object ("root/beam"), as `fastcorot run --dump-state` names them."""
         return self._core.paths
 
+    def states(self):
+        """Every MechanicalObject of the scene, mapped ones included, at the current step, as
+        `fastcorot run --dump-state` writes one dumped step under "states": a dict keyed
+        "node path/object name" in scene order, each {"node", "object", "mapped", "position",
+        "velocity"} with (n, 3) numpy copies. `json.dump` of {"dt": sim.dt, "states": {str(step):
+        {key: {..., "position": p.tolist(), ...}}}} writes the command line's format."""
+        return self._core.states()
+
     def tetrahedra(self, index=0):
         """(m, 4) tetrahedra of simulated object `index` (its force field's mesh; empty without one),
         indices into its MechanicalObject's points."""

@@ -14,6 +14,7 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <mutex>
 
@@ -135,6 +136,30 @@ void bind_simulation(py::module_& m) {
                                for (const auto& object : c.simulation().objects) paths.push_back(object.path);
                                return paths;
                              })
+      .def(
+          "states",
+          [](SimulationCore& c) {
+            py::dict out;
+            const auto copy = [](const std::vector<Vec3<double>>& points) {
+              PointArray<double> array(std::vector<py::ssize_t>{static_cast<py::ssize_t>(points.size()), 3});
+              for (std::size_t i = 0; i < points.size(); ++i) std::copy_n(points[i].data(), 3, array.mutable_data() + 3 * i);
+              return array;
+            };
+            for (const auto& object : c.simulation().objects) {
+              for (const StateSnapshot& state : state_snapshots(object)) {
+                py::dict entry;
+                entry["node"] = state.node;
+                entry["object"] = state.name;
+                entry["mapped"] = state.mapped;
+                entry["position"] = copy(state.position);
+                entry["velocity"] = copy(state.velocity);
+                out[py::str(state.key())] = entry;
+              }
+            }
+            return out;
+          },
+          "Every MechanicalObject, mapped ones included, as `fastcorot run --dump-state` dumps a step: "
+          "{'node path/object': {'node', 'object', 'mapped', 'position', 'velocity'}} (copies).")
       .def(
           "position", [](py::object self, std::size_t k) { return view(self.cast<SimulationCore&>().state(k).position, self, true); },
           py::arg("k"))

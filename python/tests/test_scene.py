@@ -2,6 +2,7 @@
 exactly as the same scene read from its file, through the module and through `fastcorot run`; data
 are read and written by name; simulated positions and velocities are views of the state."""
 
+import json
 import os
 import threading
 import time
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 
 import fastcorot
-from conftest import REPOSITORY, beam_example, dump_state
+from conftest import REPOSITORY, beam_example, dump_state, run_cli
 
 BEAM_SCN = REPOSITORY / "examples/cantilever_beam_40x10x10.scn"
 
@@ -288,3 +289,34 @@ def test_objects_sharing_one_solver_are_one_state_viewed_in_parts(tmp_path):
     b.velocity = np.ones((4, 3))
     assert np.array_equal(sim._core.velocity(0)[4:], np.ones((4, 3)))
     assert not np.any(sim._core.velocity(0)[:4] == 1)
+
+
+def test_states_are_every_mechanical_object_as_the_program_dumps_them(tmp_path):
+    # Two objects under one solver, and a state mapped onto one of them (IdentityMapping): the
+    # program's dump of a step and Simulation.states() hold the same names, positions and velocities.
+    parts = "".join(
+        f"""<Node name="{name}"><MechanicalObject name="dofs" position="{s} 0 0 {s + 1} 0 0 {s} 1 0 {s} 0 1"/>
+          <TetrahedronSetTopologyContainer tetrahedra="0 1 2 3"/><UniformMass totalMass="1"/>
+          <TetrahedronFEMForceField youngModulus="100"/><FixedProjectiveConstraint indices="0"/>
+          <Node name="copy"><MechanicalObject/><IdentityMapping/></Node></Node>"""
+        for name, s in (("a", 0), ("b", 5)))
+    scene = tmp_path / "two.scn"
+    scene.write_text(f"""<Node name="root"><Node name="group"><EulerImplicitSolver/><EigenSimplicialLDLT/>
+        {parts}</Node></Node>""")
+    sim = fastcorot.Simulation(fastcorot.load(scene))
+    sim.step(3)
+    states = sim.states()
+    assert list(states) == ["root/group/a/dofs", "root/group/b/dofs", "root/group/a/copy/MechanicalObject1",
+                            "root/group/b/copy/MechanicalObject1"]
+    out = tmp_path / "state.json"
+    run_cli("run", scene, "--steps", 3, "--quiet", "--dump-state", out, "--dump-steps", 3)
+    dumped = json.loads(out.read_text())["states"]["3"]
+    assert list(dumped) == list(states)
+    for key, state in states.items():
+        assert state["mapped"] == key.endswith("MechanicalObject1")
+        assert dumped[key]["node"] == state["node"] and dumped[key]["object"] == state["object"]
+        np.testing.assert_array_equal(state["position"], np.array(dumped[key]["position"]))
+        np.testing.assert_array_equal(state["velocity"], np.array(dumped[key]["velocity"]))
+    np.testing.assert_array_equal(states["root/group/b/copy/MechanicalObject1"]["velocity"],
+                                  states["root/group/b/dofs"]["velocity"])
+    assert np.abs(states["root/group/b/dofs"]["velocity"]).max() > 0

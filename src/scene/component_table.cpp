@@ -26,12 +26,12 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 58> kIgnored = {
+constexpr std::array<std::string_view, 57> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
     "DiscreteIntersection", "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel",
-    "LineCollisionModel", "PointCollisionModel", "SphereCollisionModel", "SphereLoader",
+    "LineCollisionModel", "PointCollisionModel", "SphereCollisionModel",
     "VisualGrid", "LineAxis", "OglSceneFrame", "TetrahedronSetTopologyModifier",
     "TetrahedronSetGeometryAlgorithms", "TriangleSetTopologyModifier",
     "TriangleSetGeometryAlgorithms", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
@@ -77,11 +77,11 @@ std::span<const std::string_view> ignored_components() { return kIgnored; }
 
 
 bool is_collision_component(std::string_view name) {
-  static constexpr std::array<std::string_view, 19> kCollision = {
+  static constexpr std::array<std::string_view, 18> kCollision = {
       "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase", "BruteForceDetection",
       "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection", "DiscreteIntersection",
       "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel", "LineCollisionModel",
-      "PointCollisionModel", "SphereCollisionModel", "SphereLoader", "TetrahedronCollisionModel",
+      "PointCollisionModel", "SphereCollisionModel", "TetrahedronCollisionModel",
       "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase"};
   return std::find(kCollision.begin(), kCollision.end(), name) != kCollision.end();
 }

@@ -131,7 +131,7 @@ class Builder {
                            ": mechanics in a mapped node are not supported (node ", node.path, ")");
         }
       }
-      if (node.of_category("visual").empty()) {
+      if (node.of_category("visual").empty() && node.of_category("state").empty()) {
         info_.push_back(node.scene->location.to_string() + ": mapped node " + node.path +
                         " ignored (visual or collision only)");
       } else {
@@ -181,6 +181,7 @@ class Builder {
       throw make_error(state.where(), ": velocity has ", velocity.size(), " entries, position has ", n);
     }
     system.state.velocity = velocity.empty() ? Points<double>(static_cast<std::size_t>(n), Vec3<double>::Zero()) : velocity;
+    object.states.push_back({state.node->path, state.sofa_name(), 0, n});
 
     for (GraphNode* node : nodes) {
       for (const auto& c : node->components) {
@@ -229,7 +230,10 @@ class Builder {
     } catch (const Error& error) {
       throw make_error(state.where(), ": ", error.what());
     }
-    for (GraphNode* visual_node : visuals) scene_detail::add_visual_surfaces(data_, info_, *visual_node, object);
+    for (GraphNode* mapped_node : visuals) {
+      scene_detail::add_visual_surfaces(data_, info_, *mapped_node, object);
+      scene_detail::add_mapped_states(data_, info_, *mapped_node, object);
+    }
     return object;
   }
 

@@ -22,6 +22,16 @@ std::string Component::where() const {
   return text;
 }
 
+std::string Component::sofa_name() const {
+  if (!name().empty()) return name();
+  int rank = 0;
+  for (const auto& other : node->components) {
+    if (other->object->type == object->type && other->name().empty()) ++rank;
+    if (other.get() == this) break;
+  }
+  return object->type + std::to_string(rank);
+}
+
 std::vector<Component*> GraphNode::of_category(std::string_view category) const {
   std::vector<Component*> found;
   for (const auto& c : components) {

@@ -37,6 +37,9 @@ struct Component {
 
   std::string_view type() const { return spec ? spec->name : std::string_view(object->type); }
   std::string name() const { return object->name(); }
+  // The name SOFA gives it: its `name`, else (SOFA's XML loader) its type followed by its rank
+  // among the unnamed components of that type in its node ("MechanicalObject1").
+  std::string sofa_name() const;
   bool has(const std::string& attribute) const { return object->attributes.count(attribute) != 0; }
   // "file:line: Type 'name'"
   std::string where() const;

@@ -4,6 +4,7 @@
 #include "scene_data.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/io/sphere_reader.h"
 #include "fastcorot/topology/cylinder_grid.h"
 #include "fastcorot/topology/cylinder_mesh.h"
 #include "fastcorot/topology/regular_grid.h"
@@ -129,6 +130,26 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (name == "rest_position") return data(c, "position");
     if (name == "velocity") return {};
     return {};
+  }
+  if (type == "SphereLoader" && (name == "position" || name == "sphere_centers" || name == "listRadius")) {
+    const std::string file = text(c, "filename", "");
+    if (file.empty()) throw make_error(c.where(), ": no filename given");
+    SphereData spheres;
+    try {
+      spheres = read_sphere_file(find_data_file(c.object->location.file, file));
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": ", error.what());
+    }
+    if (name == "listRadius") return Numbers(spheres.radii.begin(), spheres.radii.end());
+    for (const auto& line : spheres.warnings) warn(c.where() + ": " + line);
+    // SOFA's `scale` is the same Data as scale3d (an alias), three numbers or one.
+    Vec3<double> scale = vec3(c, "scale3d", {1, 1, 1});
+    if (c.has("scale")) {
+      const Numbers& given = data(c, "scale");
+      if (given.size() != 1 && given.size() != 3) throw make_error(c.where(), ": scale needs 1 or 3 numbers");
+      scale = given.size() == 1 ? Vec3<double>::Constant(given[0]) : Vec3<double>(given[0], given[1], given[2]);
+    }
+    return flatten(transformed(std::move(spheres.centers), scale, vec3(c, "rotation", {0, 0, 0}), vec3(c, "translation", {0, 0, 0})));
   }
   if (type == "GenerateCylinder") {
     if (whole_number(c, "BezierTetrahedronDegree", 0) > 1 || whole_number(c, "BezierTriangleDegree", 0) > 1) {

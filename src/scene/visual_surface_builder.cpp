@@ -108,20 +108,59 @@ class VisualSurfaceBuilder {
     surface.rest_points = data.points;
     surface.triangles = data.all_triangles();
     surface.color = visual_color(model);
+    surface.map = map_points(node, mapping, surface.rest_points, object, "the visual model", surface.mapping);
+    return surface;
+  }
+
+  // Each MechanicalObject of mapped node `node` that one of its mappings outputs to, with that
+  // mapping (outputs only: sim/mapped_state.h).
+  void add_mapped_states(GraphNode& node, SimulatedObject<double>& object) {
+    const auto mappings = node.of_category("visualmapping");
+    for (Component* state : node.of_category("state")) {
+      Component* mapping = nullptr;
+      for (Component* m : mappings) {
+        const auto output = m->object->attributes.find("output");
+        if (output == m->object->attributes.end() ? node.of_category("state").front() == state
+                                                  : &data_.resolve_object(node, output->second, *m) == state) {
+          mapping = m;
+          break;
+        }
+      }
+      if (!mapping) {
+        info_.push_back(state->where() + ": the state of mapped node " + node.path +
+                        " has no mapping fastcorot follows (BarycentricMapping, IdentityMapping, SubsetMapping): not in outputs");
+        continue;
+      }
+      try {
+        MappedState mapped{node.path, state->sofa_name(), "", {}};
+        // SOFA's IdentityMapping and SubsetMapping size their output themselves.
+        std::vector<Vec3<double>> points;
+        if (mapping->type() == "BarycentricMapping" || mapping->type() == "SubsetMapping") points = data_.points(*state, "position");
+        mapped.map = map_points(node, *mapping, points, object, "the state", mapped.mapping);
+        object.mapped_states.push_back(std::move(mapped));
+      } catch (const Error& error) {
+        throw make_error(state->where(), ": ", error.what());
+      }
+    }
+  }
+
+  // The mapping of `points` (the mapped model's, as placed) onto the object's points; `what` names
+  // the model in messages, `description` receives the mapping's kind. An empty `points` with
+  // IdentityMapping or SubsetMapping takes the mapping's own size, as SOFA's do for states.
+  PointMapping<double> map_points(GraphNode& node, Component& mapping, const std::vector<Vec3<double>>& points,
+                                  const SimulatedObject<double>& object, const char* what, std::string& description) {
     const auto& system = object.system;
     if (mapping.type() == "IdentityMapping") {
-      if (surface.rest_points.size() != system.state.position.size()) {
-        throw make_error("IdentityMapping ", mapping.where(), ": the visual model has ", surface.rest_points.size(),
+      if (!points.empty() && points.size() != system.state.position.size()) {
+        throw make_error("IdentityMapping ", mapping.where(), ": ", what, " has ", points.size(),
                          " points, the object ", system.state.position.size());
       }
-      surface.mapping = "IdentityMapping";
-      surface.map = PointMapping<double>::identity(surface.rest_points.size());
-      return surface;
+      description = "IdentityMapping";
+      return PointMapping<double>::identity(system.state.position.size());
     }
     if (mapping.type() == "SubsetMapping") {
-      surface.mapping = "SubsetMapping";
-      surface.map = PointMapping<double>::subset(subset_indices(mapping, surface.rest_points, system.state.position));
-      return surface;
+      description = "SubsetMapping";
+      return PointMapping<double>::subset(subset_indices(mapping, points, system.state.position));
     }
     // SOFA's BarycentricMapping takes the first topology of the object's node: a grid gives the
     // trilinear mapper, tetrahedra the tetrahedral one.
@@ -129,19 +168,17 @@ class VisualSurfaceBuilder {
     const auto& x = rest ? system.state.rest_position : system.state.position;
     Component* topology = first_topology(node);
     if (topology && topology->type() == "RegularGridTopology") {
-      surface.mapping = "BarycentricMapping (trilinear, RegularGridTopology)";
-      surface.map = PointMapping<double>::trilinear(data_.grid(*topology), surface.rest_points);
-      return surface;
+      description = "BarycentricMapping (trilinear, RegularGridTopology)";
+      return PointMapping<double>::trilinear(data_.grid(*topology), points);
     }
     if (!object.mesh) throw make_error("BarycentricMapping ", mapping.where(), ": the object has no tetrahedra to map onto");
     // A MeshTopology gets SOFA's MeshMapper, which tries every tetrahedron; a dynamic container its
     // TetrahedronSetMapper, which searches a grid.
     const bool mesh_topology = topology && topology->object->type == "MeshTopology";
-    surface.mapping = mesh_topology ? "BarycentricMapping (tetrahedra, every one tried)" : "BarycentricMapping (tetrahedra)";
-    surface.map = PointMapping<double>::from_barycentric(
-        *object.mesh, map_onto_tetrahedra<double>(*object.mesh, x, surface.rest_points,
+    description = mesh_topology ? "BarycentricMapping (tetrahedra, every one tried)" : "BarycentricMapping (tetrahedra)";
+    return PointMapping<double>::from_barycentric(
+        *object.mesh, map_onto_tetrahedra<double>(*object.mesh, x, points,
                                                   mesh_topology ? TetrahedronSearch::exhaustive : TetrahedronSearch::grid));
-    return surface;
   }
 
   // SOFA's SubsetMapping::init: `indices`, else first..last (clamped into the input), else for each
@@ -177,7 +214,7 @@ class VisualSurfaceBuilder {
     for (Index i : indices) {
       if (i < 0 || i >= size) throw make_error("SubsetMapping ", mapping.where(), ": index ", i, " out of range [0, ", size, ")");
     }
-    if (indices.size() != out.size()) {
+    if (!out.empty() && indices.size() != out.size()) {
       throw make_error("SubsetMapping ", mapping.where(), ": ", indices.size(), " indices for a visual model of ", out.size(), " points");
     }
     return indices;
@@ -239,6 +276,10 @@ class VisualSurfaceBuilder {
 void add_visual_surfaces(SceneData& data, std::vector<std::string>& info, GraphNode& node,
                          SimulatedObject<double>& object) {
   VisualSurfaceBuilder(data, info).add_visual_surfaces(node, object);
+}
+
+void add_mapped_states(SceneData& data, std::vector<std::string>& info, GraphNode& node, SimulatedObject<double>& object) {
+  VisualSurfaceBuilder(data, info).add_mapped_states(node, object);
 }
 
 }  // namespace fastcorot::scene_detail

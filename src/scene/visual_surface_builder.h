@@ -23,4 +23,10 @@ Rgba parse_color(const std::string& attribute, const std::string& text);
 void add_visual_surfaces(SceneData& data, std::vector<std::string>& info, GraphNode& node,
                          SimulatedObject<double>& object);
 
+// Adds the MechanicalObjects of mapped node `node` to `object`'s mapped states, each with the mapping
+// whose output it is (one that names none outputs to the node's first state); a state without one
+// gets an info line. Throws fastcorot::Error naming the state for a bad mapping.
+void add_mapped_states(SceneData& data, std::vector<std::string>& info, GraphNode& node,
+                       SimulatedObject<double>& object);
+
 }  // namespace fastcorot::scene_detail

@@ -86,6 +86,16 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
     for (auto m : s.motions) system.motions.push_back({shift(m.point), m.start, m.end, m.begin_time, m.end_time});
     merged.force_field_drawing.insert(merged.force_field_drawing.end(), part.force_field_drawing.begin(), part.force_field_drawing.end());
     merged.boxes.insert(merged.boxes.end(), part.boxes.begin(), part.boxes.end());
+    for (auto range : part.states) {
+      range.offset = shift(range.offset);
+      merged.states.push_back(std::move(range));
+    }
+    for (auto mapped : part.mapped_states) {
+      for (auto& slots : mapped.map.vertices) {
+        for (Index& v : slots) v = shift(v);
+      }
+      merged.mapped_states.push_back(std::move(mapped));
+    }
     for (auto surface : part.visual_surfaces) {
       for (auto& slots : surface.map.vertices) {
         for (Index& v : slots) v = shift(v);

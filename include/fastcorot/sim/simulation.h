@@ -7,6 +7,7 @@
 #pragma once
 
 #include "fastcorot/sim/linear_solver.h"
+#include "fastcorot/sim/mapped_state.h"
 #include "fastcorot/sim/mechanical_system.h"
 #include "fastcorot/sim/ode_solver.h"
 #include "fastcorot/sim/topology_script.h"
@@ -52,6 +53,10 @@ struct SimulatedObject {
   // Visual models mapped onto the object's points (OglModel with a BarycentricMapping or
   // IdentityMapping in a child node); display and output only.
   std::vector<VisualSurface> visual_surfaces;
+  // The MechanicalObjects the state is made of (one, or several under one solver), and those of
+  // mapped child nodes that follow it (outputs only: sim/mapped_state.h).
+  std::vector<StateRange> states;
+  std::vector<MappedState> mapped_states;
   // Scripted topological changes (TopologicalChangeProcessor), applied at the start of each step.
   std::vector<TopologyScript> topology_scripts;
 };
