@@ -71,7 +71,7 @@ def test_force_field_rejects_wrong_dtypes_and_shapes():
 
 
 SCENES = {
-    "unknown_component": '<SpringForceField/>',
+    "unknown_component": '<PolynomialSpringsForceField/>',
     "unknown_attribute": '<UniformMass totalMass="1" weight="3"/>',
     "broken_link": '<FixedProjectiveConstraint indices="@nowhere.indices"/>',
     "bad_number": '<UniformMass totalMass="heavy"/>',
@@ -139,8 +139,8 @@ def test_python_scene_errors_name_the_python_line():
         fastcorot.Simulation(root)
     assert str(raised.value) == (f"{__file__}:{line_of('marker: link')}: FixedProjectiveConstraint: broken link "
                                  "'@nowhere.indices': no component named 'nowhere' in root/body or above")
-    with pytest.raises(ValueError, match="unknown component 'SpringForceField'"):
-        body.add_object("SpringForceField")
+    with pytest.raises(ValueError, match="unknown component 'PolynomialSpringsForceField'"):
+        body.add_object("PolynomialSpringsForceField")
 
 
 def test_wrong_data_types_and_shapes_are_rejected_naming_the_data():

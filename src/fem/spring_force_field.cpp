@@ -1,6 +1,7 @@
 #include "fastcorot/fem/spring_force_field.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/topology/tetrahedron_faces.h"
 
 #include <cmath>
 #include <limits>
@@ -10,30 +11,48 @@
 namespace fastcorot {
 
 template <class Real>
-std::vector<Spring<Real>> mesh_springs(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
+std::vector<Spring<Real>> mesh_springs(const SpringTopology& topology, std::span<const Vec3<Real>> rest,
                                        const MeshSpringParameters<Real>& p) {
-  if (rest.size() != static_cast<std::size_t>(mesh.num_points())) {
-    throw make_error("MeshSpringForceField: ", rest.size(), " rest positions for a mesh of ", mesh.num_points(), " points");
-  }
+  const auto n = static_cast<Index>(rest.size());
   std::vector<Spring<Real>> springs;
   std::set<std::pair<Index, Index>> made;
   const auto add = [&](Index a, Index b, Real stiffness, Real damping) {
+    if (a < 0 || a >= n || b < 0 || b >= n) {
+      throw make_error("MeshSpringForceField: an element joins points ", a, " and ", b, ", outside the ", n, " points");
+    }
     if (!made.insert({std::min(a, b), std::max(a, b)}).second) return;
     const Real length = (rest[static_cast<std::size_t>(b)] - rest[static_cast<std::size_t>(a)]).norm();
     const bool scaled = length > std::numeric_limits<Real>::epsilon();
     springs.push_back({a, b, scaled ? stiffness / length : stiffness, scaled ? damping / length : damping, length,
                        p.no_compression});
   };
-  if (p.lines_stiffness != 0 || p.lines_damping != 0) {
-    for (const Edge& e : mesh.edges()) add(e[0], e[1], p.lines_stiffness, p.lines_damping);
-  }
-  if (p.tetrahedra_stiffness != 0 || p.tetrahedra_damping != 0) {
-    static constexpr int kPairs[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
-    for (const Tetrahedron& t : mesh.tetrahedra()) {
-      for (const auto& pair : kPairs) add(t[pair[0]], t[pair[1]], p.tetrahedra_stiffness, p.tetrahedra_damping);
+  const auto add_all_pairs = [&](const auto& elements, Real stiffness, Real damping) {
+    if (stiffness == 0 && damping == 0) return;
+    for (const auto& e : elements) {
+      for (std::size_t k = 0; k < e.size(); ++k) {
+        for (std::size_t j = k + 1; j < e.size(); ++j) add(e[k], e[j], stiffness, damping);
+      }
     }
-  }
+  };
+  add_all_pairs(topology.lines, p.lines_stiffness, p.lines_damping);
+  add_all_pairs(topology.triangles, p.triangles_stiffness, p.triangles_damping);
+  add_all_pairs(topology.quads, p.quads_stiffness, p.quads_damping);
+  add_all_pairs(topology.tetrahedra, p.tetrahedra_stiffness, p.tetrahedra_damping);
+  add_all_pairs(topology.hexahedra, p.cubes_stiffness, p.cubes_damping);
   return springs;
+}
+
+template <class Real>
+std::vector<Spring<Real>> mesh_springs(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
+                                       const MeshSpringParameters<Real>& p) {
+  if (rest.size() != static_cast<std::size_t>(mesh.num_points())) {
+    throw make_error("MeshSpringForceField: ", rest.size(), " rest positions for a mesh of ", mesh.num_points(), " points");
+  }
+  SpringTopology topology;
+  topology.lines.assign(mesh.edges().begin(), mesh.edges().end());
+  topology.tetrahedra.assign(mesh.tetrahedra().begin(), mesh.tetrahedra().end());
+  if (p.triangles_stiffness != 0 || p.triangles_damping != 0) topology.triangles = tetrahedron_set_triangles(topology.tetrahedra);
+  return mesh_springs(topology, rest, p);
 }
 
 template <class Real>
@@ -60,6 +79,15 @@ SpringForceField<Real>::SpringForceField(std::shared_ptr<const TetMesh> mesh, st
     }
   }
   tangent_.assign(springs_.size(), Mat3<Real>::Zero());
+  assembled_ = springs_.size();
+}
+
+template <class Real>
+void SpringForceField<Real>::set_assembled_springs(std::size_t count) {
+  if (count > springs_.size()) {
+    throw make_error(component_, ": ", count, " assembled springs of ", springs_.size());
+  }
+  assembled_ = count;
 }
 
 template <class Real>
@@ -71,7 +99,7 @@ void SpringForceField<Real>::forces(std::span<const Vec3<Real>> x, std::span<Vec
     const auto a = static_cast<std::size_t>(spring.a), b = static_cast<std::size_t>(spring.b);
     Vec3<Real> u = x[b] - x[a];
     const Real d = u.norm();
-    if (!(d > Real(1e-9)) || (spring.elongation_only && !(d > spring.rest_length))) {
+    if (!spring.enabled || !(d > Real(1e-9)) || (spring.elongation_only && !(d > spring.rest_length))) {
       if (record) tangent_[s].setZero();
       continue;
     }
@@ -114,7 +142,7 @@ void SpringForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, std::spa
 template <class Real>
 void SpringForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset, Real b_factor) const {
   const Real k = factor(k_factor, b_factor);
-  for (std::size_t s = 0; s < springs_.size(); ++s) {
+  for (std::size_t s = 0; s < assembled_; ++s) {
     const Index a = offset + 3 * springs_[s].a, b = offset + 3 * springs_[s].b;
     const Mat3<Real> block = tangent_[s] * k;
     sink.add_block(a, a, -block);
@@ -127,7 +155,7 @@ void SpringForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real k_factor
 template <class Real>
 void SpringForceField<Real>::add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor) const {
   const Real k = factor(k_factor, b_factor);
-  for (std::size_t s = 0; s < springs_.size(); ++s) {
+  for (std::size_t s = 0; s < assembled_; ++s) {
     diagonal[static_cast<std::size_t>(springs_[s].a)] -= tangent_[s] * k;
     diagonal[static_cast<std::size_t>(springs_[s].b)] -= tangent_[s] * k;
   }
@@ -138,7 +166,7 @@ Real SpringForceField<Real>::potential_energy(std::span<const Vec3<Real>> x) con
   Real energy = 0;
   for (const Spring<Real>& spring : springs_) {
     const Real d = (x[static_cast<std::size_t>(spring.b)] - x[static_cast<std::size_t>(spring.a)]).norm();
-    if (!(d > Real(1e-9)) || (spring.elongation_only && !(d > spring.rest_length))) continue;
+    if (!spring.enabled || !(d > Real(1e-9)) || (spring.elongation_only && !(d > spring.rest_length))) continue;
     energy += spring.stiffness * (d - spring.rest_length) * (d - spring.rest_length) / 2;
   }
   return energy;
@@ -165,7 +193,7 @@ std::vector<double> SpringForceField<Real>::model_values() const {
   for (const Spring<Real>& s : springs_) {
     values.insert(values.end(), {static_cast<double>(s.a), static_cast<double>(s.b), static_cast<double>(s.stiffness),
                                  static_cast<double>(s.damping), static_cast<double>(s.rest_length),
-                                 s.elongation_only ? 1.0 : 0.0});
+                                 !s.enabled ? -1.0 : (s.elongation_only ? 1.0 : 0.0)});  // -1: disabled
   }
   return values;
 }
@@ -176,7 +204,9 @@ std::size_t SpringForceField<Real>::memory_bytes() const {
 }
 
 template std::vector<Spring<double>> mesh_springs(const TetMesh&, std::span<const Vec3<double>>, const MeshSpringParameters<double>&);
+template std::vector<Spring<double>> mesh_springs(const SpringTopology&, std::span<const Vec3<double>>, const MeshSpringParameters<double>&);
 template std::vector<Spring<float>> mesh_springs(const TetMesh&, std::span<const Vec3<float>>, const MeshSpringParameters<float>&);
+template std::vector<Spring<float>> mesh_springs(const SpringTopology&, std::span<const Vec3<float>>, const MeshSpringParameters<float>&);
 template class SpringForceField<double>;
 template class SpringForceField<float>;
 

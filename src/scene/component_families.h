@@ -21,5 +21,7 @@ std::vector<ComponentSpec> constraint_components();
 std::vector<ComponentSpec> engine_components();
 // ODE solvers, linear solvers, preconditioners and the linear systems SOFA links them to.
 std::vector<ComponentSpec> solver_components();
+// SOFA master's element FEM family: its force fields, FEMMass and NodalMassDensity.
+std::vector<ComponentSpec> element_fem_components();
 
 }  // namespace fastcorot::scene_detail

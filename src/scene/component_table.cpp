@@ -17,8 +17,8 @@ const std::vector<ComponentSpec>& table() {
   static const std::vector<ComponentSpec> components = [] {
     std::vector<ComponentSpec> all;
     for (auto family : {scene_detail::topology_components, scene_detail::visual_components,
-                        scene_detail::mechanics_components, scene_detail::constraint_components,
-                        scene_detail::engine_components, scene_detail::solver_components}) {
+                        scene_detail::mechanics_components, scene_detail::element_fem_components,
+                        scene_detail::constraint_components, scene_detail::engine_components, scene_detail::solver_components}) {
       for (auto& spec : family()) all.push_back(std::move(spec));
     }
     return all;
@@ -26,7 +26,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 57> kIgnored = {
+constexpr std::array<std::string_view, 63> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -40,7 +40,9 @@ constexpr std::array<std::string_view, 57> kIgnored = {
     "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyContainer", "EdgeSetTopologyModifier",
     "EdgeSetGeometryAlgorithms", "ValuesFromPositions", "NaturalOrderingMethod",
     "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod", "TaskSchedulerSettings",
-    "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase"};
+    "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase",
+    "PointSetTopologyModifier", "PointSetGeometryAlgorithms", "QuadSetTopologyModifier", "QuadSetGeometryAlgorithms",
+    "HexahedronSetTopologyModifier", "HexahedronSetGeometryAlgorithms"};
 
 std::string join_names(std::span<const AttributeSpec> attributes) {
   std::string list;
@@ -162,6 +164,16 @@ bool is_known_component(std::string_view name) {
   return find_component(name) || is_ignored_component(name) || !refusal_reason(name).empty();
 }
 
+// Whether `attribute` is one of the numbered data a spec named "stem<N>" stands for: the stem then
+// digits (SOFA's vectorData, e.g. MeshSplittingEngine's indices1, indices2, ...).
+static bool numbered_attribute(std::string_view spec_name, std::string_view attribute) {
+  if (!spec_name.ends_with("<N>")) return false;
+  const std::string_view stem = spec_name.substr(0, spec_name.size() - 3);
+  if (attribute.size() <= stem.size() || !attribute.starts_with(stem)) return false;
+  return std::all_of(attribute.begin() + static_cast<std::ptrdiff_t>(stem.size()), attribute.end(),
+                     [](char ch) { return ch >= '0' && ch <= '9'; });
+}
+
 const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<std::string>* warnings) {
   const ComponentSpec* spec = find_component(object.type);
   if (!spec) {
@@ -179,7 +191,7 @@ const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<s
   for (const auto& [attribute, value] : object.attributes) {
     if (is_common_attribute(attribute)) continue;
     bool known = false;
-    for (const auto& a : spec->attributes) known = known || a.name == attribute;
+    for (const auto& a : spec->attributes) known = known || a.name == attribute || numbered_attribute(a.name, attribute);
     if (known) continue;
     std::vector<std::string_view> names;
     for (const auto& a : spec->attributes) names.push_back(a.name);

@@ -15,6 +15,10 @@ std::vector<ComponentSpec> engine_components() {
         {"openSurface", "bool", "true", "accepted (its triangle output is not made)"},
         {"BezierTetrahedronDegree", "int", "0", "only 0 or 1 (linear)"},
         {"BezierTriangleDegree", "int", "0", "only 0 or 1 (linear)"}}},
+      {"GenerateGrid", "engine", "SOFA's grid of resolution = (L, W, H) cells over [min, max]: output_position (alias position), hexahedra and tetrahedra (6 per hexahedron), or for H = 0 quads and triangles (2 per quad), in SOFA's order (cells x slowest, z fastest).",
+       {{"min", "vec3", "0 0 0", "minimum corner"},
+        {"max", "vec3", "0 0 0", "maximum corner"},
+        {"resolution", "int3", "3 3 3", "cells along x, y, z (x, y >= 1; z = 0: a flat grid of quads)"}}},
       {"PairBoxROI", "engine", "Selects the points inside inclusiveBox and not inside includedBox (bounds included).",
        {{"inclusiveBox", "reals", "", "xmin ymin zmin xmax ymax zmax"},
         {"includedBox", "reals", "", "xmin ymin zmin xmax ymax zmax"},
@@ -54,7 +58,63 @@ std::vector<ComponentSpec> engine_components() {
         {"tetrahedra", "indices", "", "tetrahedra to test (default: the node's topology's)"},
         {"computeEdges", "bool", "true", "select edges"},
         {"computeTriangles", "bool", "true", "select triangles"},
-        {"computeTetrahedra", "bool", "true", "select tetrahedra"}}}
+        {"computeTetrahedra", "bool", "true", "select tetrahedra"}}},
+      {"SubsetTopology", "engine",
+       "Selects the points and elements (all their points in one same region) inside boxes or, when centers is "
+       "given, spheres (bounds included); outputs indices, pointsInROI, pointsOutROI, nbrborder and per element "
+       "kind its indices and the elements in and out (edgeIndices, edgesInROI, edgesOutROI, triangle..., quad..., "
+       "tetrahedron... (tetrahedraInROI, tetrahedraOutROI), hexahedron...). With localIndices the elements are "
+       "renumbered for the two sub-meshes, the border points (in the first region, on an element crossing it) first "
+       "in both point lists; Vec3 only.",
+       {{"box", "reals", "0 0 0 1 1 1", "xmin ymin zmin xmax ymax zmax, 6 numbers per box"},
+        {"centers", "vec3s", "", "sphere centres (given: spheres replace the boxes)"},
+        {"radii", "reals", "", "one radius per centre"},
+        {"rest_position", "vec3s", "", "points to select (default: the position of the MechanicalObject at or above the node)"},
+        {"edges", "indices", "", "edges (default: src's, else the node's topology's)"},
+        {"triangles", "indices", "", "triangles (default: src's, else the node's topology's)"},
+        {"quads", "indices", "", "quads (default: src's)"},
+        {"tetrahedra", "indices", "", "tetrahedra (default: src's, else the node's topology's)"},
+        {"hexahedra", "indices", "", "hexahedra (default: src's)"},
+        {"tetrahedraInput", "indices", "", "the tetrahedra to keep, whatever the regions (point lists made from the tetrahedra)"},
+        {"localIndices", "bool", "false", "renumber the output elements for the sub-meshes, border points first"},
+        {"direction", "vec3", "", "accepted (SOFA does not use it)"},
+        {"normal", "vec3", "", "accepted (SOFA does not use it)"},
+        {"edgeAngle", "real", "0", "accepted (SOFA does not use it)"},
+        {"triAngle", "real", "0", "accepted (SOFA does not use it)"},
+        {"indices", "indices", "", "an output; accepted when written (SOFA replaces the value at init; here links read the value written)"}}},
+      {"MeshTetraStuffing", "engine",
+       "Fills a closed triangle surface with tetrahedra by isosurface stuffing (Labelle and Shewchuk 2007) as SOFA "
+       "does: a body-centred cubic lattice over vbbox, points classed inside by the surface crossings along the "
+       "lattice lines, snapped to the surface and tetrahedra cut at it on request; outputs outputPoints, "
+       "outputTetrahedra (also outputTetras) and vbbox.",
+       {{"inputPoints", "vec3s", "", "surface points"},
+        {"inputTriangles", "indices", "", "surface triangles (outward normals)"},
+        {"inputQuads", "indices", "", "surface quads (each a b c d counts as a b c and a c d)"},
+        {"vbbox", "reals", "0 0 0 0 0 0", "xmin ymin zmin xmax ymax zmax; used when xmin < xmax, else the surface's box grown by 1%"},
+        {"size", "real", "-8", "cell size; negative: -(cells across the largest extent of the box)"},
+        {"alphaLong", "real", "0.24999", "snapping threshold on the grids' edges, in edge lengths"},
+        {"alphaShort", "real", "0.42978", "snapping threshold on the edges between the two grids"},
+        {"snapPoints", "bool", "false", "move lattice points close to the surface onto it"},
+        {"splitTetrahedra", "bool", "false", "cut the tetrahedra crossing the surface; also splitTetras"},
+        {"splitTetras", "bool", "false", "splitTetrahedra (SOFA's other name)"}}},
+      {"MeshSplittingEngine", "engine",
+       "Shares a mesh's points among nbInputs sub-meshes (the points listed in indices<i> and those of the elements "
+       "listed in edgeIndices<i>, triangleIndices<i>, quadIndices<i>, tetrahedronIndices<i>, hexahedronIndices<i>; "
+       "the first sub-mesh that claims a point takes it) and a last one for the rest; outputs position1 .. "
+       "position<nbInputs + 1> and indexPairs (sub-mesh from 0, index in it, per point).",
+       {{"position", "vec3s", "", "input points (default: src's)"},
+        {"edges", "indices", "", "input edges (default: src's)"},
+        {"triangles", "indices", "", "input triangles (default: src's)"},
+        {"quads", "indices", "", "input quads (default: src's)"},
+        {"tetrahedra", "indices", "", "input tetrahedra (default: src's)"},
+        {"hexahedra", "indices", "", "input hexahedra (default: src's)"},
+        {"nbInputs", "int", "0", "number of sub-meshes given by lists"},
+        {"indices<N>", "indices", "", "points of sub-mesh N (1 to nbInputs)"},
+        {"edgeIndices<N>", "indices", "", "edges of sub-mesh N"},
+        {"triangleIndices<N>", "indices", "", "triangles of sub-mesh N"},
+        {"quadIndices<N>", "indices", "", "quads of sub-mesh N"},
+        {"tetrahedronIndices<N>", "indices", "", "tetrahedra of sub-mesh N"},
+        {"hexahedronIndices<N>", "indices", "", "hexahedra of sub-mesh N"}}}
   };
 }
 

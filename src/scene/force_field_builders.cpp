@@ -8,17 +8,37 @@ namespace fastcorot::scene_detail {
 
 namespace {
 
-// SOFA's attribute or its older alias (tetrasStiffness for tetrahedraStiffness, ...).
-double real_or_alias(SceneData& data, Component& c, const char* name, const char* alias) {
-  return c.has(name) || !c.has(alias) ? data.real(c, name, 0) : data.real(c, alias, 0);
+// A per-kind stiffness or damping of MeshSpringForceField: `name`, else its older alias (tetrasStiffness),
+// else `stiffness` / `damping`, which SOFA declares as an alias of every kind's (so that it sets them all).
+double per_kind(SceneData& data, Component& c, const std::string& name, const char* alias, const char* common) {
+  if (c.has(name)) return data.real(c, name, 0);
+  if (alias && c.has(alias)) return data.real(c, alias, 0);
+  return data.real(c, common, 0);
+}
+
+MeshSpringParameters<double> mesh_spring_parameters(SceneData& data, Component& c) {
+  MeshSpringParameters<double> p;
+  p.lines_stiffness = per_kind(data, c, "linesStiffness", nullptr, "stiffness");
+  p.lines_damping = per_kind(data, c, "linesDamping", nullptr, "damping");
+  p.triangles_stiffness = per_kind(data, c, "trianglesStiffness", nullptr, "stiffness");
+  p.triangles_damping = per_kind(data, c, "trianglesDamping", nullptr, "damping");
+  p.quads_stiffness = per_kind(data, c, "quadsStiffness", nullptr, "stiffness");
+  p.quads_damping = per_kind(data, c, "quadsDamping", nullptr, "damping");
+  p.tetrahedra_stiffness = per_kind(data, c, "tetrahedraStiffness", "tetrasStiffness", "stiffness");
+  p.tetrahedra_damping = per_kind(data, c, "tetrahedraDamping", "tetrasDamping", "damping");
+  p.cubes_stiffness = per_kind(data, c, "cubesStiffness", nullptr, "stiffness");
+  p.cubes_damping = per_kind(data, c, "cubesDamping", nullptr, "damping");
+  p.no_compression = data.boolean(c, "noCompression", false);
+  return p;
 }
 
 }  // namespace
 
 bool makes_mesh_springs(SceneData& data, Component& c) {
-  for (const char* kind : {"lines", "triangles", "quads", "tetrahedra", "tetras", "cubes"}) {
-    const std::string stiffness = std::string(kind) + "Stiffness", damping = std::string(kind) + "Damping";
-    if ((c.has(stiffness) && data.real(c, stiffness, 0) != 0) || (c.has(damping) && data.real(c, damping, 0) != 0)) return true;
+  const auto p = mesh_spring_parameters(data, c);
+  for (double value : {p.lines_stiffness, p.lines_damping, p.triangles_stiffness, p.triangles_damping, p.quads_stiffness,
+                       p.quads_damping, p.tetrahedra_stiffness, p.tetrahedra_damping, p.cubes_stiffness, p.cubes_damping}) {
+    if (value != 0) return true;
   }
   return false;
 }
@@ -26,22 +46,22 @@ bool makes_mesh_springs(SceneData& data, Component& c) {
 std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Component& c, std::shared_ptr<const TetMesh> mesh,
                                                        std::span<const Vec3<double>> rest) {
   try {
-    for (const char* kind : {"triangles", "quads", "cubes"}) {
-      const std::string stiffness = std::string(kind) + "Stiffness", damping = std::string(kind) + "Damping";
-      if (data.real(c, stiffness, 0) != 0 || data.real(c, damping, 0) != 0) {
-        throw make_error(stiffness, " / ", damping, ": springs along ", kind,
-                         " are not made by fastcorot (a tetrahedral mesh: use linesStiffness or tetrahedraStiffness)");
-      }
-    }
     if (c.has("localRange")) throw make_error("localRange is not supported (every spring is kept)");
-    MeshSpringParameters<double> p;
-    p.lines_stiffness = data.real(c, "linesStiffness", 0);
-    p.lines_damping = data.real(c, "linesDamping", 0);
-    p.tetrahedra_stiffness = real_or_alias(data, c, "tetrahedraStiffness", "tetrasStiffness");
-    p.tetrahedra_damping = real_or_alias(data, c, "tetrahedraDamping", "tetrasDamping");
-    p.no_compression = data.boolean(c, "noCompression", false);
-    auto springs = mesh_springs<double>(*mesh, rest, p);
+    auto springs = mesh_springs<double>(*mesh, rest, mesh_spring_parameters(data, c));
     return std::make_shared<SpringForceField<double>>(std::move(mesh), std::move(springs),
+                                                      data.real(c, "rayleighStiffness", 0), "MeshSpringForceField");
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+}
+
+std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Component& c, SpringTopology topology,
+                                                       std::span<const Vec3<double>> rest) {
+  try {
+    if (c.has("localRange")) throw make_error("localRange is not supported (every spring is kept)");
+    auto springs = mesh_springs<double>(topology, rest, mesh_spring_parameters(data, c));
+    auto points = std::make_shared<TetMesh>(static_cast<Index>(rest.size()), std::vector<Tetrahedron>{});
+    return std::make_shared<SpringForceField<double>>(std::move(points), std::move(springs),
                                                       data.real(c, "rayleighStiffness", 0), "MeshSpringForceField");
   } catch (const Error& error) {
     throw make_error(c.where(), ": ", error.what());
@@ -105,6 +125,41 @@ ConstantForce<double> build_triangle_pressure(SceneData& data, Component& c, std
       const Vec3<double> force = pressure * area / 3;
       for (std::size_t k = 0; k < 3; ++k) {
         load.indices.push_back(triangles[at + k]);
+        load.forces.push_back(force);
+      }
+    }
+    return load;
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+}
+
+ConstantForce<double> build_quad_pressure(SceneData& data, Component& c, std::span<const Vec3<double>> rest) {
+  try {
+    if (data.real(c, "dmin", 0) != data.real(c, "dmax", 0)) {
+      throw make_error("dmin != dmax: the selection of quads along a plane is not supported (use quadList)");
+    }
+    const std::vector<Index> list = data.indices(c, "quadList");
+    ConstantForce<double> load;
+    if (list.empty()) return load;
+    Component* topology = data.topology_of(c);
+    if (!topology) throw make_error("no topology with quads in its node or above");
+    const std::vector<Index> quads = data.indices(*topology, "quads");
+    const Vec3<double> pressure = data.vec3(c, "pressure", {0, 0, 0});
+    const auto count = static_cast<Index>(quads.size() / 4);
+    for (Index q : list) {
+      if (q < 0 || q >= count) throw make_error("quadList: quad ", q, " out of range [0, ", count, ") of ", topology->where());
+      const auto at = static_cast<std::size_t>(4 * q);
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (static_cast<std::size_t>(quads[at + k]) >= rest.size()) {
+          throw make_error("quad ", q, " has point ", quads[at + k], " outside the object's ", rest.size(), " points");
+        }
+      }
+      const auto p = [&](std::size_t k) -> const Vec3<double>& { return rest[static_cast<std::size_t>(quads[at + k])]; };
+      const double area = (p(1) - p(0)).cross(p(2) - p(0)).norm() / 2 + (p(2) - p(0)).cross(p(3) - p(0)).norm() / 2;
+      const Vec3<double> force = pressure * area / 4;
+      for (std::size_t k = 0; k < 4; ++k) {
+        load.indices.push_back(quads[at + k]);
         load.forces.push_back(force);
       }
     }

@@ -1,6 +1,7 @@
 #include "hexahedron_builders.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/topology/hexahedron_faces.h"
 #include "fastcorot/topology/regular_grid.h"
 
 #include <Eigen/SparseCore>
@@ -9,27 +10,53 @@
 
 namespace fastcorot::scene_detail {
 
-namespace {
+bool is_grid_topology(std::string_view type) {
+  return type == "RegularGridTopology" || type == "CylinderGridTopology" || type == "SphereGridTopology";
+}
 
-// The twelve edges of a hexahedron in SOFA's corner order.
-constexpr int kHexahedronEdges[12][2] = {{0, 1}, {0, 3}, {0, 4}, {1, 2}, {1, 5}, {2, 3},
-                                         {2, 6}, {3, 7}, {4, 5}, {4, 7}, {5, 6}, {6, 7}};
-
-}  // namespace
-
-std::vector<Hexahedron> hexahedra_of(SceneData& data, Component& c) {
-  Component* topology = data.topology_of(c);
-  if (!topology || !data.indices(*topology, "tetrahedra").empty()) return {};
+std::vector<Hexahedron> topology_hexahedra(SceneData& data, Component& topology) {
   std::vector<Hexahedron> hexahedra;
-  if (topology->type() == "RegularGridTopology" || topology->type() == "CylinderGridTopology") {
-    const RegularGrid grid = data.grid(*topology);
+  if (is_grid_topology(topology.type())) {
+    const RegularGrid grid = data.grid(topology);
     for (Index k = 0; k + 1 < grid.n[2]; ++k) {
       for (Index j = 0; j + 1 < grid.n[1]; ++j) {
         for (Index i = 0; i + 1 < grid.n[0]; ++i) hexahedra.push_back(grid_cell_corners(grid, i, j, k));
       }
     }
+    return hexahedra;
+  }
+  if (topology.type() != "HexahedronSetTopologyContainer") return hexahedra;
+  const std::vector<Index> flat = data.indices(topology, "hexahedra");
+  if (flat.size() % 8 != 0) {
+    throw make_error(topology.where(), ": hexahedra needs 8 indices per hexahedron, got ", flat.size(), " indices");
+  }
+  // SOFA sizes the container to its highest index when position is not given; with positions, an
+  // index beyond them is an error here (SOFA would read past its points).
+  const std::size_t points = data.data(topology, "position").size() / 3;
+  hexahedra.resize(flat.size() / 8);
+  for (std::size_t h = 0; h < hexahedra.size(); ++h) {
+    for (std::size_t j = 0; j < 8; ++j) {
+      const Index v = flat[8 * h + j];
+      if (points != 0 && static_cast<std::size_t>(v) >= points) {
+        throw make_error(topology.where(), ": hexahedra: hexahedron ", h, " names point ", v, ", beyond the ", points,
+                         " points of position");
+      }
+      hexahedra[h][j] = v;
+    }
   }
   return hexahedra;
+}
+
+std::vector<Tetrahedron> tetrahedron_fem_tetrahedra(SceneData& data, Component& topology) {
+  if (is_grid_topology(topology.type())) return tetrahedron_fem_grid_tetrahedra(data.grid(topology));
+  // SOFA's TetrahedronFEMForceField takes a topology that is not a grid as cells of a 2 x 1 layer.
+  return split_hexahedra(topology_hexahedra(data, topology), 2, 1, true, false);
+}
+
+std::vector<Hexahedron> hexahedra_of(SceneData& data, Component& c) {
+  Component* topology = data.topology_of(c);
+  if (!topology || !data.indices(*topology, "tetrahedra").empty()) return {};
+  return topology_hexahedra(data, *topology);
 }
 
 std::shared_ptr<HexahedronFEMForceField<double>> build_hexahedron_fem(SceneData& data, Component& c,
@@ -37,7 +64,7 @@ std::shared_ptr<HexahedronFEMForceField<double>> build_hexahedron_fem(SceneData&
   try {
     std::vector<Hexahedron> hexahedra = hexahedra_of(data, c);
     if (hexahedra.empty()) {
-      throw make_error("its topology has no hexahedra (a RegularGridTopology or CylinderGridTopology without "
+      throw make_error("its topology has no hexahedra (a grid topology or a HexahedronSetTopologyContainer without "
                        "tetrahedra, in its node or above)");
     }
     HexahedronFEMForceField<double>::Parameters parameters;
@@ -83,7 +110,19 @@ Mass<double> build_hexahedron_mass(SceneData& data, Component& c, std::span<cons
     }
     return Mass<double>::lumped(std::move(masses));
   }
-  if (data.boolean(c, "lumping", false)) throw make_error(c.where(), ": lumping on hexahedra is not supported");
+  if (data.boolean(c, "lumping", false)) {
+    // SOFA's lumped MeshMatrixMass on hexahedra: each corner's share density V / 20, times its
+    // lumping coefficient 2.5 (the row sum: 1/20 + 3/40 = 1/8 of each hexahedron per corner).
+    std::vector<double> masses(static_cast<std::size_t>(n), 0.0);
+    double sum = 0;
+    for (const Hexahedron& h : hexahedra) {
+      const double share = density * hexahedron_volume<double>(rest, h) / 20.0;
+      for (Index p : h) masses[static_cast<std::size_t>(p)] += share;
+      sum += 8.0 * share * 2.5;
+    }
+    for (double& m : masses) m *= from_total ? 2.5 * total / sum : 2.5;
+    return Mass<double>::lumped(std::move(masses));
+  }
   std::vector<Eigen::Triplet<double>> entries;
   double sum = 0;
   for (const Hexahedron& h : hexahedra) {

@@ -1,6 +1,6 @@
 // The hexahedral pieces of a scene: HexahedronFEMForceField and the masses (DiagonalMass,
-// MeshMatrixMass) on a topology of hexahedra (a RegularGridTopology or CylinderGridTopology without
-// tetrahedra). Internal to src/scene (scene_builder.cpp); errors
+// MeshMatrixMass) on a topology of hexahedra (a grid topology or a HexahedronSetTopologyContainer
+// without tetrahedra). Internal to src/scene (scene_builder.cpp); errors
 // name the component.
 #pragma once
 
@@ -14,9 +14,21 @@
 
 namespace fastcorot::scene_detail {
 
-// The hexahedra of c's topology (its `topology` link, else its node's): a grid's cells in SOFA's
-// order (x fastest, corners as grid_cell_corners); empty when the topology is not a grid or has
-// tetrahedra.
+// RegularGridTopology, CylinderGridTopology and SphereGridTopology: their cells are the regular grid's.
+bool is_grid_topology(std::string_view type);
+
+// The hexahedra of a topology component: a grid's cells in SOFA's order (x fastest, corners as
+// grid_cell_corners) or a HexahedronSetTopologyContainer's hexahedra (checked: 8 indices each,
+// within its points); empty for any other topology.
+std::vector<Hexahedron> topology_hexahedra(SceneData& data, Component& topology);
+
+// The tetrahedra TetrahedronFEMForceField makes from a topology of hexahedra alone (its init):
+// a grid's as tetrahedron_fem_grid_tetrahedra, other hexahedra as split_hexahedra(2 x 1, mirrored,
+// plain table), as SOFA does.
+std::vector<Tetrahedron> tetrahedron_fem_tetrahedra(SceneData& data, Component& topology);
+
+// The hexahedra of c's topology (its `topology` link, else its node's): topology_hexahedra, empty
+// when the topology has tetrahedra.
 std::vector<Hexahedron> hexahedra_of(SceneData& data, Component& c);
 
 std::shared_ptr<HexahedronFEMForceField<double>> build_hexahedron_fem(SceneData& data, Component& c,

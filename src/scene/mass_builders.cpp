@@ -1,6 +1,7 @@
 #include "mass_builders.h"
 
 #include "fastcorot/core/error.h"
+#include "element_fem_builders.h"
 #include "hexahedron_builders.h"
 
 #include <cmath>
@@ -11,6 +12,7 @@ Mass<double> build_mass(SceneData& data, Component& c, const Points<double>& res
                         const std::function<std::shared_ptr<TetMesh>()>& tetrahedra) {
   const auto n = static_cast<Index>(rest.size());
   const std::string_view type = c.type();
+  if (type == "FEMMass") return build_fem_mass(data, c, rest, tetrahedra);
   if (type == "DiagonalMass" || type == "MeshMatrixMass") {
     const std::vector<Hexahedron> hexahedra = hexahedra_of(data, c);
     if (!hexahedra.empty()) return build_hexahedron_mass(data, c, hexahedra, rest);

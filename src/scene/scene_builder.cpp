@@ -4,13 +4,17 @@
 #include "fastcorot/fem/corotational_force_field.h"
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
 #include "fastcorot/sim/merged_objects.h"
+#include "fastcorot/topology/hexahedron_faces.h"
 #include "fastcorot/topology/regular_grid.h"
 #include "force_field_builders.h"
+#include "element_fem_builders.h"
 #include "hexahedron_builders.h"
+#include "hexahedron_mass_builder.h"
 #include "mass_builders.h"
 #include "projective_constraints.h"
 #include "scene_data.h"
 #include "solver_builder.h"
+#include "spring_builders.h"
 #include "topology_change_processor.h"
 #include "visual_surface_builder.h"
 
@@ -43,6 +47,15 @@ bool is_mapped_node(const GraphNode& node) {
     }
   }
   return false;
+}
+
+// A node whose state only holds the points of a Mesh2PointTopologicalMapping (no mass, force or
+// constraint, no child node; SOFA's Mesh2PointTopologicalMapping.scn): nothing moves them.
+bool is_unloaded_point_set(const GraphNode& node) {
+  bool placed = false;
+  for (const auto& c : node.components) placed = placed || c->type() == "Mesh2PointTopologicalMapping";
+  return placed && node.children.empty() && node.of_category("forcefield").empty() &&
+         node.of_category("mass").empty() && node.of_category("constraint").empty();
 }
 
 Vec3<double> node_vec3(const SceneNode& node, const std::string& name, const Vec3<double>& fallback) {
@@ -103,6 +116,7 @@ class Builder {
     }
     if (!under_solver) {
       for (const auto& c : node.components) {
+        if (scene_detail::is_interaction_spring(c->type())) scene_detail::refuse_spring_without_solver(*c, node.path);
         if (c->type() == "AttachProjectiveConstraint") {
           throw make_error(c->where(), ": no ODE solver at or above node ", node.path,
                            ": the objects it ties must be integrated by one solver above them (not supported otherwise)");
@@ -124,6 +138,12 @@ class Builder {
   // Nodes taking part in the mechanics under a solver node: the node and its descendants, minus
   // mapped (visual/collision) subtrees.
   void collect(GraphNode& node, std::vector<GraphNode*>& nodes) {
+    if (is_unloaded_point_set(node)) {
+      // SOFA integrates this state with no mass and no force: its points stay where the mapping put them.
+      info_.push_back(node.scene->location.to_string() + ": node " + node.path + ": the points of its " +
+                      "Mesh2PointTopologicalMapping have no mass and no force: they stay put, as in SOFA (not simulated)");
+      return;
+    }
     if (is_mapped_node(node)) {
       for (const char* category : {"forcefield", "mass", "constraint"}) {
         if (!node.of_category(category).empty()) {
@@ -193,9 +213,23 @@ class Builder {
         const std::string_view type = c->type();
         if (type == "FastTetrahedralCorotationalForceField") add_force_field(*c, object);
         if (type == "TetrahedronFEMForceField" || type == "TetrahedralCorotationalFEMForceField") add_tetrahedron_fem(*c, object);
-        if (type == "HexahedronFEMForceField") {
+        if (type == "HexahedronFEMForceField" || type == "HexahedronFEMForceFieldAndMass") {
           auto field = scene_detail::build_hexahedron_fem(data_, *c, system.state.rest_position);
           add_field(field, field->drawn_mesh(), *c, object);
+          if (type == "HexahedronFEMForceFieldAndMass") {
+            if (system.mass.size() != 0) throw make_error(c->where(), ": a second mass for ", object.path);
+            system.mass = scene_detail::build_hexahedron_fem_mass(data_, *c, *field, system.state.rest_position);
+          }
+        }
+        if (scene_detail::is_point_spring(type)) {
+          object.system.force_fields.push_back(scene_detail::build_point_springs(data_, *c, state, system.state.rest_position, object.mesh));
+          object.force_field_drawing.push_back({});
+        }
+        if (scene_detail::is_element_fem(type)) {
+          std::shared_ptr<TetMesh> drawn;
+          auto field = scene_detail::build_element_fem(data_, *c, system.state.rest_position,
+                                                       [&] { return mesh_of(*c, system.size()); }, drawn);
+          add_field(field, drawn, *c, object);
         }
         if (scene_detail::is_penalty_force_field(type)) {
           // Points, not elements: the object's mesh (for output), or a mesh of its points alone.
@@ -206,10 +240,12 @@ class Builder {
         if (type == "MeshSpringForceField" && !scene_detail::makes_mesh_springs(data_, *c)) {
           info_.push_back(c->where() + ": no per-kind stiffness or damping (linesStiffness, tetrahedraStiffness, ...): no springs, as in SOFA");
         } else if (type == "MeshSpringForceField") {
-          auto mesh = mesh_of(*c, system.size());
-          add_field(scene_detail::build_mesh_springs(data_, *c, mesh, system.state.rest_position), mesh, *c, object);
+          add_mesh_springs(*c, object);
         }
         if (type == "ConstantForceField") system.constant_forces.push_back(scene_detail::build_constant_force(data_, info_, *c, system.size()));
+        if (type == "QuadPressureForceField") {
+          system.constant_forces.push_back(scene_detail::build_quad_pressure(data_, *c, system.state.rest_position));
+        }
         if (type == "TrianglePressureForceField") {
           system.constant_forces.push_back(scene_detail::build_triangle_pressure(data_, *c, system.state.rest_position));
         }
@@ -279,7 +315,7 @@ class Builder {
       for (GraphNode* node : nodes) {
         if (owner(*node, states)) continue;
         for (const auto& c : node->components) {
-          if (c->spec && c->type() != "AttachProjectiveConstraint" &&
+          if (c->spec && c->type() != "AttachProjectiveConstraint" && !scene_detail::is_interaction_spring(c->type()) &&
               (c->spec->category == "forcefield" || c->spec->category == "mass" || c->spec->category == "constraint")) {
             throw make_error(c->where(), ": it is in node ", node->path, ", above the objects of the solver of node ",
                              solver_node.path, ": which object it acts on is not defined");
@@ -293,6 +329,7 @@ class Builder {
       }
     }
     add_attach_constraints(nodes, states, offsets, sizes, object.system);
+    scene_detail::add_interaction_springs(data_, nodes, states, offsets, sizes, object);
     const Index n = object.system.size();
     auto solvers = build_solvers(data_, info_, integrator, nodes, n);
     object.ode_solver = std::move(solvers.ode);
@@ -327,16 +364,44 @@ class Builder {
   }
 
 
+  // MeshSpringForceField on its topology: a grid's or hexahedral container's lines, quads and
+  // hexahedra, else a tetrahedral mesh's edges, triangles and tetrahedra.
+  void add_mesh_springs(Component& c, SimulatedObject<double>& object) {
+    const auto& rest = object.system.state.rest_position;
+    Component* topology = data_.topology_of(c);
+    if (!topology) throw make_error(c.where(), ": no topology in its node or above");
+    const std::string_view kind = topology->type();
+    if (scene_detail::is_grid_topology(kind) || kind == "HexahedronSetTopologyContainer") {
+      SpringTopology elements;
+      elements.hexahedra = scene_detail::topology_hexahedra(data_, *topology);
+      if (kind == "HexahedronSetTopologyContainer") {
+        elements.lines = hexahedron_set_edges(elements.hexahedra);
+        elements.quads = hexahedron_set_quads(elements.hexahedra);
+      } else {
+        // Every grid (regular, cylinder, sphere) numbers its points and lines alike: only n matters.
+        const RegularGrid grid = data_.grid(*topology);
+        elements.lines = grid_edges(grid);
+        elements.quads = grid_quads(grid);
+      }
+      auto field = scene_detail::build_mesh_springs(data_, c, std::move(elements), rest);
+      object.system.force_fields.push_back(field);
+      object.force_field_drawing.push_back({});
+      return;
+    }
+    auto mesh = mesh_of(c, object.system.size());
+    add_field(scene_detail::build_mesh_springs(data_, c, mesh, rest), mesh, c, object);
+  }
+
   std::shared_ptr<TetMesh> mesh_of(Component& user, Index num_points) {
     Component* topology = data_.topology_of(user);
     if (!topology) throw make_error(user.where(), ": no topology in its node or above");
     if (const auto it = meshes_.find(topology); it != meshes_.end()) return it->second;
     std::vector<Index> flat = data_.indices(*topology, "tetrahedra");
-    const bool grid = topology->type() == "RegularGridTopology" || topology->type() == "CylinderGridTopology";
+    const bool grid = scene_detail::is_grid_topology(topology->type()) || topology->type() == "HexahedronSetTopologyContainer";
     if (flat.empty() && grid && user.type() == "TetrahedronFEMForceField") {
-      // TetrahedronFEMForceField tessellates a grid's hexahedra itself, as SOFA's init does (the
-      // split depends on the point counts only).
-      for (const Tetrahedron& t : tetrahedron_fem_grid_tetrahedra(data_.grid(*topology))) flat.insert(flat.end(), t.begin(), t.end());
+      // TetrahedronFEMForceField tessellates a topology's hexahedra itself, as SOFA's init does (the
+      // split depends on the grid's point counts only).
+      for (const Tetrahedron& t : scene_detail::tetrahedron_fem_tetrahedra(data_, *topology)) flat.insert(flat.end(), t.begin(), t.end());
     }
     if (flat.empty()) {
       throw make_error(user.where(), ": its topology ", topology->where(), " has no tetrahedra",

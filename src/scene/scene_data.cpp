@@ -233,6 +233,12 @@ Component& SceneData::resolve(const GraphNode& from, const std::string& link, co
     node = next;
     search_up = false;
   }
+  // "@." or "@..": a node, which stands for its state where a state is expected.
+  if (node_means_state && !parts.empty()) {
+    const auto states = node->of_category("state");
+    if (states.empty()) return fail("node " + node->path + " has no MechanicalObject");
+    return *states.front();
+  }
   return fail("it names no component");
 }
 

@@ -97,6 +97,11 @@ class SceneData {
   // The MechanicalObject a link designates: the component itself, or, when the link names a node,
   // that node's state (as SOFA resolves a link to a state given a node's path).
   Component& resolve_state(const GraphNode& from, const std::string& link, const Component& user);
+  // A mapping's input or output: the component a link designates, or, when it names a node ("@.",
+  // "@.."), that node's state.
+  Component& resolve_mapped(const GraphNode& from, const std::string& link, const Component& user) {
+    return resolve(from, link, user, "", true);
+  }
 
   // The node's topology slot (its last topology component, else the nearest ancestor's); nullptr
   // when there is none.

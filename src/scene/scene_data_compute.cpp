@@ -2,11 +2,21 @@
 // meshes, grids and generated meshes, topological mappings, ROIs and engines, as SOFA's
 // components fill their outputs.
 #include "scene_data.h"
+#include "engine_data.h"
+
+#include "hexahedron_builders.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/io/mesh_readers.h"
 #include "fastcorot/io/sphere_reader.h"
+#include "fastcorot/io/surface_readers.h"
 #include "fastcorot/topology/cylinder_grid.h"
 #include "fastcorot/topology/cylinder_mesh.h"
+#include "fastcorot/topology/generate_grid.h"
+#include "fastcorot/topology/hexahedron_faces.h"
+#include "fastcorot/topology/mesh2point_mapping.h"
+#include "fastcorot/topology/sphere_grid.h"
+#include "fastcorot/topology/string_mesh_creator.h"
 #include "fastcorot/topology/regular_grid.h"
 #include "fastcorot/topology/tetrahedron_faces.h"
 #include "fastcorot/topology/tetrahedron_subdivision.h"
@@ -35,6 +45,113 @@ Numbers flatten_indices(const std::vector<std::array<Index, N>>& tuples) {
   return out;
 }
 
+bool is_set_container(std::string_view type) {
+  return type == "PointSetTopologyContainer" || type == "QuadSetTopologyContainer" ||
+         type == "HexahedronSetTopologyContainer" || type == "TetrahedronSetTopologyContainer" ||
+         type == "TriangleSetTopologyContainer";
+}
+
+SphereGrid sphere_grid(SceneData& data, Component& c) {
+  SphereGrid sphere;
+  sphere.n = data.grid(c).n;
+  sphere.center = data.vec3(c, "center", {0, 0, 0});
+  sphere.axis = data.vec3(c, "axis", {0, 0, 1});
+  sphere.radius = data.real(c, "radius", 1);
+  return sphere;
+}
+
+std::vector<Vec3<double>> sphere_grid_points_of(SceneData& data, Component& c) {
+  try {
+    return sphere_grid_points(sphere_grid(data, c));
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+}
+
+template <class T>
+T checked(Component& c, const std::function<T()>& make) {
+  try {
+    return make();
+  } catch (const Error& error) {
+    throw make_error(c.where(), ": ", error.what());
+  }
+}
+
+// Mesh2PointTopologicalMapping m's data `name` for its output container: the points placed on
+// its input's elements, or the input's elements copied onto the points made from their ends.
+Numbers mesh2point(SceneData& data, Component& m, const std::string& name) {
+  if (!m.has("input")) throw make_error(m.where(), ": no input given");
+  Component& input = data.resolve_object(*m.node, m.object->attributes.at("input"), m);
+  const auto coords = [&](const char* attribute) { return data.points(m, attribute); };
+  Mesh2PointCoords at{coords("pointBaryCoords"), coords("edgeBaryCoords"), coords("triangleBaryCoords"),
+                      coords("quadBaryCoords"),  coords("tetraBaryCoords"), coords("hexaBaryCoords")};
+  const std::size_t per_point = at.point.size();
+  for (const char* copy : {"copyEdges", "copyTriangles", "copyTetrahedra"}) {
+    if (data.boolean(m, copy, false) && per_point == 0) {
+      throw make_error(m.where(), ": ", copy, " needs at least one offset in pointBaryCoords");
+    }
+  }
+  const auto input_points = data.points(input, "position");
+  const std::vector<Tetrahedron> tetrahedra = data.tetrahedra_of(input);
+  std::vector<Hexahedron> hexahedra = topology_hexahedra(data, input);
+  // The input's edges: given, else those its container creates from its elements.
+  const auto edges = [&] {
+    const std::vector<Index> flat = data.indices(input, "edges");
+    if (flat.size() % 2 != 0) throw make_error(input.where(), ": edges needs 2 indices per edge");
+    std::vector<Edge> out(flat.size() / 2);
+    for (std::size_t e = 0; e < out.size(); ++e) out[e] = {flat[2 * e], flat[2 * e + 1]};
+    if (!out.empty()) return out;
+    if (!tetrahedra.empty()) {
+      const TetMesh mesh = checked<TetMesh>(input, [&] { return TetMesh(static_cast<Index>(input_points.size()), tetrahedra); });
+      return std::vector<Edge>(mesh.edges().begin(), mesh.edges().end());
+    }
+    if (!hexahedra.empty()) return hexahedron_set_edges(hexahedra);
+    if (!data.indices(input, "triangles").empty() || !data.indices(input, "quads").empty()) {
+      throw make_error(m.where(), ": edgeBaryCoords or copyEdges on ", input.where(),
+                       ", which has no edges given: the edges SOFA creates from triangles or quads are not made");
+    }
+    return out;
+  };
+  const auto tuples = [&]<std::size_t N>(const char* data_name, std::array<Index, N>) {
+    const std::vector<Index> flat = data.indices(input, data_name);
+    if (flat.size() % N != 0) throw make_error(input.where(), ": ", data_name, " needs ", N, " indices each");
+    std::vector<std::array<Index, N>> out(flat.size() / N);
+    for (std::size_t e = 0; e < out.size(); ++e) {
+      for (std::size_t j = 0; j < N; ++j) out[e][j] = flat[N * e + j];
+    }
+    return out;
+  };
+  const bool need_edges = !at.edge.empty() || data.boolean(m, "copyEdges", false);
+  const std::vector<Edge> edge_list = need_edges ? edges() : std::vector<Edge>{};
+  const std::vector<Triangle> triangles =
+      !at.triangle.empty() || data.boolean(m, "copyTriangles", false) ? tuples("triangles", Triangle{}) : std::vector<Triangle>{};
+  const std::vector<std::array<Index, 4>> quads =
+      at.quad.empty() ? std::vector<std::array<Index, 4>>{} : tuples("quads", std::array<Index, 4>{});
+  if (name == "position") {
+    return flatten(checked<std::vector<Vec3<double>>>(m, [&] {
+      return mesh2point_points({input_points, edge_list, triangles, quads, tetrahedra, hexahedra}, at);
+    }));
+  }
+  // copyEdges, copyTriangles, copyTetrahedra: vertex v becomes the first point made from it.
+  const auto copied = [&]<class Tuples>(const char* flag, const Tuples& elements) {
+    Numbers out;
+    if (!data.boolean(m, flag, false)) return out;
+    for (const auto& element : elements) {
+      for (Index v : element) {
+        if (v < 0 || static_cast<std::size_t>(v) >= input_points.size()) {
+          throw make_error(m.where(), ": ", flag, ": the input names point ", v, ", outside its ", input_points.size(), " points");
+        }
+        out.push_back(static_cast<double>(static_cast<std::size_t>(v) * per_point));
+      }
+    }
+    return out;
+  };
+  if (name == "edges") return copied("copyEdges", edge_list);
+  if (name == "triangles") return copied("copyTriangles", triangles);
+  if (name == "tetrahedra") return copied("copyTetrahedra", tetrahedra);
+  return {};
+}
+
 }  // namespace
 
 Numbers SceneData::compute(Component& c, const std::string& name) {
@@ -48,10 +165,59 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
       return flatten_indices(boundary_triangles(tetrahedra_of(input), boolean(*m, "flipNormals", false)));
     }
   }
+  if (type == "QuadSetTopologyContainer" && name == "quads") {
+    // Filled by a Hexa2QuadTopologicalMapping: the quads of its input bounding one hexahedron.
+    if (Component* m = mapping_into(c, "Hexa2QuadTopologicalMapping")) {
+      if (!m->has("input")) throw make_error(m->where(), ": no input given");
+      Component& input = resolve_object(*m->node, m->object->attributes.at("input"), *m);
+      const auto hexahedra = topology_hexahedra(*this, input);
+      const auto quads = is_grid_topology(input.type()) ? grid_quads(grid(input)) : hexahedron_set_quads(hexahedra);
+      return flatten_indices(boundary_quads(quads, hexahedra, boolean(*m, "flipNormals", false)));
+    }
+  }
+  // SOFA's other names of the containers' data.
+  if (type == "TetrahedronSetTopologyContainer") {
+    if (name == "points") return data(c, "position");
+    if (name == "tetras") return data(c, "tetrahedra");
+    if (name == "tetrahedra" && c.has("tetras")) return data(c, "tetras");
+  }
+  // A mesh file read by the container itself (SOFA's fileTopology, alias filename: MeshTopology's
+  // filename="mesh/liver-smooth.obj"): a surface (.obj, .stl) gives points, triangles and quads, a
+  // volume mesh points, tetrahedra and triangles.
+  if (type == "TetrahedronSetTopologyContainer" && (c.has("filename") || c.has("fileTopology")) &&
+      (name == "position" || name == "tetrahedra" || name == "triangles" || name == "quads")) {
+    const std::string file = text(c, c.has("filename") ? "filename" : "fileTopology", "");
+    if (!file.empty()) {
+      try {
+        const auto path = find_data_file(c.object->location.file, file);
+        const std::string extension = path.extension().string();
+        if (extension == ".obj" || extension == ".OBJ" || extension == ".stl" || extension == ".STL") {
+          const SurfaceData surface = read_surface_file(path);
+          if (name == "position") return flatten(surface.points);
+          if (name == "triangles") return flatten_indices(surface.triangles);
+          if (name == "quads") return flatten_indices(surface.quads);
+          return {};
+        }
+        const MeshData mesh = read_mesh_file(path);
+        if (name == "position") return flatten(mesh.points);
+        if (name == "tetrahedra") return flatten_indices(mesh.tetrahedra);
+        if (name == "triangles") return flatten_indices(mesh.triangles);
+        return {};
+      } catch (const Error& error) {
+        throw make_error(c.where(), ": ", error.what());
+      }
+    }
+  }
+  if (is_set_container(type) && name == "position" && c.has("points")) return data(c, "points");
+  if (type == "HexahedronSetTopologyContainer" && name == "hexahedra" && c.has("hexas")) return data(c, "hexas");
   // src="@loader": same-named data come from the source unless written here.
-  if (const auto src = c.object->attributes.find("src"); src != c.object->attributes.end() &&
-                                                         (name == "position" || name == "tetrahedra" || name == "triangles")) {
+  const bool from_source = name == "position" || name == "tetrahedra" || name == "triangles" ||
+                           (is_set_container(type) && (name == "edges" || name == "quads" || name == "hexahedra"));
+  if (const auto src = c.object->attributes.find("src"); src != c.object->attributes.end() && from_source) {
     Component& source = resolve_object(*c.node, src->second, c);
+    if (type == "HexahedronSetTopologyContainer" && name == "quads" && data(source, name).empty()) {
+      return flatten_indices(hexahedron_set_quads(topology_hexahedra(*this, c)));
+    }
     if (type == "MechanicalObject" && name != "position") return {};
     if (type == "TetrahedronSetTopologyContainer" && name == "triangles" && data(source, name).empty()) {
       return flatten_indices(tetrahedron_set_triangles(tetrahedra_of(c)));
@@ -62,6 +228,47 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   if (type == "RegularGridTopology" && name == "n") return {2, 2, 2};
   if (type == "CylinderGridTopology" && name == "position") return flatten(cylinder_grid_points(cylinder_grid(c)));
   if (type == "CylinderGridTopology" && name == "n") return {2, 2, 2};
+  if (type == "SphereGridTopology" && name == "position") return flatten(sphere_grid_points_of(*this, c));
+  if (type == "SphereGridTopology" && name == "n") return {2, 2, 2};
+  if (type == "HexahedronSetTopologyContainer") {
+    // SOFA creates the quad array from the hexahedra when it is asked for and has none.
+    if (name == "quads") return flatten_indices(hexahedron_set_quads(topology_hexahedra(*this, c)));
+    return {};
+  }
+  if (type == "PointSetTopologyContainer") {
+    if (Component* m = mapping_into(c, "Mesh2PointTopologicalMapping")) return mesh2point(*this, *m, name);
+    return {};
+  }
+  if (type == "GenerateGrid") {
+    const Numbers& resolution = data(c, "resolution");
+    if (resolution.size() != 3) throw make_error(c.where(), ": resolution needs 3 integers, got ", resolution.size());
+    std::array<long long, 3> cells{};
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (resolution[a] != std::floor(resolution[a]) || std::abs(resolution[a]) > 1e9) {
+        throw make_error(c.where(), ": resolution = ", resolution[a], ": expected whole numbers");
+      }
+      cells[a] = static_cast<long long>(resolution[a]);
+    }
+    const GeneratedGrid grid = checked<GeneratedGrid>(c, [&] {
+      return generate_grid(vec3(c, "min", {0, 0, 0}), vec3(c, "max", {0, 0, 0}), cells);
+    });
+    if (name == "output_position" || name == "position") return flatten(grid.points);
+    if (name == "hexahedra") return flatten_indices(grid.hexahedra);
+    if (name == "tetrahedra") return flatten_indices(grid.tetrahedra);
+    if (name == "quads") return flatten_indices(grid.quads);
+    if (name == "triangles") return flatten_indices(grid.triangles);
+    if (name == "resolution") return {3, 3, 3};
+    return {};
+  }
+  if (type == "StringMeshCreator") {
+    const StringMesh mesh = checked<StringMesh>(c, [&] { return string_mesh(whole_number(c, "resolution", 2)); });
+    if (name == "position") {
+      return flatten(transformed(mesh.points, vec3(c, "scale3d", {1, 1, 1}), vec3(c, "rotation", {0, 0, 0}),
+                                 vec3(c, "translation", {0, 0, 0})));
+    }
+    if (name == "edges") return flatten_indices(mesh.edges);
+    return {};
+  }
   if (type == "MeshGmshLoader" || type == "MeshVTKLoader" || type == "GIDMeshLoader") {
     const MeshData& mesh = mesh_file(c);
     if (name == "position") return flatten(mesh.points);
@@ -74,8 +281,16 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (Component* m = mapping_into(c, "Hexa2TetraTopologicalMapping")) {
       if (!m->has("input")) throw make_error(m->where(), ": no input given");
       Component& grid = resolve_object(*m->node, m->object->attributes.at("input"), *m);
+      if (grid.type() == "HexahedronSetTopologyContainer") {
+        // Not a grid: SOFA takes its hexahedra as cells of a 2 x 1 layer for the swapping parities.
+        if (name == "position") return data(grid, "position");
+        if (name == "tetrahedra") {
+          return flatten_indices(split_hexahedra(topology_hexahedra(*this, grid), 2, 1, boolean(*m, "swapping", false), true));
+        }
+        return {};
+      }
       if (grid.type() != "RegularGridTopology") {
-        throw make_error(m->where(), ": input must be a RegularGridTopology, not ", grid.type());
+        throw make_error(m->where(), ": input must be a RegularGridTopology or a HexahedronSetTopologyContainer, not ", grid.type());
       }
       if (name == "position") return data(grid, "position");
       if (name == "tetrahedra") return flatten_indices(grid_tetrahedra(this->grid(grid), boolean(*m, "swapping", false)));
@@ -122,6 +337,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
         // A grid whose position links back to this state (SOFA scenes write that) gives its own points.
         base = topology->type() == "RegularGridTopology"    ? grid_points<double>(grid(*topology))
                : topology->type() == "CylinderGridTopology" ? cylinder_grid_points(cylinder_grid(*topology))
+               : topology->type() == "SphereGridTopology"   ? sphere_grid_points_of(*this, *topology)
                                                             : points_from(data(*topology, "position"), *topology, "position");
       }
       return flatten(transformed(std::move(base), placement(c, "scale3d"), placement(c, "rotation"),
@@ -163,6 +379,9 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     return {};
   }
   if (type == "BoxROI" || type == "PlaneROI" || type == "PairBoxROI") return region_of_interest(c, name);
+  if (type == "SubsetTopology") return subset_topology(*this, c, name);
+  if (type == "MeshTetraStuffing") return mesh_tetra_stuffing(*this, c, name);
+  if (type == "MeshSplittingEngine") return mesh_splitting_engine(*this, c, name);
   return {};
 }
 

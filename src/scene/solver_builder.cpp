@@ -1,5 +1,7 @@
 #include "solver_builder.h"
 
+#include "linear_solver_builders.h"
+
 #include "fastcorot/core/error.h"
 #include "fastcorot/sim/conjugate_gradient.h"
 #include "fastcorot/sim/explicit_solvers.h"
@@ -189,6 +191,8 @@ class SolverBuilder {
                                                             const std::vector<GraphNode*>& nodes) {
     if (c.type() == "PCGLinearSolver") return build_pcg(c, points, nodes);
     if (c.type() == "PETScLinearSolver") return build_petsc(c);
+    if (c.type() == "MinResLinearSolver") return build_minres(data, c, points);
+    if (c.type() == "PrecomputedLinearSolver") return build_precomputed_linear_solver(data, info, c);
     if (c.type() == "EigenSimplicialLDLT") {
       link_to_matrix_system(c, "linearSystem");
       return std::make_unique<SparseDirectSolver<double>>();
@@ -294,13 +298,16 @@ class SolverBuilder {
         if (p.warp_rotations && !has_component(nodes, "TetrahedronFEMForceField")) {
           info.push_back(preconditioner->where() + ": no TetrahedronFEMForceField reports rotations: R is the identity (as in SOFA)");
         }
+      } else if (preconditioner->type() == "SSORPreconditioner" || preconditioner->type() == "WarpPreconditioner") {
+        p.preconditioner = Preconditioner::solver;
+        p.solver = build_preconditioning_solver(data, info, *preconditioner, nodes);
       } else if (preconditioner->type() == "EigenSimplicialLDLT") {
         // SparseLDLSolver, SparseCholeskySolver, ...: the factorisation of the assembled matrix.
         p.preconditioner = Preconditioner::sparse_ldlt;
       } else {
         throw make_error(c.where(), ": preconditioner ", preconditioner->where(),
                          " is not supported; supported: BlockJacobiPreconditioner, JacobiPreconditioner, "
-                         "PrecomputedWarpPreconditioner, a sparse direct solver (SparseLDLSolver, EigenSimplicialLDLT, ...)");
+                         "SSORPreconditioner, WarpPreconditioner, PrecomputedWarpPreconditioner, a sparse direct solver (SparseLDLSolver, EigenSimplicialLDLT, ...)");
       }
     }
     if (!preconditioner)
@@ -327,7 +334,8 @@ class SolverBuilder {
     if (!c.has(attribute)) return;
     Component& target = data.resolve_object(*c.node, c.object->attributes.at(attribute), c);
     if (target.type() != "MatrixLinearSystem" && target.type() != "PrecomputedMatrixSystem" &&
-        target.type() != "CompositeLinearSystem") {
+        target.type() != "CompositeLinearSystem" && target.type() != "ConstantSparsityPatternSystem" &&
+        target.type() != "RotationMatrixSystem") {
       throw make_error(c.where(), ": ", attribute, " must link a MatrixLinearSystem, not ",
                        target.where());
     }
@@ -348,6 +356,7 @@ BuiltSolvers build_solvers(SceneData& data, std::vector<std::string>& info, Comp
   SolverBuilder builder(data, info);
   BuiltSolvers solvers;
   solvers.ode = builder.build_integrator(integrator, nodes, points);
+  report_matrix_images(nodes, info);
   if (is_explicit(integrator) && linear_solvers.empty() && !integrator.has("linearSolver")) {
     solvers.linear = std::make_unique<MissingLinearSolver>(integrator.where());
     return solvers;

@@ -64,7 +64,7 @@ class VisualSurfaceBuilder {
       Component* mapping = nullptr;
       for (Component* m : mappings) {
         const auto output = m->object->attributes.find("output");
-        if (output == m->object->attributes.end() || &data_.resolve_object(node, output->second, *m) == model) {
+        if (output == m->object->attributes.end() || &data_.resolve_mapped(node, output->second, *m) == model) {
           mapping = m;
           break;
         }
@@ -121,7 +121,7 @@ class VisualSurfaceBuilder {
       for (Component* m : mappings) {
         const auto output = m->object->attributes.find("output");
         if (output == m->object->attributes.end() ? node.of_category("state").front() == state
-                                                  : &data_.resolve_object(node, output->second, *m) == state) {
+                                                  : &data_.resolve_mapped(node, output->second, *m) == state) {
           mapping = m;
           break;
         }

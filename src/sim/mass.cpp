@@ -105,7 +105,21 @@ void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> 
 
 template <class Real>
 void Mass<Real>::add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const {
-  for (std::size_t i = 0; i < vertex_masses_.size(); ++i) f[i] += vertex_masses_[i] * gravity;
+  const std::span<const Real> masses = gravity_masses();
+  for (std::size_t i = 0; i < masses.size(); ++i) f[i] += masses[i] * gravity;
+}
+
+template <class Real>
+void Mass<Real>::set_gravity_masses(std::vector<Real> masses) {
+  if (masses.size() != vertex_masses_.size()) {
+    throw make_error("gravity masses: ", masses.size(), " values for ", vertex_masses_.size(), " points");
+  }
+  for (std::size_t i = 0; i < masses.size(); ++i) {
+    if (!(masses[i] >= 0) || !std::isfinite(masses[i])) {
+      throw make_error("gravity mass of vertex ", i, " = ", masses[i], ": must be finite and >= 0");
+    }
+  }
+  gravity_masses_ = std::move(masses);
 }
 
 template <class Real>

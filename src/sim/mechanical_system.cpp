@@ -388,7 +388,7 @@ Real MechanicalSystem<Real>::potential_energy(std::span<const Vec3<Real>> x) con
   Real energy = 0;
   for (const auto& field : force_fields) energy += field->potential_energy(x);
   if (mass.size() != 0) {
-    const auto masses = mass.vertex_masses();
+    const auto masses = mass.gravity_masses();
     for (std::size_t i = 0; i < masses.size(); ++i) energy -= masses[i] * gravity.dot(x[i]);
   }
   for (const auto& constant : constant_forces) {

@@ -53,6 +53,16 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
   system.gravity = parts.front().system.gravity;
   Index total = 0;
   for (const auto& part : parts) total += part.system.size();
+  // A part without mass whose every point is fixed (an anchor that SOFA's springs pull on) weighs
+  // nothing beside parts with masses: zero masses, which its fixed points never use.
+  bool any_mass = false;
+  for (const auto& part : parts) any_mass = any_mass || part.system.mass.size() != 0;
+  for (auto& part : parts) {
+    auto& s = part.system;
+    if (any_mass && s.mass.size() == 0 && static_cast<Index>(s.fixed.size()) == s.size()) {
+      s.mass = Mass<double>::lumped(std::vector<double>(static_cast<std::size_t>(s.size()), 0.0));
+    }
+  }
   const bool massive = parts.front().system.mass.size() != 0;
   bool lumped = true;
   std::vector<Tetrahedron> all_tetrahedra;
@@ -137,6 +147,14 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
       matrix.setFromTriplets(entries.begin(), entries.end());
       system.mass = Mass<double>::consistent(matrix);
     }
+    bool own_gravity_masses = false;
+    std::vector<double> gravity_masses;
+    for (const auto& part : parts) {
+      own_gravity_masses = own_gravity_masses || part.system.mass.has_own_gravity_masses();
+      const auto masses = part.system.mass.gravity_masses();
+      gravity_masses.insert(gravity_masses.end(), masses.begin(), masses.end());
+    }
+    if (own_gravity_masses) system.mass.set_gravity_masses(std::move(gravity_masses));
   }
   if (!all_tetrahedra.empty()) merged.mesh = std::make_shared<TetMesh>(total, std::move(all_tetrahedra));
   system.finalize();

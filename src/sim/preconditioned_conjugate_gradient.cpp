@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/core/parallel.h"
 #include "fastcorot/fem/node_rotations.h"
+#include "carried_bits.h"
 #include "solver_vectors.h"
 
 #include <algorithm>
@@ -19,32 +20,13 @@ std::string_view preconditioner_name(Preconditioner preconditioner) {
     case Preconditioner::block_jacobi: return "block_jacobi";
     case Preconditioner::sparse_ldlt: return "sparse_ldlt";
     case Preconditioner::precomputed_warp: return "precomputed_warp";
+    case Preconditioner::solver: return "solver";
   }
   return "?";
 }
 
-namespace {
-
-// A value's bit pattern as an integer and back (checkpoints store carried state as integers).
-template <class Real>
-std::int64_t to_bits(Real value) {
-  if constexpr (sizeof(Real) == 8) {
-    return std::bit_cast<std::int64_t>(value);
-  } else {
-    return std::bit_cast<std::int32_t>(value);
-  }
-}
-
-template <class Real>
-Real from_bits(std::int64_t bits) {
-  if constexpr (sizeof(Real) == 8) {
-    return std::bit_cast<Real>(bits);
-  } else {
-    return std::bit_cast<Real>(static_cast<std::int32_t>(bits));
-  }
-}
-
-}  // namespace
+using carried_bits::from_bits;
+using carried_bits::to_bits;
 
 template <class Real>
 PreconditionedConjugateGradientSolver<Real>::PreconditionedConjugateGradientSolver(Parameters parameters,
@@ -60,9 +42,13 @@ PreconditionedConjugateGradientSolver<Real>::PreconditionedConjugateGradientSolv
     throw make_error("PCGLinearSolver: update_step = ", parameters_.update_step, ": must be at least 1");
   }
   if (points < 0) throw make_error("PCGLinearSolver: ", points, " points");
+  if (parameters_.preconditioner == Preconditioner::solver && !parameters_.solver) {
+    throw make_error("PCGLinearSolver: a preconditioning solver is wanted, and none is given");
+  }
   previous_.assign(static_cast<std::size_t>(points), Vec3<Real>::Zero());
   const bool factorised = parameters_.preconditioner == Preconditioner::sparse_ldlt ||
-                          parameters_.preconditioner == Preconditioner::precomputed_warp;
+                          parameters_.preconditioner == Preconditioner::precomputed_warp ||
+                          parameters_.preconditioner == Preconditioner::solver;
   if (!factorised) inverse_.assign(static_cast<std::size_t>(points), Mat3<Real>::Zero());
   if (parameters_.preconditioner == Preconditioner::precomputed_warp) {
     rotations_.assign(static_cast<std::size_t>(points), Mat3<Real>::Identity());
@@ -100,6 +86,10 @@ void factorise_or_throw(SparseFactorisation<Real>& factorisation, const Eigen::S
 template <class Real>
 void PreconditionedConjugateGradientSolver<Real>::build_preconditioner(const MechanicalSystem<Real>& system,
                                                                        const MatrixFactors<Real>& factors) {
+  if (parameters_.preconditioner == Preconditioner::solver) {
+    parameters_.solver->build(system, factors);
+    return;
+  }
   if (parameters_.preconditioner == Preconditioner::precomputed_warp) {
     // A0 once, at the first solve (SOFA precomputes its inverse then); R every time.
     if (factorised_.nonZeros() == 0) {
@@ -189,7 +179,8 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   Real* xs = flat<Real>(x);
   const Real* inverse = inverse_.empty() ? nullptr : inverse_.data()->data();  // nine values per point, column-major
   const Preconditioner kind = parameters_.preconditioner;
-  const bool direct = kind == Preconditioner::sparse_ldlt || warp;
+  const bool by_solver = kind == Preconditioner::solver;
+  const bool direct = kind == Preconditioner::sparse_ldlt || warp || by_solver;
   // z = P r for the points [begin, end) (already done for the direct preconditioner), returning
   // sum r . z over them: one partial sum per axis (three chains of additions instead of one), in
   // point order, then x + y + z.
@@ -239,7 +230,11 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
       });
     } else if (direct) {
       parallel_ranges(threads, n, pass);
-      factorisation_.solve(r, z, static_cast<Index>(3 * n));
+      if (by_solver) {
+        parameters_.solver->apply(r, z, static_cast<Index>(3 * n));
+      } else {
+        factorisation_.solve(r, z, static_cast<Index>(3 * n));
+      }
     }
     return parallel_sum<Real>(threads, n, [&](std::size_t begin, std::size_t end) {
       if (!direct) pass(begin, end);
@@ -314,6 +309,10 @@ std::vector<std::int64_t> PreconditionedConjugateGradientSolver<Real>::carried_s
       for (Eigen::Index k = 0; k < m.nonZeros(); ++k) state.push_back(to_bits(m.valuePtr()[k]));
     }
   }
+  if (parameters_.solver && parameters_.preconditioner == Preconditioner::solver) {
+    const auto own = parameters_.solver->carried_state();
+    state.insert(state.end(), own.begin(), own.end());
+  }
   return state;
 }
 
@@ -323,6 +322,15 @@ void PreconditionedConjugateGradientSolver<Real>::check_carried_state(const std:
   const bool blocks = carries_blocks() || carries_rotations();
   const bool matrix = carries_matrix();
   const std::size_t expected = 1 + 3 * n + (blocks ? 9 * n : 0);
+  const bool by_solver = parameters_.preconditioner == Preconditioner::solver;
+  if (by_solver) {
+    if (state.size() <= expected || state[0] < 0) {
+      throw make_error("PCGLinearSolver: expected more than ", expected, " values to restore (solve count, ", n,
+                       " points' previous solution, ", parameters_.solver->component(), "'s state), got ", state.size());
+    }
+    parameters_.solver->check_carried_state(std::span<const std::int64_t>(state).subspan(expected));
+    return;
+  }
   if ((matrix ? state.size() <= expected : state.size() != expected) || state[0] < 0) {
     throw make_error("PCGLinearSolver: expected ", matrix ? "more than " : "", expected,
                      " values to restore (solve count, ", n, " points' previous solution",
@@ -346,6 +354,9 @@ void PreconditionedConjugateGradientSolver<Real>::restore_carried_state(const st
   };
   if (carries_blocks()) read_blocks(inverse_);
   if (carries_rotations()) read_blocks(rotations_);
+  if (parameters_.preconditioner == Preconditioner::solver) {
+    parameters_.solver->restore_carried_state(std::span<const std::int64_t>(state).subspan(k));
+  }
   if (carries_matrix()) {
     factorised_ = carried_matrix(std::span<const std::int64_t>(state).subspan(k));
     if (factorised_.nonZeros() > 0) factorise_or_throw(factorisation_, factorised_);

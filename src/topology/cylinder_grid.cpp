@@ -7,6 +7,17 @@
 
 namespace fastcorot {
 
+std::array<Vec3<double>, 3> grid_axes(const Vec3<double>& axis) {
+  Vec3<double> z = axis.normalized();
+  Vec3<double> x = (z - Vec3<double>(1, 0, 0)).norm() < 0.000001 ? Vec3<double>(0, 1, 0) : Vec3<double>(1, 0, 0);
+  Vec3<double> y = z.cross(x);
+  x = y.cross(z);
+  x.normalize();
+  y.normalize();
+  z.normalize();  // again, as SOFA does (it can change the last bits)
+  return {x, y, z};
+}
+
 std::vector<Vec3<double>> cylinder_grid_points(const CylinderGrid& grid) {
   const auto [nx, ny, nz] = grid.n;
   if (nx < 2 || ny < 2 || nz < 1) {
@@ -17,13 +28,7 @@ std::vector<Vec3<double>> cylinder_grid_points(const CylinderGrid& grid) {
     throw make_error("CylinderGridTopology: center, radius and length must be finite");
   }
   const double r = grid.radius, l = grid.length;
-  Vec3<double> z = grid.axis.normalized();
-  Vec3<double> x = (z - Vec3<double>(1, 0, 0)).norm() < 0.000001 ? Vec3<double>(0, 1, 0) : Vec3<double>(1, 0, 0);
-  Vec3<double> y = z.cross(x);
-  x = y.cross(z);
-  x.normalize();
-  y.normalize();
-  z.normalize();  // again, as SOFA does (it can change the last bits)
+  const auto [x, y, z] = grid_axes(grid.axis);
   std::vector<Vec3<double>> points;
   points.reserve(static_cast<std::size_t>(nx * ny * nz));
   for (Index k = 0; k < nz; ++k) {

@@ -183,6 +183,46 @@ std::array<Index, 8> grid_cell_corners(const RegularGrid& grid, Index i, Index j
   return corners_unchecked(grid, i, j, k);
 }
 
+std::vector<Edge> grid_edges(const RegularGrid& grid) {
+  validate(grid);
+  const auto& n = grid.n;
+  const auto point = [&](Index x, Index y, Index z) { return x + n[0] * (y + n[1] * z); };
+  std::vector<Edge> edges;
+  edges.reserve(static_cast<std::size_t>((n[0] - 1) * n[1] * n[2] + n[0] * (n[1] - 1) * n[2] + n[0] * n[1] * (n[2] - 1)));
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::array<Index, 3> step{axis == 0, axis == 1, axis == 2};
+    for (Index z = 0; z < n[2] - step[2]; ++z) {
+      for (Index y = 0; y < n[1] - step[1]; ++y) {
+        for (Index x = 0; x < n[0] - step[0]; ++x) edges.push_back({point(x, y, z), point(x + step[0], y + step[1], z + step[2])});
+      }
+    }
+  }
+  return edges;
+}
+
+std::vector<std::array<Index, 4>> grid_quads(const RegularGrid& grid) {
+  validate(grid);
+  const auto& n = grid.n;
+  const auto point = [&](Index x, Index y, Index z) { return x + n[0] * (y + n[1] * z); };
+  std::vector<std::array<Index, 4>> quads;
+  for (Index z = 0; z < n[2]; ++z) {  // normal to z
+    for (Index y = 0; y < n[1] - 1; ++y) {
+      for (Index x = 0; x < n[0] - 1; ++x) quads.push_back({point(x, y, z), point(x + 1, y, z), point(x + 1, y + 1, z), point(x, y + 1, z)});
+    }
+  }
+  for (Index z = 0; z < n[2] - 1; ++z) {  // normal to y
+    for (Index y = 0; y < n[1]; ++y) {
+      for (Index x = 0; x < n[0] - 1; ++x) quads.push_back({point(x, y, z), point(x + 1, y, z), point(x + 1, y, z + 1), point(x, y, z + 1)});
+    }
+  }
+  for (Index z = 0; z < n[2] - 1; ++z) {  // normal to x
+    for (Index y = 0; y < n[1] - 1; ++y) {
+      for (Index x = 0; x < n[0]; ++x) quads.push_back({point(x, y, z), point(x, y + 1, z), point(x, y + 1, z + 1), point(x, y, z + 1)});
+    }
+  }
+  return quads;
+}
+
 namespace {
 
 // The split of every cell, mirrored as `swapping` says; `follow_mirror` chooses the mirrored split
@@ -239,6 +279,36 @@ std::vector<Tetrahedron> split_cells(const RegularGrid& grid, bool swapping, boo
 }
 
 }  // namespace
+
+std::vector<Tetrahedron> split_hexahedra(std::span<const std::array<Index, 8>> hexahedra, Index cells_x, Index cells_y,
+                                         bool swapping, bool follow_mirror) {
+  if (cells_x < 1 || cells_y < 1) throw make_error("split_hexahedra: ", cells_x, " x ", cells_y, " cells per layer");
+  std::vector<Tetrahedron> tetrahedra;
+  tetrahedra.reserve(static_cast<std::size_t>(kTetrahedraPerCell) * hexahedra.size());
+  for (std::size_t h = 0; h < hexahedra.size(); ++h) {
+    std::array<Index, 8> c = hexahedra[h];
+    const auto cell = static_cast<Index>(h);
+    bool mirrored = false;
+    if (swapping) {
+      // SOFA's parities from the hexahedron's index, as in split_cells.
+      if ((cell % cells_x) % 2 == 0) {
+        c = permuted(c, kMirrorX);
+        mirrored = !mirrored;
+      }
+      if ((cell / cells_x) % cells_y % 2 == 1) {
+        c = permuted(c, kMirrorY);
+        mirrored = !mirrored;
+      }
+      if ((cell / (cells_x * cells_y)) % 2 == 1) {
+        c = permuted(c, kMirrorZ);
+        mirrored = !mirrored;
+      }
+    }
+    const SplitTable& split = mirrored && follow_mirror ? kSplitMirrored : kSplit;
+    for (const auto& t : split) tetrahedra.push_back(Tetrahedron{c[t[0]], c[t[1]], c[t[2]], c[t[3]]});
+  }
+  return tetrahedra;
+}
 
 template std::vector<Vec3<float>> grid_points<float>(const RegularGrid& grid);
 template std::vector<Vec3<double>> grid_points<double>(const RegularGrid& grid);

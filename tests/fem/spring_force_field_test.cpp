@@ -143,6 +143,43 @@ TEST(SpringForceField, ElongationOnlySpringsDoNotPush) {
   EXPECT_EQ(field.potential_energy(x), 0);
 }
 
+TEST(SpringForceField, DisabledSpringsActNot) {
+  // SOFA's `enabled` = false: a broken spring gives no force, no tangent, no energy.
+  auto mesh = std::make_shared<TetMesh>(4, std::vector<Tetrahedron>{{0, 1, 2, 3}});
+  Spring<double> broken{0, 1, 10.0, 1.0, 1.0, false, false};
+  SpringForceField<double> field(mesh, {broken});
+  const Points x = {{0, 0, 0}, {3, 0, 0}, {5, 0, 0}, {0, 0, 5}};
+  Points f(4, Vec3<double>::Zero());
+  field.add_force(x, f);
+  EXPECT_EQ(f[0].norm(), 0);
+  EXPECT_EQ(Eigen::MatrixXd(field.stiffness_matrix()).norm(), 0);
+  EXPECT_EQ(field.potential_energy(x), 0);
+}
+
+TEST(SpringForceField, OnlyTheAssembledSpringsEnterTheMatrixButAllActInTheProduct) {
+  // RegularGridSpringForceField's springs beyond its listed ones: add_dforce has them, the matrix not
+  // (SOFA's SpringForceField::addKToMatrix loops over its listed springs only).
+  auto mesh = std::make_shared<TetMesh>(4, std::vector<Tetrahedron>{{0, 1, 2, 3}});
+  SpringForceField<double> field(mesh, {{0, 1, 100.0, 0.0, 1.0, false}, {2, 3, 50.0, 0.0, 1.0, false}});
+  const Points x = {{0, 0, 0}, {0, 2, 0}, {5, 0, 0}, {5, 0, 3}};
+  Points f(4, Vec3<double>::Zero());
+  field.add_force(x, f);
+  const Eigen::MatrixXd all(field.stiffness_matrix());
+  field.set_assembled_springs(1);
+  const Eigen::MatrixXd first(field.stiffness_matrix());
+  EXPECT_NEAR(first(4, 1), 100, 1e-12);                       // spring 0's ks along y
+  EXPECT_EQ(first.block(6, 6, 6, 6).norm(), 0);              // spring 1 absent
+  EXPECT_NEAR(all(11, 8), 50, 1e-12);                        // but in the full matrix
+  const Points dx = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 1}};
+  Points df(4, Vec3<double>::Zero());
+  field.add_dforce(dx, df, 1.0);
+  EXPECT_NEAR(df[3].z(), -50, 1e-12);                        // the product keeps spring 1
+  std::vector<Mat3<double>> diagonal(4, Mat3<double>::Zero());
+  field.add_diagonal_blocks(diagonal, 1.0);
+  EXPECT_EQ(diagonal[3].norm(), 0);
+  EXPECT_THROW(field.set_assembled_springs(3), Error);
+}
+
 TEST(SpringForceField, BadSpringsAndTopologicalChangesAreRefused) {
   auto mesh = std::make_shared<TetMesh>(4, std::vector<Tetrahedron>{{0, 1, 2, 3}});
   EXPECT_THROW(SpringForceField<double>(mesh, {{0, 4, 1.0, 0.0, 1.0, false}}), Error);

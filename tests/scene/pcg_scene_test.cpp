@@ -107,7 +107,8 @@ TEST(PcgScene, UnsupportedOrMissingPreconditionersAreNamed) {
       error_of(R"(<PCGLinearSolver preconditioner="@C"/><CGLinearSolver name="C"/>)");
   EXPECT_NE(unsupported.find("pcg.scn:2: PCGLinearSolver: preconditioner pcg.scn:2: CGLinearSolver 'C' is not supported"),
             std::string::npos) << unsupported;
-  EXPECT_NE(unsupported.find("supported: BlockJacobiPreconditioner, JacobiPreconditioner, PrecomputedWarpPreconditioner, a sparse direct solver"),
+  EXPECT_NE(unsupported.find("supported: BlockJacobiPreconditioner, JacobiPreconditioner, SSORPreconditioner, WarpPreconditioner, "
+                                 "PrecomputedWarpPreconditioner, a sparse direct solver"),
             std::string::npos)
       << unsupported;
   const std::string missing = error_of(R"(<PCGLinearSolver preconditioner="@nothing"/>)");

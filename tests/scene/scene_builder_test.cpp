@@ -246,7 +246,7 @@ TEST(SceneBuilder, BadScenesNameTheProblemAndTheLine) {
     const std::string message = error_of(body);
     for (const auto& needle : needles) EXPECT_NE(message.find(needle), std::string::npos) << "message: " << message << "\nlacks: " << needle;
   };
-  expect(kTet + "\n<SpringForceField/>", {"test.scn:8", "unknown component 'SpringForceField'", "supported:"});
+  expect(kTet + "\n<PolynomialSpringsForceField/>", {"test.scn:8", "unknown component 'PolynomialSpringsForceField'", "supported:"});
   expect(kTet + "\n<FixedProjectiveConstraint indices=\"@nowhere.indices\"/>", {"broken link '@nowhere.indices'", "test.scn:8"});
   expect(kTet + "\n<FixedProjectiveConstraint indices=\"9\"/>", {"index 9 out of range"});
   expect(R"(<EulerImplicitSolver/><CGLinearSolver/><MeshGmshLoader name="l" filename="absent.msh"/>

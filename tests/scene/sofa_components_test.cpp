@@ -139,7 +139,7 @@ TEST(SofaProjectiveConstraints, PlaneAndLineProjectIncrementsAndPlacePoints) {
   EXPECT_NEAR(x[2].z(), 0, 1e-15);
 }
 
-TEST(SofaMeshSpringForceField, SpringsFromTheTetrahedraAndRefusedKinds) {
+TEST(SofaMeshSpringForceField, SpringsFromTheTetrahedraAndTheirFaces) {
   const LoadedScene scene = build(beam("<MeshSpringForceField tetrasStiffness=\"30\" tetrasDamping=\"1\"/>"));
   const auto& fields = scene.simulation.objects[0].system.force_fields;
   ASSERT_EQ(fields.size(), 2u);
@@ -148,7 +148,13 @@ TEST(SofaMeshSpringForceField, SpringsFromTheTetrahedraAndRefusedKinds) {
   EXPECT_EQ(springs->component(), "MeshSpringForceField");
   // One spring per distinct edge of the tetrahedra.
   EXPECT_EQ(static_cast<Index>(springs->springs().size()), fields[1]->mesh().num_edges());
-  EXPECT_NE(error_of(beam("<MeshSpringForceField trianglesStiffness=\"3\"/>")).find("trianglesStiffness"), std::string::npos);
+  // The triangles' springs are the tetrahedra's edges again (SOFA's triangle array of the tetrahedra).
+  const LoadedScene faces = build(beam("<MeshSpringForceField trianglesStiffness=\"3\"/>"));
+  const auto& face_fields = faces.simulation.objects[0].system.force_fields;
+  ASSERT_EQ(face_fields.size(), 2u);
+  const auto* face_springs = dynamic_cast<const SpringForceField<double>*>(face_fields[1].get());
+  ASSERT_NE(face_springs, nullptr);
+  EXPECT_EQ(static_cast<Index>(face_springs->springs().size()), face_fields[1]->mesh().num_edges());
 }
 
 TEST(SofaIntegrators, ExplicitAndNewmarkSolversAreBuilt) {
@@ -312,7 +318,7 @@ TEST(SofaTetrahedronFEM, UpdateStiffnessMatrixForPolarAndSvdOnly) {
   EXPECT_NE(error_of(large).find("updateStiffnessMatrix with method large is not supported"), std::string::npos) << error_of(large);
 }
 
-TEST(SofaGrid, CylinderGridCarriesTetrahedronFEMAndSpringlessMeshSprings) {
+TEST(SofaGrid, CylinderGridCarriesTetrahedronFEMAndMeshSprings) {
   LoadedScene scene = build(R"(<Node name="cylinder"><EulerImplicitSolver/><CGLinearSolver/>
     <MechanicalObject/><UniformMass totalMass="1"/><FixedProjectiveConstraint indices="0 1 2"/>
     <CylinderGridTopology n="3 3 4" axis="0 1 0" radius="2" length="6"/>
@@ -320,8 +326,13 @@ TEST(SofaGrid, CylinderGridCarriesTetrahedronFEMAndSpringlessMeshSprings) {
     <TetrahedronFEMForceField method="polar" youngModulus="100"/></Node>)");
   auto& object = scene.simulation.objects[0];
   ASSERT_EQ(object.system.size(), 36);
-  ASSERT_EQ(object.system.force_fields.size(), 1u);  // the springs' kinds are all zero: none (SOFA)
-  EXPECT_EQ(object.system.force_fields[0]->mesh().num_tetrahedra(), 6 * 2 * 2 * 3);
+  // `stiffness` sets every kind (SOFA's alias): the grid's 75 lines, the diagonals of its 52 quads
+  // and the 4 of each of its 12 cells.
+  ASSERT_EQ(object.system.force_fields.size(), 2u);
+  const auto* springs = dynamic_cast<const SpringForceField<double>*>(object.system.force_fields[0].get());
+  ASSERT_NE(springs, nullptr);
+  EXPECT_EQ(springs->springs().size(), 75u + 104u + 48u);
+  EXPECT_EQ(object.system.force_fields[1]->mesh().num_tetrahedra(), 6 * 2 * 2 * 3);
   EXPECT_LT((object.system.state.position[35] - Vec3<double>(std::sqrt(2.0), 6, -std::sqrt(2.0))).norm(), 1e-14);
   scene.simulation.step();
   EXPECT_TRUE(object.system.state.position[35].allFinite());

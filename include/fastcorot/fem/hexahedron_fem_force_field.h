@@ -60,6 +60,8 @@ class HexahedronFEMForceField final : public ForceField<Real> {
   std::shared_ptr<TetMesh> drawn_mesh() const { return drawn_; }
   std::span<const Hexahedron> hexahedra() const { return hexahedra_; }
   const ElementStiffness& element_stiffness(Index h) const { return stiffness_[static_cast<std::size_t>(h)]; }
+  // Hexahedron h's rest corners in its rest frame (SOFA's _rotatedInitialElements).
+  const std::array<Vec3<Real>, 8>& rest_in_frame(Index h) const { return rest_in_frame_[static_cast<std::size_t>(h)]; }
   // R of hexahedron h at the last add_force: element frame = R · world.
   const Mat3<Real>& rotation(Index h) const { return rotation_[static_cast<std::size_t>(h)]; }
 

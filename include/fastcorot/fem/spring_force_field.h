@@ -4,7 +4,10 @@
 //   f = (ks (d - L) + kd (U . w)) U   on a, and -f on b,
 // and records the tangent dF/dX = (ks - f/d) U U^T + (f/d) I, which add_dforce and add_stiffness
 // use (SOFA's linearisation: the damping force enters through f, its velocity derivative not at
-// all). A spring shorter than 1e-9, or compressed with elongation_only, gives no force and no tangent.
+// all). A spring shorter than 1e-9, compressed with elongation_only, or not enabled, gives no force
+// and no tangent. The springs may join points of several objects merged into one system
+// (merged_objects.h): SOFA's interaction springs between object1 and object2 are the same springs
+// on the merged indices.
 #pragma once
 
 #include "fastcorot/fem/force_field.h"
@@ -22,6 +25,7 @@ struct Spring {
   Real damping = 0;
   Real rest_length = 0;
   bool elongation_only = false;
+  bool enabled = true;  // SOFA's `enabled`: false for a broken spring
 };
 
 // MeshSpringForceField's stiffnesses and dampings per kind of element (SOFA's names without the
@@ -29,14 +33,31 @@ struct Spring {
 template <class Real>
 struct MeshSpringParameters {
   Real lines_stiffness = 0, lines_damping = 0;
+  Real triangles_stiffness = 0, triangles_damping = 0;
+  Real quads_stiffness = 0, quads_damping = 0;
   Real tetrahedra_stiffness = 0, tetrahedra_damping = 0;
+  Real cubes_stiffness = 0, cubes_damping = 0;
   bool no_compression = false;
 };
 
-// The springs of MeshSpringForceField::init: the mesh's edges (linesStiffness), then each
-// tetrahedron's six vertex pairs (0-1, 0-2, 0-3, 1-2, 1-3, 2-3) that are not springs yet; each
-// spring's rest length is the distance at `rest`, its stiffness and damping divided by that length
-// (when it exceeds machine epsilon).
+// The element lists of MeshSpringForceField's topology (SOFA's getLine, getTriangle, ...).
+struct SpringTopology {
+  std::vector<Edge> lines;
+  std::vector<Triangle> triangles;
+  std::vector<std::array<Index, 4>> quads;
+  std::vector<Tetrahedron> tetrahedra;
+  std::vector<std::array<Index, 8>> hexahedra;
+};
+
+// The springs of MeshSpringForceField::init: for each kind whose stiffness or damping is not zero,
+// in the order lines, triangles, quads, tetrahedra, cubes (hexahedra), every vertex pair of each
+// element (pairs (k, j), k < j, in that order) that is not a spring yet; each spring's rest length
+// is the distance at `rest`, its stiffness and damping divided by that length (when it exceeds
+// machine epsilon).
+template <class Real>
+std::vector<Spring<Real>> mesh_springs(const SpringTopology& topology, std::span<const Vec3<Real>> rest,
+                                       const MeshSpringParameters<Real>& parameters);
+// The same on a tetrahedral mesh: its edges, SOFA's triangle array of its tetrahedra, its tetrahedra.
 template <class Real>
 std::vector<Spring<Real>> mesh_springs(const TetMesh& mesh, std::span<const Vec3<Real>> rest,
                                        const MeshSpringParameters<Real>& parameters);
@@ -51,6 +72,11 @@ class SpringForceField final : public ForceField<Real> {
 
   std::string component() const override { return component_; }
   std::string method_name() const override { return "springs"; }
+  // Only the first `count` springs enter add_stiffness and add_diagonal_blocks (the rest act
+  // through add_force and add_dforce alone): SOFA's RegularGridSpringForceField computes its grid's
+  // springs in addForce/addDForce but assembles only its listed springs (SpringForceField's
+  // addKToMatrix/buildStiffnessMatrix). Throws fastcorot::Error when count > springs().size().
+  void set_assembled_springs(std::size_t count);
   const TetMesh& mesh() const override { return *mesh_; }
   const std::vector<Spring<Real>>& springs() const { return springs_; }
 
@@ -82,6 +108,7 @@ class SpringForceField final : public ForceField<Real> {
   std::shared_ptr<const TetMesh> mesh_;
   std::vector<Spring<Real>> springs_;
   std::vector<Mat3<Real>> tangent_;  // dF/dX per spring at the last add_force
+  std::size_t assembled_ = 0;         // springs [0, assembled_) enter the assembled matrix
   Real rayleigh_stiffness_ = 0;
   std::string component_;
   std::span<const Vec3<Real>> velocity_;

@@ -40,8 +40,15 @@ class Mass {
   // out = factor · M dx (every point written; the rows on up to `threads` threads, the same bits for
   // any count).
   void multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor, int threads) const;
-  // f += M g (the weight of each vertex)
+  // f += m_i g for each vertex i, m_i its gravity mass (below).
   void add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const;
+  // The masses gravity acts on: vertex_masses() unless set otherwise. SOFA's
+  // HexahedronFEMForceFieldAndMass weighs its points (density x volume / 8 from each hexahedron)
+  // otherwise than its mass matrix's row sums. Throws fastcorot::Error for a wrong size or a
+  // negative or non-finite entry.
+  void set_gravity_masses(std::vector<Real> masses);
+  std::span<const Real> gravity_masses() const { return gravity_masses_.empty() ? vertex_masses() : gravity_masses_; }
+  bool has_own_gravity_masses() const { return !gravity_masses_.empty(); }
   // factor · M as 3×3 blocks (diagonal blocks m I, or M_ij I) at the given scalar offset.
   void add_to_matrix(MatrixSink<Real>& sink, Real factor, Index offset = 0) const;
   // blocks[i] += factor · M_ii · I (the lumped mass, or the consistent matrix's diagonal entry): the
@@ -66,6 +73,7 @@ class Mass {
   Real density_ = 0;
   std::vector<Real> vertex_masses_;
   Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix_;  // empty when lumped
+  std::vector<Real> gravity_masses_;                  // empty: vertex_masses_
 };
 
 // SOFA's DiagonalMass on tetrahedra: each tetrahedron gives density · |V| / 4 to each of its vertices.

@@ -6,7 +6,9 @@
 // step it was built, reused for update_step solves), or SOFA's PrecomputedWarpPreconditioner
 // (P = R A0^-1 R^T: A0 the assembled matrix of the first solve, factorised once, R the block
 // diagonal of TetrahedronFEMForceField's point rotations, node_rotations.h, taken again every
-// update_step solves; the identity without such a force field):
+// update_step solves; the identity without such a force field), or a preconditioning solver of its
+// own (Preconditioner::solver: SSORPreconditioner, WarpPreconditioner; preconditioning_solver.h),
+// built on the same schedule:
 //   r = b - A x0, z = P r, rho = r . z; while iteration <= iterations and rho > tolerance · b . b:
 //   q = A w, alpha = rho / w . q, x += alpha w, r -= alpha q, z = P r, beta = (r . z) / rho, w = z + beta w
 // with w = z first. Unlike CGLinearSolver it starts from its previous solution x0 (zero before the
@@ -15,16 +17,18 @@
 #pragma once
 
 #include "fastcorot/sim/linear_solver.h"
+#include "fastcorot/sim/preconditioning_solver.h"
 #include "fastcorot/sim/sparse_factorisation.h"
 
+#include <memory>
 #include <string_view>
 #include <vector>
 
 namespace fastcorot {
 
-enum class Preconditioner { none, jacobi, block_jacobi, sparse_ldlt, precomputed_warp };
+enum class Preconditioner { none, jacobi, block_jacobi, sparse_ldlt, precomputed_warp, solver };
 
-// "none", "jacobi", "block_jacobi", "sparse_ldlt", "precomputed_warp".
+// "none", "jacobi", "block_jacobi", "sparse_ldlt", "precomputed_warp", "solver".
 std::string_view preconditioner_name(Preconditioner preconditioner);
 
 template <class Real>
@@ -39,10 +43,12 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
     int update_step = 1;
     // precomputed_warp: false leaves R out (P = A0^-1), SOFA's use_rotations.
     bool warp_rotations = true;
+    // Preconditioner::solver: the preconditioning solver (its component names it in messages).
+    std::shared_ptr<PreconditioningSolver<Real>> solver;
   };
 
   // For systems of `points` points. Throws fastcorot::Error for iterations < 1, update_step < 1, a
-  // negative or non-finite tolerance, or points < 0.
+  // negative or non-finite tolerance, points < 0, or Preconditioner::solver without a solver.
   PreconditionedConjugateGradientSolver(Parameters parameters, Index points);
 
   // Throws fastcorot::Error when the system does not have the solver's point count, when a
@@ -60,7 +66,7 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
 
   // The solve count, the previous solution and, when the preconditioner outlives a solve
   // (update_step > 1, or always for precomputed_warp), its blocks or the assembled matrix it
-  // factorised (and the warp's rotations), all as bit patterns: a resumed run continues bitwise
+  // factorised (and the warp's rotations), or the preconditioning solver's state, all as bit patterns: a resumed run continues bitwise
   // (the factorisation of the same matrix is the same).
   std::vector<std::int64_t> carried_state() const override;
   void restore_carried_state(const std::vector<std::int64_t>& state) override;

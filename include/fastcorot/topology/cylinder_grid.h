@@ -19,6 +19,10 @@ struct CylinderGrid {
   double length = 1;
 };
 
+// The frame SOFA's cylinder and sphere grids place their points in: Z the unit axis,
+// Y = Z x (1, 0, 0) (or Z x (0, 1, 0) when the axis is x), X = Y x Z, each normalised as SOFA does.
+std::array<Vec3<double>, 3> grid_axes(const Vec3<double>& axis);
+
 // The points, as SOFA's getPointInGrid computes them: the square coordinate (i 2r/(nx-1) - r,
 // j 2r/(ny-1) - r) scaled by max(|x|, |y|) / |(x, y)| (a square ring onto a circle), k l/(nz-1)
 // along the axis (0 when nz = 1), in the frame X = (Y x Z), Y = Z x (1, 0, 0) (or (0, 1, 0) when

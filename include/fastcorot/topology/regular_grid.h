@@ -8,6 +8,7 @@
 
 #include <array>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace fastcorot {
@@ -46,6 +47,12 @@ std::vector<Vec3<Real>> grid_points(const RegularGrid& grid);
 // when the cell is outside 0 <= i < nx-1 (and likewise for j, k).
 std::array<Index, 8> grid_cell_corners(const RegularGrid& grid, Index i, Index j, Index k);
 
+// The grid's lines (SOFA's GridTopology edges): those along x, then y, then z, each family with x
+// fastest, then y, then z; and its quads: the faces normal to z (corners (x,y) (x+1,y) (x+1,y+1)
+// (x,y+1)), then to y, then to x, in the same loop order. Validates first.
+std::vector<Edge> grid_edges(const RegularGrid& grid);
+std::vector<std::array<Index, 4>> grid_quads(const RegularGrid& grid);
+
 // Tetrahedra of Hexa2TetraTopologicalMapping applied to the grid's hexahedra (cells in SOFA's
 // hexahedron order, x fastest): 6 per cell, tetrahedra 6c..6c+5 from cell c, all positively
 // oriented when min < max, and a conforming mesh. `swapping` as SOFA's attribute of that name:
@@ -57,5 +64,16 @@ std::vector<Tetrahedron> grid_tetrahedra(const RegularGrid& grid, bool swapping)
 // has no tetrahedra (its init): cells mirrored as with `swapping`, but always split with the plain
 // table, so that mirrored cells give negatively oriented tetrahedra (which it accepts: it uses |V|).
 std::vector<Tetrahedron> tetrahedron_fem_grid_tetrahedra(const RegularGrid& grid);
+
+// The same splits for any list of hexahedra (corners in SOFA's order), as SOFA's
+// Hexa2TetraTopologicalMapping (follow_mirror = true) and TetrahedronFEMForceField (swapping = true,
+// follow_mirror = false) apply them to a topology that is not a grid: hexahedron h is
+// taken as cell (h % cells_x, (h / cells_x) % cells_y, h / (cells_x cells_y)) for the parities,
+// with SOFA's cells_x = 2, cells_y = 1 for a topology that is not a grid. `swapping` mirrors as
+// above; `follow_mirror` uses the mirrored table after an odd number of mirrors (the mapping), else
+// the plain table always (TetrahedronFEMForceField, which mirrors with swapping = true). Throws
+// fastcorot::Error when cells_x or cells_y is below 1.
+std::vector<Tetrahedron> split_hexahedra(std::span<const std::array<Index, 8>> hexahedra, Index cells_x, Index cells_y,
+                                         bool swapping, bool follow_mirror);
 
 }  // namespace fastcorot

@@ -1,0 +1,68 @@
+// RestShapeSpringsForceField<Real>: SOFA's RestShapeSpringsForceField on 3D points. Each listed
+// point i is pulled towards its anchor p0_i (its rest position, or a point of another state):
+//   f_i -= k_i · mask ∘ (x_i - p0_i),
+// where mask zeroes the axes that activeDirections turns off, and K is the diagonal -k_i · mask on
+// point i (SOFA's addKToMatrix), constant. No damping of its own beyond rayleighStiffness. The
+// energy is Σ k_i |mask ∘ (x_i - p0_i)|² / 2 (SOFA reports 0: it does not implement it).
+#pragma once
+
+#include "fastcorot/fem/force_field.h"
+
+#include <array>
+#include <memory>
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+class RestShapeSpringsForceField final : public ForceField<Real> {
+ public:
+  struct Parameters {
+    std::vector<Index> points;            // the points pulled (SOFA's default: every point)
+    std::vector<Vec3<Real>> anchors;      // one per point: where it is pulled to
+    std::vector<Real> stiffness{Real(100)};  // one per point, or one for all (SOFA's rule: k[i] when i < #k, else k[0])
+    std::array<bool, 3> active_directions{true, true, true};
+    Real rayleigh_stiffness = 0;
+  };
+
+  // Throws fastcorot::Error for a point outside the mesh's points, as many anchors as points
+  // not given, an empty stiffness list, a negative or non-finite stiffness, anchor or rayleigh_stiffness.
+  RestShapeSpringsForceField(std::shared_ptr<const TetMesh> mesh, Parameters parameters);
+
+  std::string component() const override { return "RestShapeSpringsForceField"; }
+  std::string method_name() const override { return "rest shape springs"; }
+  const TetMesh& mesh() const override { return *mesh_; }
+  const Parameters& parameters() const { return p_; }
+
+  void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
+  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override { add_force(x, f); }
+  void add_dforce(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> df, Real k_factor,
+                  Real b_factor = 0) const override;
+  void add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset = 0, Real b_factor = 0) const override;
+  void add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor = 0) const override;
+  Real potential_energy(std::span<const Vec3<Real>> x) const override;
+  std::vector<Mat3<Real>> rotations() const override;
+
+  // The points and anchors are fixed at init: topological changes of the mesh are refused.
+  void check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const override;
+  void apply(const TopologyChange& change) override;
+
+  std::vector<double> model_values() const override;
+  void set_threads(int threads) override { threads_ = threads; }
+  int threads() const override { return threads_; }
+  void set_phase_times(PhaseTimes* times) override { times_ = times; }
+  std::size_t memory_bytes() const override;
+
+ private:
+  Real stiffness(std::size_t i) const { return p_.stiffness[i < p_.stiffness.size() ? i : 0]; }
+  // k_i · mask as a diagonal matrix.
+  Mat3<Real> block(std::size_t i) const;
+  Real factor(Real k_factor, Real b_factor) const { return k_factor + b_factor * p_.rayleigh_stiffness; }
+
+  std::shared_ptr<const TetMesh> mesh_;
+  Parameters p_;
+  int threads_ = 1;
+  PhaseTimes* times_ = nullptr;
+};
+
+}  // namespace fastcorot
