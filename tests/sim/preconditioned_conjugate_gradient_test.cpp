@@ -10,6 +10,7 @@
 #include "support/deformations.h"
 #include "support/mass_system.h"
 #include "support/random_rhs.h"
+#include "support/solver_systems.h"
 
 #include <gtest/gtest.h>
 
@@ -42,61 +43,14 @@ using testing::mass_system;
 constexpr MatrixFactors<double> kMassOnly{1.0, 0.0, 0.0};
 
 // A 4 x 3 x 3 grid of points (72 tetrahedra), deformed and linearised there, lumped masses, the
-// points of the face x = 0 fixed; with `turn`, TetrahedronFEMForceField (large) instead of ours and
-// the deformed positions turned by that rotation.
+// points of the face x = 0 fixed (testing::grid_system); with `turn`, TetrahedronFEMForceField
+// (large) instead of ours and the deformed positions turned by that rotation, else ours with its
+// Rayleigh damping 0.1.
 MechanicalSystem<double> small_beam(unsigned seed, const Mat3<double>* turn = nullptr) {
-  Points rest;
-  for (int k = 0; k < 3; ++k) {
-    for (int j = 0; j < 3; ++j) {
-      for (int i = 0; i < 4; ++i) rest.emplace_back(i, j, k);
-    }
-  }
-  const auto at = [](int i, int j, int k) { return static_cast<Index>(i + 4 * (j + 3 * k)); };
-  std::vector<Tetrahedron> tets;
-  for (int k = 0; k < 2; ++k) {
-    for (int j = 0; j < 2; ++j) {
-      for (int i = 0; i < 3; ++i) {
-        const Index c[8] = {at(i, j, k), at(i + 1, j, k), at(i + 1, j + 1, k), at(i, j + 1, k),
-                            at(i, j, k + 1), at(i + 1, j, k + 1), at(i + 1, j + 1, k + 1), at(i, j + 1, k + 1)};
-        // six tetrahedra around the diagonal c0-c6
-        const int split[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
-        for (const auto& s : split) tets.push_back({c[s[0]], c[s[1]], c[s[2]], c[s[3]]});
-      }
-    }
-  }
-  auto mesh = std::make_shared<TetMesh>(static_cast<Index>(rest.size()), tets);
-  CorotationalForceField<double>::Parameters p;
-  p.young_modulus = {2000.0};
-  p.poisson_ratio = {0.3};
-  p.rayleigh_stiffness = 0.1;
-  std::shared_ptr<ForceField<double>> field = std::make_shared<CorotationalForceField<double>>(mesh, rest, p);
-  std::mt19937 rng(seed);
-  Points x = testing::perturbed(rest, 0.15, rng);
-  if (turn) {
-    TetrahedronFEMForceField<double>::Parameters q;
-    q.young_modulus = {2000.0};
-    q.poisson_ratio = {0.3};
-    field = std::make_shared<TetrahedronFEMForceField<double>>(mesh, rest, q);
-    for (auto& point : x) point = (*turn * point).eval();
-  }
-  Points f(rest.size(), Vec3<double>::Zero());
-  field->add_force(x, f);
-  MechanicalSystem<double> system;
-  system.state.position = x;
-  system.state.rest_position = rest;
-  system.force_fields.push_back(field);
-  std::vector<double> masses(rest.size());
-  for (std::size_t i = 0; i < masses.size(); ++i) masses[i] = 0.5 + 0.01 * static_cast<double>(i);
-  system.mass = Mass<double>::lumped(masses);
-  for (int k = 0; k < 3; ++k) {
-    for (int j = 0; j < 3; ++j) system.fixed.push_back(at(0, j, k));
-  }
-  system.finalize();
-  return system;
+  return turn ? testing::grid_system(seed, 0.15, *turn, true) : testing::grid_system(seed, 0.15, Mat3<double>::Identity(), false, 0.1);
 }
 
-// Implicit Euler's factors for h = 0.05, rm = 0.1, rs = 0.1 (docs/sofa-solvers.md §1.2).
-constexpr MatrixFactors<double> kEuler{1.005, -0.05, -0.05 * 0.15};
+constexpr MatrixFactors<double> kEuler = testing::kEulerFactors;
 
 // The system matrix, column by column from the matrix-free product.
 Eigen::MatrixXd dense_matrix(const MechanicalSystem<double>& system, const MatrixFactors<double>& factors) {

@@ -21,9 +21,10 @@ namespace fastcorot::testing {
 constexpr MatrixFactors<double> kEulerFactors{1.005, -0.05, -0.05 * 0.15};
 
 // Positions: the rest grid perturbed by `noise` (seeded), then turned by `turn`; the field is
-// TetrahedronFEMForceField (large) when `tetrahedron_fem`, else FastTetrahedralCorotationalForceField.
+// TetrahedronFEMForceField (large) when `tetrahedron_fem`, else FastTetrahedralCorotationalForceField
+// with its own Rayleigh damping `rayleigh_stiffness`.
 inline MechanicalSystem<double> grid_system(unsigned seed, double noise = 0.15, const Mat3<double>& turn = Mat3<double>::Identity(),
-                                            bool tetrahedron_fem = false) {
+                                            bool tetrahedron_fem = false, double rayleigh_stiffness = 0) {
   std::vector<Vec3<double>> rest;
   for (int k = 0; k < 3; ++k) {
     for (int j = 0; j < 3; ++j) {
@@ -53,6 +54,7 @@ inline MechanicalSystem<double> grid_system(unsigned seed, double noise = 0.15, 
     CorotationalForceField<double>::Parameters p;
     p.young_modulus = {2000.0};
     p.poisson_ratio = {0.3};
+    p.rayleigh_stiffness = rayleigh_stiffness;
     field = std::make_shared<CorotationalForceField<double>>(mesh, rest, p);
   }
   std::mt19937 rng(seed);
