@@ -1,4 +1,4 @@
-#include "fastcorot/sim/barycentric_mapping.h"
+#include "fastcorot/mapping/barycentric_mapping.h"
 
 #include "fastcorot/core/error.h"
 

@@ -110,7 +110,7 @@ std::vector<ComponentSpec> solver_components() {
         {"assembleDamping", "bool", "true", "accepted (the solver assembles the whole system)"},
         {"assembleGeometricStiffness", "bool", "true", "accepted (no geometric stiffness here)"},
         {"applyProjectiveConstraints", "bool", "true", "accepted (the constraints are applied)"},
-        {"applyMappedComponents", "bool", "true", "accepted (no mapped mechanics here)"},
+        {"applyMappedComponents", "bool", "true", "accepted (mapped mechanics are always applied: docs/mechanical-graph.md)"},
         {"checkIndices", "bool", "false", "accepted (indices are always checked here)"},
         {"parallelAssemblyIndependentMatrices", "bool", "false", "accepted"},
         {"enableAssembly", "bool", "true", "accepted"}}},

@@ -16,6 +16,7 @@
 #include "solver_builder.h"
 #include "spring_builders.h"
 #include "topology_change_processor.h"
+#include "mapped_mechanics.h"
 #include "visual_surface_builder.h"
 
 #include <cmath>
@@ -136,8 +137,9 @@ class Builder {
   }
 
   // Nodes taking part in the mechanics under a solver node: the node and its descendants, minus
-  // mapped (visual/collision) subtrees.
-  void collect(GraphNode& node, std::vector<GraphNode*>& nodes) {
+  // mapped subtrees, which go to `mapped` (visual and collision models, mapped states, and mapped
+  // nodes with mechanics of their own: add_mapped_mechanics).
+  void collect(GraphNode& node, std::vector<GraphNode*>& nodes, std::vector<GraphNode*>& mapped) {
     if (is_unloaded_point_set(node)) {
       // SOFA integrates this state with no mass and no force: its points stay where the mapping put them.
       info_.push_back(node.scene->location.to_string() + ": node " + node.path + ": the points of its " +
@@ -145,22 +147,59 @@ class Builder {
       return;
     }
     if (is_mapped_node(node)) {
-      for (const char* category : {"forcefield", "mass", "constraint"}) {
-        if (!node.of_category(category).empty()) {
-          throw make_error(node.of_category(category).front()->where(),
-                           ": mechanics in a mapped node are not supported (node ", node.path, ")");
-        }
+      if (!node.of_category("constraint").empty()) {
+        throw make_error(node.of_category("constraint").front()->where(),
+                         ": projective constraints in a mapped node are not supported (node ", node.path,
+                         "): put them on the simulated object");
       }
       if (node.of_category("visual").empty() && node.of_category("state").empty()) {
         info_.push_back(node.scene->location.to_string() + ": mapped node " + node.path +
                         " ignored (visual or collision only)");
       } else {
-        mapped_.push_back(&node);
+        mapped.push_back(&node);
       }
       return;
     }
     nodes.push_back(&node);
-    for (auto& child : node.children) collect(*child, nodes);
+    for (auto& child : node.children) collect(*child, nodes, mapped);
+  }
+
+  // Force fields or a mass in the node or below it (a chain of mappings carries them up).
+  static bool has_mechanics(const GraphNode& node) {
+    if (!node.of_category("forcefield").empty() || !node.of_category("mass").empty()) return true;
+    for (const auto& child : node.children) {
+      if (has_mechanics(*child)) return true;
+    }
+    return false;
+  }
+
+  // A mapped node with force fields or a mass (SOFA's mechanical mapping): its MechanicalObject is
+  // built as an object of its own with the nodes below it, then folded into `object`: its forces
+  // come up through Jᵀ, its stiffness as Jᵀ K J, its mass as Jᵀ M J (scene_detail::fold_mapped_object).
+  void add_mapped_mechanics(GraphNode& node, SimulatedObject<double>& object) {
+    const auto states = node.of_category("state");
+    const std::string where = node.scene->location.to_string() + ": mapped node " + node.path;
+    if (states.size() != 1) {
+      throw make_error(where, " has ", states.size(), " MechanicalObjects: the mechanics in it or below need exactly one to act on");
+    }
+    const std::size_t known = object.mapped_states.size();
+    scene_detail::add_mapped_states(data_, info_, node, object);
+    if (object.mapped_states.size() == known) {
+      throw make_error(where, ": its mapping is not one fastcorot carries forces through ",
+                       "(IdentityMapping, SubsetMapping, BarycentricMapping; rigid bodies are not supported yet)");
+    }
+    const PointMapping<double> map = object.mapped_states.back().map;
+    MechanicalState<double> placed;
+    placed.position.resize(map.size());
+    placed.velocity.resize(map.size());
+    map.apply(object.system.state.position, placed.position);
+    map.apply(object.system.state.velocity, placed.velocity);
+    std::vector<GraphNode*> nodes{&node}, mapped;
+    for (auto& child : node.children) collect(*child, nodes, mapped);
+    SimulatedObject<double> mapped_object = build_part(*states.front(), nodes, mapped, &placed);
+    // Springs of the mapped nodes join points of the mapped state (object1 and object2 its own).
+    scene_detail::add_interaction_springs(data_, nodes, {states.front()}, {0}, {mapped_object.system.size()}, mapped_object);
+    scene_detail::fold_mapped_object(mapped_object, map, object, "node " + node.path);
   }
 
   // The nearest state at or above `node` among `states` (nullptr when none is).
@@ -174,8 +213,10 @@ class Builder {
   }
 
   // One object: `state` with the components of `nodes` and the visual models of `visuals`.
+  // `placed` (a mapped state's object): the positions and velocities its mapping gives it, as SOFA's
+  // mapping sets them at init; its rest positions stay its own when it has one per mapped point.
   SimulatedObject<double> build_part(Component& state, const std::vector<GraphNode*>& nodes,
-                                     const std::vector<GraphNode*>& visuals) {
+                                     const std::vector<GraphNode*>& visuals, const MechanicalState<double>* placed = nullptr) {
     SimulatedObject<double> object;
     object.path = state.node->path;
     auto& system = object.system;
@@ -189,6 +230,10 @@ class Builder {
     }
     system.state.position = data_.points(state, "position");
     system.state.rest_position = data_.points(state, "rest_position");
+    if (placed) {
+      if (system.state.rest_position.size() != placed->position.size()) system.state.rest_position = placed->position;
+      system.state.position = placed->position;
+    }
     const Index n = system.size();
     if (n == 0) throw make_error(state.where(), ": the state has no points");
     if (system.state.rest_position.size() != system.state.position.size()) {
@@ -201,6 +246,7 @@ class Builder {
       throw make_error(state.where(), ": velocity has ", velocity.size(), " entries, position has ", n);
     }
     system.state.velocity = velocity.empty() ? Points<double>(static_cast<std::size_t>(n), Vec3<double>::Zero()) : velocity;
+    if (placed) system.state.velocity = placed->velocity;
     object.states.push_back({state.node->path, state.sofa_name(), 0, n});
 
     for (GraphNode* node : nodes) {
@@ -261,6 +307,9 @@ class Builder {
         }
       }
     }
+    for (GraphNode* mapped_node : visuals) {
+      if (has_mechanics(*mapped_node)) add_mapped_mechanics(*mapped_node, object);
+    }
     try {
       system.finalize();
     } catch (const Error& error) {
@@ -268,7 +317,7 @@ class Builder {
     }
     for (GraphNode* mapped_node : visuals) {
       scene_detail::add_visual_surfaces(data_, info_, *mapped_node, object);
-      scene_detail::add_mapped_states(data_, info_, *mapped_node, object);
+      if (!has_mechanics(*mapped_node)) scene_detail::add_mapped_states(data_, info_, *mapped_node, object);
     }
     return object;
   }
@@ -276,7 +325,7 @@ class Builder {
   void build_object(GraphNode& solver_node, Component& integrator) {
     std::vector<GraphNode*> nodes;
     mapped_.clear();
-    collect(solver_node, nodes);
+    collect(solver_node, nodes, mapped_);
     std::vector<Component*> states;
     for (GraphNode* node : nodes) {
       for (Component* c : node->of_category("state")) states.push_back(c);

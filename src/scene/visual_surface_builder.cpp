@@ -2,7 +2,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/io/surface_readers.h"
-#include "fastcorot/sim/barycentric_mapping.h"
+#include "fastcorot/mapping/barycentric_mapping.h"
 #include "fastcorot/topology/regular_grid.h"
 
 #include <cmath>
@@ -135,7 +135,11 @@ class VisualSurfaceBuilder {
         MappedState mapped{node.path, state->sofa_name(), "", {}};
         // SOFA's IdentityMapping and SubsetMapping size their output themselves.
         std::vector<Vec3<double>> points;
-        if (mapping->type() == "BarycentricMapping" || mapping->type() == "SubsetMapping") points = data_.points(*state, "position");
+        // (A SubsetMapping with indices or a range resizes its output; without, it matches the state's points.)
+        const bool listed = mapping->has("indices") || mapping->has("first");
+        if (mapping->type() == "BarycentricMapping" || (mapping->type() == "SubsetMapping" && !listed)) {
+          points = data_.points(*state, "position");
+        }
         mapped.map = map_points(node, *mapping, points, object, "the state", mapped.mapping);
         object.mapped_states.push_back(std::move(mapped));
       } catch (const Error& error) {

@@ -53,7 +53,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "Component/SolidMechanics/FEM/FastTetrahedralCorotationalForceField.scn",
                       "Component/Topology/Mapping/Hexa2TetraTopologicalMapping.scn",
                       "Component/Topology/Container/Constant/MeshTopology.scn",
-                      "Component/Mapping/Linear/BarycentricTetraMapping.scn",
+                      "Component/Mapping/Linear/BarycentricTetraMapping.scn", "Component/Mapping/Linear/SubsetMapping.scn",
                       "Component/Playback/WriteState.scn", "Component/Playback/CompareState.scn",
                       "Component/Collision/Geometry/SphereModel.scn",
                       "Component/ODESolver/Forward/EulerSymplecticSolver_diagonal.scn",

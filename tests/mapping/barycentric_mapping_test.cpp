@@ -1,7 +1,7 @@
 // BarycentricMapping: SOFA's choice of tetrahedron (containing, deepest inside, else nearest centre
 // among the grid's candidates) and the property every linear mapping has: any affine motion of the
 // mesh moves every mapped point, inside or outside the mesh, by that affine motion.
-#include "fastcorot/sim/barycentric_mapping.h"
+#include "fastcorot/mapping/barycentric_mapping.h"
 
 #include "fastcorot/core/error.h"
 #include "support/deformations.h"

@@ -1,0 +1,104 @@
+#include "mapped_mechanics.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/mapping/mapped_force_field.h"
+
+namespace fastcorot::scene_detail {
+
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+SparseMatrix mass_matrix(const Mass<double>& mass) {
+  if (!mass.is_lumped()) return SparseMatrix(mass.matrix());
+  const auto masses = mass.vertex_masses();
+  SparseMatrix m(mass.size(), mass.size());
+  std::vector<Eigen::Triplet<double>> diagonal;
+  for (Index i = 0; i < mass.size(); ++i) diagonal.emplace_back(i, i, masses[static_cast<std::size_t>(i)]);
+  m.setFromTriplets(diagonal.begin(), diagonal.end());
+  return m;
+}
+
+bool is_diagonal(const SparseMatrix& m) {
+  for (Index k = 0; k < m.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(m, k); it; ++it) {
+      if (it.row() != it.col() && it.value() != 0) return false;
+    }
+  }
+  return true;
+}
+
+// The parent's mass plus Jᵀ M_child J: lumped while both are diagonal (identity and subset
+// mappings of lumped masses), else consistent. Gravity weighs the parent's own gravity masses
+// plus Jᵀ m_child (the mapped weights m_i g carried up).
+Mass<double> add_mapped_mass(const Mass<double>& parent, const Mass<double>& child, const PointMapping<double>& map, Index n) {
+  const SparseMatrix j = SparseMatrix(map.matrix(n));
+  const SparseMatrix added = SparseMatrix(j.transpose() * mass_matrix(child) * j);
+  SparseMatrix total = parent.size() == 0 ? added : SparseMatrix(mass_matrix(parent) + added);
+  std::vector<double> weights(static_cast<std::size_t>(n), 0.0);
+  if (parent.size() != 0) {
+    const auto own = parent.gravity_masses();
+    weights.assign(own.begin(), own.end());
+  }
+  const auto child_weights = child.gravity_masses();
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    for (std::size_t k = 0; k < static_cast<std::size_t>(PointMapping<double>::kSlots); ++k) {
+      weights[static_cast<std::size_t>(map.vertices[i][k])] += map.weights[i][k] * child_weights[i];
+    }
+  }
+  Mass<double> mass;
+  if (is_diagonal(total) && (parent.size() == 0 || parent.is_lumped())) {
+    std::vector<double> diagonal(static_cast<std::size_t>(n));
+    for (Index i = 0; i < n; ++i) diagonal[static_cast<std::size_t>(i)] = total.coeff(i, i);
+    mass = Mass<double>::lumped(std::move(diagonal));
+  } else {
+    mass = Mass<double>::consistent(std::move(total));
+  }
+  mass.set_gravity_masses(std::move(weights));
+  return mass;
+}
+
+}  // namespace
+
+void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<double>& map, SimulatedObject<double>& parent,
+                        const std::string& where) {
+  auto& from = child.system;
+  auto& to = parent.system;
+  const Index n = to.size();
+  if (static_cast<Index>(map.size()) != from.size()) {
+    throw make_error(where, ": the mapping gives ", map.size(), " points, the mapped MechanicalObject has ", from.size());
+  }
+  if (!from.fixed.empty() || !from.projections.empty() || !from.couplings.empty() || !from.placements.empty() ||
+      !from.motions.empty()) {
+    throw make_error(where, ": projective constraints on a mapped state are not supported (put them on the simulated object)");
+  }
+  if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");
+  for (std::size_t k = 0; k < from.force_fields.size(); ++k) {
+    to.force_fields.push_back(std::make_shared<MappedForceField<double>>(from.force_fields[k], map, n));
+    parent.force_field_drawing.push_back({});
+  }
+  if (from.mass.size() != 0) to.mass = add_mapped_mass(to.mass, from.mass, map, n);
+  for (const auto& load : from.constant_forces) {
+    ConstantForce<double> mapped;
+    for (std::size_t i = 0; i < load.indices.size(); ++i) {
+      const auto point = static_cast<std::size_t>(load.indices[i]);
+      for (std::size_t k = 0; k < static_cast<std::size_t>(PointMapping<double>::kSlots); ++k) {
+        if (map.weights[point][k] == 0) continue;
+        mapped.indices.push_back(map.vertices[point][k]);
+        mapped.forces.push_back(map.weights[point][k] * load.forces[i]);
+      }
+    }
+    to.constant_forces.push_back(std::move(mapped));
+  }
+  for (auto& surface : child.visual_surfaces) {
+    surface.map = surface.map.after(map);
+    parent.visual_surfaces.push_back(std::move(surface));
+  }
+  for (auto& state : child.mapped_states) {
+    state.map = state.map.after(map);
+    parent.mapped_states.push_back(std::move(state));
+  }
+  parent.boxes.insert(parent.boxes.end(), child.boxes.begin(), child.boxes.end());
+}
+
+}  // namespace fastcorot::scene_detail
