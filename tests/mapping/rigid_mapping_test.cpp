@@ -7,6 +7,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include "../support/error_text.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -20,16 +22,8 @@ using Quat = Eigen::Quaterniond;
 using V3 = Vec3<double>;
 using M3 = Mat3<double>;
 
-std::string error_of(auto&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using testing::contains;
+using testing::error_of;
 
 M3 euler_zyx(double x, double y, double z) {  // SOFA's rotationEuler(x, y, z)
   return (Eigen::AngleAxisd(z, V3::UnitZ()) * Eigen::AngleAxisd(y, V3::UnitY()) * Eigen::AngleAxisd(x, V3::UnitX()))

@@ -5,6 +5,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include "../support/error_text.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,16 +22,8 @@ using Quat = Eigen::Quaterniond;
 using V3 = Vec3<double>;
 using M3 = Mat3<double>;
 
-std::string error_of(auto&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using testing::contains;
+using testing::error_of;
 
 TEST(Rigid3, RotationAndRotateMatchAngleAxis) {
   const Eigen::AngleAxisd turn(1.3, V3(1, -2, 0.5).normalized());

@@ -7,6 +7,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include "../support/error_text.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -20,16 +22,8 @@ namespace {
 using V3 = Vec3<double>;
 using M3 = Mat3<double>;
 
-std::string error_of(auto&& call) {
-  try {
-    call();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using testing::contains;
+using testing::error_of;
 
 std::string write_temp(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / ("fastcorot_rigid_mass_" + name);
