@@ -90,8 +90,9 @@ TEST(LinearSolversScene, SsorPreconditionerAttributesErrorsAndTrajectory) {
   ASSERT_NE(ssor, nullptr);
   EXPECT_EQ(ssor->parameters().omega, 1.3);
   EXPECT_TRUE(ssor->parameters().scale_by_two_minus_omega);
-  const auto& block = linear_solver<PreconditionedConjugateGradientSolver<double>>(
-      build(R"(<PCGLinearSolver preconditioner="@P"/><SSORPreconditioner name="P" template="CompressedRowSparseMatrixMat3x3d"/>)"));
+  const LoadedScene block_scene =
+      build(R"(<PCGLinearSolver preconditioner="@P"/><SSORPreconditioner name="P" template="CompressedRowSparseMatrixMat3x3d"/>)");
+  const auto& block = linear_solver<PreconditionedConjugateGradientSolver<double>>(block_scene);
   EXPECT_FALSE(dynamic_cast<const SSORPreconditioner<double>&>(*block.parameters().solver).parameters().scale_by_two_minus_omega);
   const std::string error = error_of(R"(<PCGLinearSolver preconditioner="@P"/><SSORPreconditioner name="P" omega="2"/>)");
   EXPECT_NE(error.find("SSORPreconditioner"), std::string::npos) << error;
