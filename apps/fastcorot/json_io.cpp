@@ -109,6 +109,12 @@ json points_to_json(std::span<const Vec3<double>> points) {
   return out;
 }
 
+json rows_to_json(std::span<const double> values, std::size_t width) {
+  json out = json::array();
+  for (std::size_t i = 0; i + width <= values.size(); i += width) out.push_back(std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(i), values.begin() + static_cast<std::ptrdiff_t>(i + width)));
+  return out;
+}
+
 void write_text(const std::string& text, const std::string& path) {
   if (path.empty() || path == "-") {
     std::cout << text << '\n' << std::flush;

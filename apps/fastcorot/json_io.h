@@ -30,6 +30,8 @@ double read_number(const json& value, const std::string& where);
 std::vector<double> read_number_or_list(const json& value, const std::string& where);
 
 json points_to_json(std::span<const Vec3<double>> points);
+// Values in rows of `width` (a Rigid3 state: 7 numbers per position, 6 per velocity).
+json rows_to_json(std::span<const double> values, std::size_t width);
 
 // Writes `text` to `path` (replacing it), or to standard output when path is empty or "-".
 void write_text(const std::string& text, const std::string& path);

@@ -278,8 +278,9 @@ void record(json& steps, nlohmann::ordered_json& states, const Simulation<double
       all[state.key()] = {{"node", state.node},
                           {"object", state.name},
                           {"mapped", state.mapped},
-                          {"position", points_to_json(state.position)},
-                          {"velocity", points_to_json(state.velocity)}};
+                          {"position", state.rigid ? rows_to_json(state.rigid_position, 7) : points_to_json(state.position)},
+                          {"velocity", state.rigid ? rows_to_json(state.rigid_velocity, 6) : points_to_json(state.velocity)}};
+      if (state.rigid) all[state.key()]["template"] = "Rigid3d";
     }
   }
   steps[std::to_string(simulation.steps_done())] = std::move(frame);

@@ -151,8 +151,19 @@ void bind_simulation(py::module_& m) {
                 entry["node"] = state.node;
                 entry["object"] = state.name;
                 entry["mapped"] = state.mapped;
-                entry["position"] = copy(state.position);
-                entry["velocity"] = copy(state.velocity);
+                if (state.rigid) {
+                  // SofaPython3's Rigid3d arrays: (n, 7) positions, (n, 6) velocities.
+                  const auto rows = [](const std::vector<double>& values, py::ssize_t width) {
+                    PointArray<double> array(std::vector<py::ssize_t>{static_cast<py::ssize_t>(values.size()) / width, width});
+                    std::copy(values.begin(), values.end(), array.mutable_data());
+                    return array;
+                  };
+                  entry["position"] = rows(state.rigid_position, 7);
+                  entry["velocity"] = rows(state.rigid_velocity, 6);
+                } else {
+                  entry["position"] = copy(state.position);
+                  entry["velocity"] = copy(state.velocity);
+                }
                 out[py::str(state.key())] = entry;
               }
             }

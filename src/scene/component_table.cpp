@@ -133,7 +133,7 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
-  static const std::array<std::pair<std::string_view, std::string_view>, 15> kRefused = {{
+  static const std::array<std::pair<std::string_view, std::string_view>, 14> kRefused = {{
       {"FreeMotionAnimationLoop", "constraint-based animation (Lagrangian constraints) is not simulated"},
       {"GenericConstraintSolver", "Lagrangian constraint solvers are not simulated"},
       {"BlockGaussSeidelConstraintSolver", "Lagrangian constraint solvers are not simulated"},
@@ -144,7 +144,6 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       {"GenericConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
       {"BilateralLagrangianConstraint", "Lagrangian constraints are not simulated"},
       {"FixedLagrangianConstraint", "Lagrangian constraints are not simulated"},
-      {"RigidMapping", "rigid bodies (Rigid3 states, RigidMapping) are not simulated"},
       {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},
       {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
       {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},

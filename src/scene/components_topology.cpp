@@ -5,7 +5,7 @@ namespace fastcorot::scene_detail {
 
 std::vector<ComponentSpec> topology_components() {
   return {
-      {"MechanicalObject", "state", "Positions, velocities and rest positions of the points (template Vec3, Vec3d or Vec3f; simulated in double).",
+      {"MechanicalObject", "state", "Positions, velocities and rest positions of the points (template Vec3, Vec3d or Vec3f; simulated in double), or of rigid bodies (template Rigid3d, Rigid3f, Rigid3: 7 numbers per rigid, x y z qx qy qz qw; velocities 6, v and ω in the world frame).",
        {{"position", "vec3s", "", "initial positions; default: the node's first topology's points"},
         {"velocity", "vec3s", "0", "initial velocities (one value is repeated to every point)"},
         {"rest_position", "vec3s", "", "rest positions; default: the transformed positions"},

@@ -17,6 +17,7 @@
 #include "spring_builders.h"
 #include "topology_change_processor.h"
 #include "mapped_mechanics.h"
+#include "rigid_builder.h"
 #include "visual_surface_builder.h"
 
 #include <cmath>
@@ -28,6 +29,7 @@ namespace fastcorot {
 using scene_detail::build_solvers;
 using scene_detail::Component;
 using scene_detail::GraphNode;
+using scene_detail::is_rigid_template;
 using scene_detail::Numbers;
 using scene_detail::SceneData;
 using scene_detail::transformed;
@@ -228,6 +230,10 @@ class Builder {
         break;
       }
     }
+    if (is_rigid_template(data_.text(state, "template", "Vec3d"))) {
+      if (placed) throw make_error(state.where(), ": a Rigid3 state in a mapped node is not supported");
+      return scene_detail::build_rigid_object(data_, info_, state, nodes, visuals, system.gravity);
+    }
     system.state.position = data_.points(state, "position");
     system.state.rest_position = data_.points(state, "rest_position");
     if (placed) {
@@ -333,7 +339,7 @@ class Builder {
     if (states.empty()) {
       throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
     }
-    if (states.size() == 1 && data_.points(*states.front(), "position").empty()) {
+    if (states.size() == 1 && data_.data(*states.front(), "position").empty()) {
       // SOFA steps an empty state without effect.
       info_.push_back(states.front()->where() + ": the state has no points: node " + solver_node.path +
                       " has nothing to simulate");
@@ -381,6 +387,10 @@ class Builder {
     scene_detail::add_interaction_springs(data_, nodes, states, offsets, sizes, object);
     const Index n = object.system.size();
     auto solvers = build_solvers(data_, info_, integrator, nodes, n);
+    if (object.system.rigids && integrator.type() != "EulerImplicitSolver" && integrator.type() != "EulerExplicitSolver") {
+      throw make_error(integrator.where(), ": ", integrator.type(), " does not integrate Rigid3 states here ",
+                       "(EulerImplicitSolver and EulerExplicitSolver do)");
+    }
     object.ode_solver = std::move(solvers.ode);
     object.linear_solver = std::move(solvers.linear);
     simulation_.objects.push_back(std::move(object));

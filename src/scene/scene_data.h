@@ -146,6 +146,11 @@ class SceneData {
   std::map<const Component*, MeshData> mesh_files_;
 };
 
+// Whether a MechanicalObject's template names a Rigid3 state (Rigid3d, Rigid3f, Rigid3, Rigid).
+inline bool is_rigid_template(std::string_view name) {
+  return name == "Rigid3d" || name == "Rigid3f" || name == "Rigid3" || name == "Rigid";
+}
+
 // Groups a flat list into points; throws naming c and the data when the count is not a multiple of 3.
 std::vector<Vec3<double>> points_from(const Numbers& values, const Component& c, const std::string& name);
 

@@ -314,6 +314,31 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     return {};
   }
   if (type == "MechanicalObject") {
+    if (name == "position" && is_rigid_template(text(c, "template", "Vec3d"))) {
+      // A Rigid3 state: 7 numbers per rigid (x y z qx qy qz qw), one rigid at the origin by default
+      // (SOFA's size-one state); the placement moves the centres, and a rotation also turns the
+      // orientations (SOFA's MechanicalObject<Rigid3>::applyRotation).
+      Numbers values = {0, 0, 0, 0, 0, 0, 1};
+      if (auto given = written(c, "position")) values = std::move(*given);
+      else if (c.has("src")) values = data(resolve_object(*c.node, c.object->attributes.at("src"), c), "position");
+      if (values.size() % 7 != 0) {
+        throw make_error(c.where(), ": position of a ", text(c, "template", ""), " state has ", values.size(),
+                         " numbers: expected 7 per rigid (x y z qx qy qz qw)");
+      }
+      const Vec3<double> rotation = placement(c, "rotation");
+      const Eigen::Quaterniond turn(euler_rotation(rotation));
+      for (std::size_t k = 0; k < values.size(); k += 7) {
+        const Vec3<double> center = transformed({Vec3<double>(values[k], values[k + 1], values[k + 2])}, placement(c, "scale3d"),
+                                                rotation, placement(c, "translation"))
+                                        .front();
+        for (int j = 0; j < 3; ++j) values[k + j] = center[j];
+        if (rotation != Vec3<double>::Zero()) {
+          const Eigen::Quaterniond q = turn * Eigen::Quaterniond(values[k + 6], values[k + 3], values[k + 4], values[k + 5]);
+          values[k + 3] = q.x(), values[k + 4] = q.y(), values[k + 5] = q.z(), values[k + 6] = q.w();
+        }
+      }
+      return values;
+    }
     if (name == "position") {
       std::vector<Vec3<double>> base;
       if (auto given = written(c, "position")) {

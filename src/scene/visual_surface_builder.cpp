@@ -4,6 +4,7 @@
 #include "fastcorot/io/surface_readers.h"
 #include "fastcorot/mapping/barycentric_mapping.h"
 #include "fastcorot/topology/regular_grid.h"
+#include "rigid_builder.h"
 
 #include <cmath>
 #include <map>
@@ -108,6 +109,12 @@ class VisualSurfaceBuilder {
     surface.rest_points = data.points;
     surface.triangles = data.all_triangles();
     surface.color = visual_color(model);
+    if (mapping.type() == "RigidMapping") {
+      surface.rigid = RigidPoints<double>::from(object.system.rigids,
+                                                build_rigid_mapping(data_, mapping, object, surface.rest_points, surface.rest_points));
+      surface.mapping = "RigidMapping";
+      return surface;
+    }
     surface.map = map_points(node, mapping, surface.rest_points, object, "the visual model", surface.mapping);
     return surface;
   }
@@ -128,11 +135,19 @@ class VisualSurfaceBuilder {
       }
       if (!mapping) {
         info_.push_back(state->where() + ": the state of mapped node " + node.path +
-                        " has no mapping fastcorot follows (BarycentricMapping, IdentityMapping, SubsetMapping): not in outputs");
+                        " has no mapping fastcorot follows (BarycentricMapping, IdentityMapping, SubsetMapping, RigidMapping): not in outputs");
         continue;
       }
       try {
-        MappedState mapped{node.path, state->sofa_name(), "", {}};
+        MappedState mapped{node.path, state->sofa_name(), "", {}, {}};
+        if (mapping->type() == "RigidMapping") {
+          mapped.rigid = RigidPoints<double>::from(
+              object.system.rigids, build_rigid_mapping(data_, *mapping, object, data_.points(*state, "position"),
+                                                        data_.points(*state, "rest_position")));
+          mapped.mapping = "RigidMapping";
+          object.mapped_states.push_back(std::move(mapped));
+          continue;
+        }
         // SOFA's IdentityMapping and SubsetMapping size their output themselves.
         std::vector<Vec3<double>> points;
         // (A SubsetMapping with indices or a range resizes its output; without, it matches the state's points.)

@@ -12,7 +12,17 @@ StepReport explicit_acceleration(MechanicalSystem<Real>& system, LinearSolver<Re
   force.resize(static_cast<std::size_t>(system.size()));
   system.compute_force(x, force, v);
   StepReport report;
-  if (system.mass.is_lumped()) {
+  if (system.mass.is_block_diagonal()) {
+    // SOFA's accFromF of a rigid mass: the linear part divided by m, the angular part times the
+    // inverse of m·inertia (a block that is m I₃ divides; any other is inverted).
+    const auto blocks = system.mass.blocks();
+    for (std::size_t i = 0; i < force.size(); ++i) {
+      const Mat3<Real>& b = blocks[i];
+      const bool scalar = b.isDiagonal(Real(0)) && b(0, 0) == b(1, 1) && b(1, 1) == b(2, 2);
+      acceleration[i] = scalar ? Vec3<Real>(force[i] / b(0, 0)) : Vec3<Real>(b.inverse() * force[i]);
+    }
+    system.project(acceleration);
+  } else if (system.mass.is_lumped()) {
     // SOFA's accFromF, then projectResponse.
     const auto masses = system.mass.vertex_masses();
     for (std::size_t i = 0; i < force.size(); ++i) acceleration[i] = force[i] / masses[i];

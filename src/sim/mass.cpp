@@ -38,6 +38,20 @@ Mass<Real> Mass<Real>::consistent(Eigen::SparseMatrix<Real> matrix) {
 }
 
 template <class Real>
+Mass<Real> Mass<Real>::block_diagonal(std::vector<Mat3<Real>> blocks) {
+  Mass mass;
+  mass.vertex_masses_.reserve(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!blocks[i].allFinite() || !blocks[i].isApprox(blocks[i].transpose(), Real(0))) {
+      throw make_error("mass block of vertex ", i, ": must be finite and symmetric");
+    }
+    mass.vertex_masses_.push_back(blocks[i].trace() / 3);
+  }
+  mass.blocks_ = std::move(blocks);
+  return mass;
+}
+
+template <class Real>
 Real Mass<Real>::total_mass() const {
   Real total = 0;
   for (Real m : vertex_masses_) total += m;
@@ -61,6 +75,11 @@ Vec3<Real> row_product(const Eigen::SparseMatrix<Real, Eigen::RowMajor>& matrix,
 
 template <class Real>
 void Mass<Real>::add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor) const {
+  if (is_block_diagonal()) {
+    // As SOFA's UniformMass<Rigid3>::addMDx: the mass scaled by the factor first.
+    for (std::size_t i = 0; i < blocks_.size(); ++i) out[i] += (factor * blocks_[i]) * dx[i];
+    return;
+  }
   if (is_lumped()) {
     for (std::size_t i = 0; i < vertex_masses_.size(); ++i) out[i] += (factor * vertex_masses_[i]) * dx[i];
     return;
@@ -72,6 +91,10 @@ void Mass<Real>::add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> o
 
 template <class Real>
 void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor, int threads) const {
+  if (is_block_diagonal()) {
+    for (std::size_t i = 0; i < blocks_.size(); ++i) out[i] = (factor * blocks_[i]) * dx[i];
+    return;
+  }
   if (is_lumped()) {
     // Plain pointers, so that the loop keeps them in registers (through the captured spans GCC
     // reloaded them for every point).
@@ -124,6 +147,13 @@ void Mass<Real>::set_gravity_masses(std::vector<Real> masses) {
 
 template <class Real>
 void Mass<Real>::add_to_matrix(MatrixSink<Real>& sink, Real factor, Index offset) const {
+  if (is_block_diagonal()) {
+    for (std::size_t i = 0; i < blocks_.size(); ++i) {
+      const Index row = offset + 3 * static_cast<Index>(i);
+      sink.add_block(row, row, factor * blocks_[i]);
+    }
+    return;
+  }
   if (is_lumped()) {
     for (std::size_t i = 0; i < vertex_masses_.size(); ++i) {
       const Index row = offset + 3 * static_cast<Index>(i);
@@ -145,6 +175,10 @@ void Mass<Real>::add_diagonal_blocks(std::span<Mat3<Real>> blocks, Real factor) 
     throw make_error("mass diagonal: ", blocks.size(), " blocks for ", vertex_masses_.size(), " points");
   }
   for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (is_block_diagonal()) {
+      blocks[i] += factor * blocks_[i];
+      continue;
+    }
     const auto row = static_cast<Eigen::Index>(i);
     const Real m = is_lumped() ? vertex_masses_[i] : matrix_.coeff(row, row);
     blocks[i].diagonal().array() += factor * m;

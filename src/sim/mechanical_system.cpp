@@ -61,6 +61,7 @@ void MechanicalSystem<Real>::finalize() {
   for (Index i : zero_velocity) {
     if (i < 0 || i >= n) throw make_error("zero-velocity point index ", i, " out of range [0, ", n, ")");
   }
+  if (rigids) rigids->check(n);
   for (const auto& p : projections) {
     if (p.point < 0 || p.point >= n) throw make_error("projected point index ", p.point, " out of range [0, ", n, ")");
     if (!p.projector.allFinite()) throw make_error("projected point ", p.point, ": the projection is not finite");

@@ -75,6 +75,10 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
     if (!part.topology_scripts.empty()) {
       throw make_error(part.path, ": scripted topological changes of objects solved together are not supported");
     }
+    if (s.rigids) {
+      throw make_error(part.path, ": a Rigid3 state solved together with other objects under one solver is not supported yet ",
+                       "(give each its own ODE solver)");
+    }
     lumped = lumped && s.mass.is_lumped();
     system.state.position.insert(system.state.position.end(), s.state.position.begin(), s.state.position.end());
     system.state.velocity.insert(system.state.velocity.end(), s.state.velocity.begin(), s.state.velocity.end());

@@ -81,6 +81,7 @@ StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number,
         brief("diverged at step ", step_number, " (t = ", time, ") in ", object.path, ": ") +
         error.what());
   }
+  if (object.system.rigids) object.system.rigids->rebase(object.system.state.position);
   object.system.apply_placements(clock);
   for (Index i : object.system.zero_velocity) object.system.state.velocity[static_cast<std::size_t>(i)].setZero();
   if (auto problem = find_divergence(object.system.state, dt, bound, factor, scene_size)) {

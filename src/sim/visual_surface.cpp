@@ -3,6 +3,11 @@
 namespace fastcorot {
 
 std::vector<Vec3<double>> VisualSurface::points(std::span<const Vec3<double>> x) const {
+  if (rigid) {
+    std::vector<Vec3<double>> out(rigid->size());
+    rigid->positions(x, out);
+    return out;
+  }
   std::vector<Vec3<double>> out(map.size());
   map.apply(x, out);
   return out;

@@ -3,13 +3,15 @@
 // one solver integrates several MechanicalObjects as one system); MappedState, a MechanicalObject
 // of a mapped child node (collision spheres or points, markers) whose positions and velocities
 // follow the object's through a linear mapping (x_m = J x, v_m = J v, as SOFA's mappings apply
-// them at the end of a step). Output only: nothing written on a mapped state acts on the object
-// (mechanics in mapped nodes are refused by the scene builder).
+// them at the end of a step), or follow its rigid bodies (RigidMapping). Output only: mechanics
+// on mapped states are folded into the object by the scene builder (docs/mechanical-graph.md).
 #pragma once
 
 #include "fastcorot/core/types.h"
+#include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/sim/visual_surface.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,7 @@ struct StateRange {
   std::string name;  // the MechanicalObject's name (its type when the scene names none)
   Index offset = 0;  // first point in the object's state
   Index size = 0;
+  bool rigid = false;  // a Rigid3 state: its blocks are the system's rigids (two per rigid)
 };
 
 struct MappedState {
@@ -27,15 +30,23 @@ struct MappedState {
   std::string name;
   std::string mapping;  // "BarycentricMapping (tetrahedra)", ... for messages and docs
   PointMapping<double> map;
+  std::optional<RigidPoints<double>> rigid;  // under a RigidMapping (map is then unused)
+  std::size_t size() const { return rigid ? rigid->size() : map.size(); }
 };
 
-// One MechanicalObject's positions and velocities at the current step.
+// One MechanicalObject's positions and velocities at the current step. A Rigid3 state has its
+// positions in `rigid_position` (7 numbers per rigid, SOFA's "x y z qx qy qz qw") and its
+// velocities in `rigid_velocity` (6 per rigid, "vx vy vz wx wy wz"); position and velocity are
+// then the centres and the linear velocities.
 struct StateSnapshot {
   std::string node;
   std::string name;
   bool mapped = false;
   std::vector<Vec3<double>> position;
   std::vector<Vec3<double>> velocity;
+  bool rigid = false;
+  std::vector<double> rigid_position;
+  std::vector<double> rigid_velocity;
 
   // "node path/object name": how dumps key the state.
   std::string key() const { return node + "/" + name; }

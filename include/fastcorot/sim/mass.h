@@ -1,6 +1,8 @@
 // Mass of a deformable object: lumped (one mass per vertex: SOFA's DiagonalMass, UniformMass and
-// MeshMatrixMass with lumping) or consistent (a symmetric #V×#V scalar matrix applied to each axis:
-// MeshMatrixMass without lumping). Gravity acts through the mass: f_i += (sum_j M_ij) g.
+// MeshMatrixMass with lumping), consistent (a symmetric #V×#V scalar matrix applied to each axis:
+// MeshMatrixMass without lumping) or block-diagonal (one symmetric 3×3 block per vertex: rigid
+// bodies, whose angular block is m·inertia: state/rigid_mass.h). Gravity acts through the mass:
+// f_i += (sum_j M_ij) g, or the gravity masses when set.
 #pragma once
 
 #include "fastcorot/core/types.h"
@@ -27,7 +29,14 @@ class Mass {
   // Throws fastcorot::Error for a non-square matrix or a non-finite entry.
   static Mass consistent(Eigen::SparseMatrix<Real> matrix);
 
-  bool is_lumped() const { return matrix_.size() == 0; }
+  // One symmetric 3×3 block per vertex (rigid bodies: m I₃ and m·inertia); vertex_masses() are
+  // then the blocks' traces / 3, and gravity acts on the gravity masses, which the caller sets.
+  // Throws fastcorot::Error for a non-finite or non-symmetric block.
+  static Mass block_diagonal(std::vector<Mat3<Real>> blocks);
+
+  bool is_lumped() const { return matrix_.size() == 0 && blocks_.empty(); }
+  bool is_block_diagonal() const { return !blocks_.empty(); }
+  std::span<const Mat3<Real>> blocks() const { return blocks_; }
   // The consistent matrix (empty when lumped).
   const Eigen::SparseMatrix<Real, Eigen::RowMajor>& matrix() const { return matrix_; }
   Index size() const { return static_cast<Index>(vertex_masses_.size()); }
@@ -74,6 +83,7 @@ class Mass {
   std::vector<Real> vertex_masses_;
   Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix_;  // empty when lumped
   std::vector<Real> gravity_masses_;                  // empty: vertex_masses_
+  std::vector<Mat3<Real>> blocks_;                    // block-diagonal masses only
 };
 
 // SOFA's DiagonalMass on tetrahedra: each tetrahedron gives density · |V| / 4 to each of its vertices.

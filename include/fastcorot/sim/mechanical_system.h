@@ -11,6 +11,7 @@
 #include "fastcorot/fem/force_field.h"
 #include "fastcorot/sim/mass.h"
 #include "fastcorot/sim/mechanical_state.h"
+#include "fastcorot/state/rigid_blocks.h"
 #include "fastcorot/topology/tet_mesh.h"
 #include "fastcorot/topology/topology_change.h"
 
@@ -122,6 +123,11 @@ class MechanicalSystem {
   // motion, so they are held where they are, like fixed points (sorted). SOFA deletes them; here
   // points stay so that indices into the state never change.
   std::vector<Index> isolated;
+  // Rigid bodies (SOFA's Rigid3 states): which blocks of the state are rigids' [linear, angular]
+  // pairs, and their orientations (null: none, the deformable objects' case). The solvers add to
+  // the angular blocks as to any other; Simulation folds them into the orientations after each
+  // step (RigidBlocks::rebase). Shared with the visual models and mapped states that follow them.
+  std::shared_ptr<RigidBlocks<Real>> rigids;
   // Set in distributed runs (null otherwise): compute_force and multiply complete their sums at the
   // points shared with other ranks, and the energies add over the ranks.
   std::shared_ptr<const PointExchange<Real>> exchange;

@@ -7,8 +7,10 @@
 
 #include "fastcorot/core/types.h"
 #include "fastcorot/mapping/point_mapping.h"
+#include "fastcorot/mapping/rigid_points.h"
 
 #include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,6 +24,8 @@ struct VisualSurface {
   std::array<float, 4> color{0.8f, 0.8f, 0.8f, 1.0f};
   std::string mapping;  // "BarycentricMapping (tetrahedra)", ... for messages and docs
   PointMapping<double> map;
+  // Set for a visual model under a RigidMapping: its points follow rigid bodies (map is unused).
+  std::optional<RigidPoints<double>> rigid;
 
   // The surface's points for the object's positions x.
   std::vector<Vec3<double>> points(std::span<const Vec3<double>> x) const;

@@ -1,0 +1,230 @@
+#include "rigid_builder.h"
+
+#include "fastcorot/core/error.h"
+#include "fastcorot/mapping/rigid_points.h"
+#include "fastcorot/state/rigid_mass.h"
+#include "solver_builder.h"
+#include "visual_surface_builder.h"
+
+#include <memory>
+
+namespace fastcorot::scene_detail {
+
+namespace {
+
+// UniformMass on rigids (SOFA's UniformMass<Rigid3>): every rigid gets the same RigidMass.
+RigidMass<double> uniform_mass(SceneData& data, Component& c, Index rigids) {
+  UniformRigidMassInput<double> input;
+  if (c.has("vertexMass")) input.vertex_mass = parse_rigid_mass<double>(data.data(c, "vertexMass"), c.where() + ": vertexMass");
+  if (c.has("totalMass")) input.total_mass = data.real(c, "totalMass", 0);
+  if (c.has("filename")) {
+    const std::string name = data.text(c, "filename", "");
+    try {
+      input.file = read_rigid_file(find_data_file(c.object->location.file, name).string());
+    } catch (const Error& error) {
+      throw make_error(c.where(), ": filename: ", error.what());
+    }
+  }
+  return uniform_rigid_mass(input, rigids, c.where());
+}
+
+// The rigids a FixedProjectiveConstraint holds (SOFA's default: rigid 0).
+std::vector<Index> fixed_rigids(SceneData& data, Component& c, Index rigids) {
+  std::vector<Index> indices;
+  if (data.boolean(c, "fixAll", false)) {
+    for (Index k = 0; k < rigids; ++k) indices.push_back(k);
+  } else {
+    indices = c.has("indices") ? data.indices(c, "indices") : std::vector<Index>{0};
+  }
+  for (Index k : indices) {
+    if (k < 0 || k >= rigids) throw make_error(c.where(), ": index ", k, " out of range [0, ", rigids, ") (rigids)");
+  }
+  return indices;
+}
+
+// ConstantForceField on rigids: 6 numbers per force (fx fy fz τx τy τz) on the two blocks.
+ConstantForce<double> rigid_constant_force(SceneData& data, std::vector<std::string>& info, Component& c, Index rigids) {
+  std::vector<Index> indices = data.indices(c, "indices");
+  if (indices.empty()) {
+    for (Index k = 0; k < rigids; ++k) indices.push_back(k);
+  }
+  if (data.boolean(c, "indexFromEnd", false)) {
+    for (Index& k : indices) k = rigids - 1 - k;
+  }
+  for (Index k : indices) {
+    if (k < 0 || k >= rigids) throw make_error(c.where(), ": index ", k, " out of range [0, ", rigids, ") (rigids)");
+  }
+  const auto count = indices.size();
+  std::vector<double> values;
+  const auto six = [&](const char* name) {
+    const Numbers& v = data.data(c, name);
+    if (v.size() != 6) throw make_error(c.where(), ": ", name, " on a Rigid3 state needs 6 numbers (fx fy fz tx ty tz), got ", v.size());
+    return v;
+  };
+  if (c.has("forces")) {
+    values = data.data(c, "forces");
+    if (values.size() != 6 * count) {
+      throw make_error(c.where(), ": forces has ", values.size(), " numbers for ", count, " rigids (6 per rigid)");
+    }
+  } else if (c.has("force")) {
+    const Numbers one = six("force");
+    for (std::size_t k = 0; k < count; ++k) values.insert(values.end(), one.begin(), one.end());
+  } else if (c.has("totalForce")) {
+    Numbers one = six("totalForce");
+    for (double& v : one) v /= static_cast<double>(count);
+    for (std::size_t k = 0; k < count; ++k) values.insert(values.end(), one.begin(), one.end());
+  } else {
+    info.push_back(c.where() + ": no forces, force or totalForce given: no load");
+    values.assign(6 * count, 0.0);
+  }
+  ConstantForce<double> constant;
+  for (std::size_t k = 0; k < count; ++k) {
+    for (Index j = 0; j < 2; ++j) {
+      constant.indices.push_back(2 * indices[k] + j);
+      constant.forces.emplace_back(values[6 * k + 3 * j], values[6 * k + 3 * j + 1], values[6 * k + 3 * j + 2]);
+    }
+  }
+  return constant;
+}
+
+// The mapping component of a mapped node, when it is a RigidMapping.
+Component* rigid_mapping_of(GraphNode& node) {
+  for (const auto& c : node.components) {
+    if (c->type() == "RigidMapping") return c.get();
+  }
+  return nullptr;
+}
+
+bool has_mechanics(const GraphNode& node) {
+  if (!node.of_category("forcefield").empty() || !node.of_category("mass").empty()) return true;
+  for (const auto& child : node.children) {
+    if (has_mechanics(*child)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+RigidMapping<double> build_rigid_mapping(SceneData& data, Component& mapping, const SimulatedObject<double>& object,
+                                         const std::vector<Vec3<double>>& child_positions,
+                                         const std::vector<Vec3<double>>& child_rest_positions) {
+  if (!object.system.rigids) {
+    throw make_error(mapping.where(), ": RigidMapping needs a Rigid3 parent state; ", object.path, " is not one");
+  }
+  RigidMappingOptions<double> options;
+  if (mapping.has("initialPoints")) options.initial_points = points_from(data.data(mapping, "initialPoints"), mapping, "initialPoints");
+  options.index = data.whole_number(mapping, "index", 0);
+  options.index_from_end = data.boolean(mapping, "indexFromEnd", false);
+  options.rigid_index_per_point = data.indices(mapping, "rigidIndexPerPoint");
+  options.global_to_local_coords = data.boolean(mapping, "globalToLocalCoords", false);
+  options.use_x0 = data.boolean(mapping, "useX0", false);
+  const auto rigids = object.system.rigids->coords(object.system.state.position);
+  return RigidMapping<double>(mapping.where(), rigids, child_positions, child_rest_positions, options);
+}
+
+SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::string>& info, Component& state,
+                                           const std::vector<GraphNode*>& nodes, const std::vector<GraphNode*>& mapped,
+                                           const Vec3<double>& gravity) {
+  SimulatedObject<double> object;
+  object.path = state.node->path;
+  auto& system = object.system;
+  system.gravity = gravity;
+  std::vector<RigidCoord<double>> coords, rest;
+  try {
+    coords = parse_rigid_coords<double>(data.data(state, "position"), "position");
+    rest = state.has("rest_position") ? parse_rigid_coords<double>(data.data(state, "rest_position"), "rest_position") : coords;
+  } catch (const Error& error) {
+    throw make_error(state.where(), ": ", error.what());
+  }
+  const auto count = static_cast<Index>(coords.size());
+  if (count == 0) throw make_error(state.where(), ": the state has no rigids");
+  if (rest.size() != coords.size()) {
+    throw make_error(state.where(), ": rest_position has ", rest.size(), " rigids, position has ", count);
+  }
+  std::vector<Vec3<double>> velocity(2 * coords.size(), Vec3<double>::Zero());
+  if (state.has("velocity")) {
+    try {
+      velocity = parse_rigid_derivs<double>(data.data(state, "velocity"), "velocity");
+    } catch (const Error& error) {
+      throw make_error(state.where(), ": ", error.what());
+    }
+    if (velocity.size() == 2) {
+      const std::vector<Vec3<double>> one = velocity;
+      for (Index k = 1; k < count; ++k) velocity.insert(velocity.end(), one.begin(), one.end());
+    }
+    if (velocity.size() != 2 * coords.size()) {
+      throw make_error(state.where(), ": velocity has ", velocity.size() / 2, " rigids, position has ", count);
+    }
+  }
+  auto blocks = std::make_shared<RigidBlocks<double>>();
+  for (std::size_t k = 0; k < coords.size(); ++k) {
+    system.state.position.push_back(coords[k].center);
+    system.state.position.push_back(Vec3<double>::Zero());
+    system.state.rest_position.push_back(rest[k].center);
+    system.state.rest_position.push_back(Vec3<double>::Zero());
+    blocks->block.push_back(static_cast<Index>(2 * k));
+    blocks->orientation.push_back(coords[k].orientation);
+    blocks->rest_orientation.push_back(rest[k].orientation);
+  }
+  system.state.velocity = velocity;
+  system.rigids = blocks;
+  object.states.push_back({state.node->path, state.sofa_name(), 0, system.size(), true});
+
+  for (GraphNode* node : nodes) {
+    for (const auto& c : node->components) {
+      if (!c->spec) continue;
+      const std::string_view type = c->type();
+      const std::string_view category = c->spec->category;
+      if (type == "UniformMass") {
+        if (system.mass.size() != 0) throw make_error(c->where(), ": a second mass for ", object.path);
+        const RigidMass<double> mass = uniform_mass(data, *c, count);
+        const RigidMassBlocks<double> b = mass_blocks(mass);
+        std::vector<Mat3<double>> per_block;
+        std::vector<double> weights;
+        for (Index k = 0; k < count; ++k) {
+          per_block.push_back(b.linear);
+          per_block.push_back(b.angular);
+          weights.push_back(mass.mass);
+          weights.push_back(0);
+        }
+        system.mass = Mass<double>::block_diagonal(std::move(per_block));
+        system.mass.set_gravity_masses(std::move(weights));
+      } else if (type == "FixedProjectiveConstraint") {
+        for (Index k : fixed_rigids(data, *c, count)) {
+          for (Index j = 0; j < 2; ++j) {
+            system.fixed.push_back(2 * k + j);
+            if (data.boolean(*c, "activate_projectVelocity", false)) system.zero_velocity.push_back(2 * k + j);
+          }
+        }
+      } else if (type == "ConstantForceField") {
+        system.constant_forces.push_back(rigid_constant_force(data, info, *c, count));
+      } else if (category == "forcefield" || category == "mass" || category == "constraint") {
+        throw make_error(c->where(), ": ", type, " on the Rigid3 state ", state.where(),
+                         " is not supported (on rigids: UniformMass, FixedProjectiveConstraint, ConstantForceField)");
+      }
+    }
+  }
+  for (GraphNode* node : mapped) {
+    if (has_mechanics(*node)) {
+      throw make_error(node->scene->location.to_string(), ": mapped node ", node->path,
+                       ": force fields or masses on points carried by rigid bodies are not supported yet");
+    }
+  }
+  try {
+    system.finalize();
+  } catch (const Error& error) {
+    throw make_error(state.where(), ": ", error.what());
+  }
+  for (GraphNode* node : mapped) {
+    if (!rigid_mapping_of(*node)) {
+      info.push_back(node->scene->location.to_string() + ": mapped node " + node->path +
+                     " under the Rigid3 state " + object.path + " has no RigidMapping: not drawn, not in outputs");
+      continue;
+    }
+    add_visual_surfaces(data, info, *node, object);
+    add_mapped_states(data, info, *node, object);
+  }
+  return object;
+}
+
+}  // namespace fastcorot::scene_detail

@@ -1,0 +1,160 @@
+// Rigid bodies in scenes (template="Rigid3d"): integrated by the ODE solvers with two Vec3 blocks per
+// rigid, against closed forms: free fall, spinning at constant ω (SOFA's convention: no gyroscopic
+// term, the inertia not rotated), a constant torque; fixed rigids; points carried by a RigidMapping;
+// bad input refused in one line.
+#include "fastcorot/scene/scene_builder.h"
+#include "fastcorot/sim/mapped_state.h"
+
+#include "../support/scene_text.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_scene_text;
+using testing::scene_error;
+
+// One rigid body under `solvers`, with `own` beside its state and `child` in a child node.
+std::string body(const std::string& state_attributes, const std::string& own, const std::string& child = "",
+                 const std::string& solvers = "<EulerImplicitSolver/><CGLinearSolver iterations=\"50\" tolerance=\"1e-30\" threshold=\"1e-30\"/>") {
+  return "<Node name=\"body\">" + solvers + "<MechanicalObject name=\"dofs\" template=\"Rigid3d\" " + state_attributes + "/>" +
+         own + (child.empty() ? "" : "<Node name=\"carried\">" + child + "</Node>") + "</Node>";
+}
+
+void step(LoadedScene& scene, int steps) {
+  for (int s = 0; s < steps; ++s) scene.simulation.step();
+}
+
+RigidCoord<double> rigid(const LoadedScene& scene, std::size_t k = 0) {
+  const auto& system = scene.simulation.objects.at(0).system;
+  return system.rigids->coord(system.state.position, k);
+}
+
+// The rotation of angle |w| about w as a quaternion.
+Eigen::Quaterniond turn(const Vec3<double>& w) {
+  return Eigen::Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized()));
+}
+
+double quaternion_distance(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  return std::min((a.coeffs() - b.coeffs()).norm(), (a.coeffs() + b.coeffs()).norm());
+}
+
+TEST(RigidScene, FallsAndSpinsAsImplicitEulerWithoutGyroscopicTerm) {
+  // Inertia diag(1, 2, 3) per unit mass: a rigid body spinning about a non-principal... any axis
+  // keeps ω in SOFA (no ω × Iω), so ω stays as given and the orientation turns by h ω each step.
+  const Vec3<double> w(0.3, -0.5, 1.0), v0(1, 2, 0), g(0, -9.81, 0);
+  LoadedScene scene = build_scene_text(
+      body("position=\"1 2 3 0 0 0 1\" velocity=\"1 2 0 0.3 -0.5 1\"", "<UniformMass vertexMass=\"2 1 [1 0 0,0 2 0,0 0 3]\"/>"),
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const int n = 200;
+  const double h = 0.01;
+  step(scene, n);
+  const RigidCoord<double> x = rigid(scene);
+  // v_k = v0 + k h g, x_n = x0 + h sum_{k=1..n} v_k.
+  const Vec3<double> expected = Vec3<double>(1, 2, 3) + n * h * v0 + h * h * g * (n * (n + 1) / 2.0);
+  EXPECT_LT((x.center - expected).norm(), 1e-11 * expected.norm());
+  EXPECT_LT(quaternion_distance(x.orientation, turn(n * h * w)), 1e-12);
+  const auto& v = scene.simulation.objects.at(0).system.state.velocity;
+  EXPECT_LT((v[1] - w).norm(), 1e-14);
+  EXPECT_LT((v[0] - (v0 + n * h * g)).norm(), 1e-12);
+}
+
+TEST(RigidScene, ExplicitEulerTurnsAndFallsAsSymplecticEuler) {
+  const Vec3<double> w(0, 2, 0), g(0, 0, -10);
+  LoadedScene scene = build_scene_text(body("velocity=\"0 0 0 0 2 0\"", "<UniformMass totalMass=\"3\"/>", "",
+                                            "<EulerExplicitSolver/>"),
+                                       "dt=\"0.001\" gravity=\"0 0 -10\"");
+  const int n = 500;
+  const double h = 0.001;
+  step(scene, n);
+  const RigidCoord<double> x = rigid(scene);
+  EXPECT_LT((x.center - h * h * g * (n * (n + 1) / 2.0)).norm(), 1e-12);
+  EXPECT_LT(quaternion_distance(x.orientation, turn(n * h * w)), 1e-12);
+}
+
+TEST(RigidScene, ConstantTorqueSpinsUpThroughTheInverseInertia) {
+  // τ = (0, 0, 6) on m = 2, inertia diag(1, 1, 3) per unit mass: α = τ / (m · 3) = 1 rad/s².
+  for (const std::string solver : {"<CGLinearSolver iterations=\"50\" tolerance=\"1e-30\" threshold=\"1e-30\"/>", "<SparseLDLSolver/>"}) {
+    LoadedScene scene = build_scene_text(
+        body("", "<UniformMass vertexMass=\"2 1 1 0 0 0 1 0 0 0 3\"/><ConstantForceField forces=\"0 0 0 0 0 6\"/>", "",
+             "<EulerImplicitSolver/>" + solver),
+        "dt=\"0.01\" gravity=\"0 0 0\"");
+    step(scene, 100);
+    const auto& v = scene.simulation.objects.at(0).system.state.velocity;
+    EXPECT_NEAR(v[1].z(), 1.0, 1e-12) << solver;
+    EXPECT_LT(v[0].norm() + v[1].head<2>().norm(), 1e-14) << solver;
+    // θ_n = h² sum k α = 0.0001 · 5050.
+    EXPECT_LT(quaternion_distance(rigid(scene).orientation, turn(Vec3<double>(0, 0, 0.505))), 1e-12) << solver;
+  }
+}
+
+TEST(RigidScene, FixedRigidsStayAndOthersFall) {
+  LoadedScene scene = build_scene_text(body("position=\"0 0 0 0 0 0 1  5 0 0 0 0 0 1\" velocity=\"0 0 0 1 1 1\"",
+                                            "<UniformMass totalMass=\"2\"/><FixedProjectiveConstraint indices=\"0\"/>"),
+                                       "dt=\"0.01\"");
+  step(scene, 10);
+  EXPECT_EQ(rigid(scene, 0).center, Vec3<double>::Zero());
+  // As for fixed points, SOFA projects the increments, not the velocity given at init: the fixed
+  // rigid keeps turning at its initial ω while gravity does not move it.
+  EXPECT_LT(quaternion_distance(rigid(scene, 0).orientation, turn(Vec3<double>(0.1, 0.1, 0.1))), 1e-14);
+  EXPECT_EQ(scene.simulation.objects.at(0).system.state.velocity[0], Vec3<double>::Zero());
+  EXPECT_LT(rigid(scene, 1).center.y(), -0.005);
+}
+
+TEST(RigidScene, RigidMappedPointsAndVisualModelsFollowTheRigid) {
+  // globalToLocalCoords: the child's positions are in the world at init, brought into the frame.
+  LoadedScene scene = build_scene_text(
+      body("position=\"1 0 0 0 0 0.7071067811865476 0.7071067811865476\" velocity=\"0 0 0 0 0 1\"", "<UniformMass totalMass=\"1\"/>",
+           "<MechanicalObject name=\"points\" position=\"2 0 0  1 1 0\"/><RigidMapping globalToLocalCoords=\"true\"/>"),
+      "dt=\"0.01\" gravity=\"0 0 0\"");
+  step(scene, 50);
+  const RigidCoord<double> x = rigid(scene);
+  const auto states = state_snapshots(scene.simulation.objects.at(0));
+  ASSERT_EQ(states.size(), 2u);
+  EXPECT_TRUE(states[0].rigid);
+  ASSERT_EQ(states[0].rigid_position.size(), 7u);
+  EXPECT_EQ(states[0].rigid_position[6], x.orientation.w());
+  const auto& points = states[1].position;
+  ASSERT_EQ(points.size(), 2u);
+  // Point 0 was 1 along the rigid's world x axis at init, point 1 1 along y; the rigid turned by 0.5 rad since.
+  const Mat3<double> turned = Eigen::AngleAxisd(0.5, Vec3<double>::UnitZ()).toRotationMatrix();
+  EXPECT_LT((points[0] - (x.center + turned * Vec3<double>(1, 0, 0))).norm(), 1e-12);
+  EXPECT_LT((points[1] - (x.center + turned * Vec3<double>(0, 1, 0))).norm(), 1e-12);
+  // v = v_c + ω × r.
+  EXPECT_LT((states[1].velocity[0] - Vec3<double>(0, 0, 1).cross(turned * Vec3<double>(1, 0, 0))).norm(), 1e-12);
+}
+
+TEST(RigidScene, BadInputIsRefusedInOneLine) {
+  const std::string mass = "<UniformMass totalMass=\"1\"/>";
+  EXPECT_NE(scene_error(body("position=\"0 0 0 0 0 0 0\"", mass)).find("zero"), std::string::npos);
+  EXPECT_NE(scene_error(body("position=\"0 0 0 0 0 0\"", mass)).find("7 per rigid"), std::string::npos);
+  EXPECT_NE(scene_error(body("velocity=\"0 0 0 0\"", mass)).find("velocity"), std::string::npos);
+  const std::string static_solver = scene_error(body("", mass, "", "<StaticSolver/><SparseLDLSolver/>"));
+  EXPECT_NE(static_solver.find("does not integrate Rigid3"), std::string::npos) << static_solver;
+  const std::string unsupported = scene_error(body("", mass + "<TetrahedronFEMForceField/>"));
+  EXPECT_NE(unsupported.find("TetrahedronFEMForceField on the Rigid3 state"), std::string::npos) << unsupported;
+  const std::string torque = scene_error(body("", mass + "<ConstantForceField force=\"0 0 1\"/>"));
+  EXPECT_NE(torque.find("6 numbers"), std::string::npos) << torque;
+  // RigidMapping under a Vec3 object: its parent is of the wrong type.
+  const std::string wrong_parent = scene_error(
+      "<Node name=\"b\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"0 0 0\"/><UniformMass totalMass=\"1\"/>"
+      "<Node name=\"c\"><MechanicalObject position=\"1 0 0\"/><RigidMapping/></Node></Node>");
+  EXPECT_NE(wrong_parent.find("needs a Rigid3 parent"), std::string::npos) << wrong_parent;
+  const std::string index = scene_error(body("", mass, "<MechanicalObject position=\"1 0 0\"/><RigidMapping index=\"3\"/>"));
+  EXPECT_NE(index.find("index 3"), std::string::npos) << index;
+  // A .rigid file that does not parse names the file and line.
+  const std::string path = ::testing::TempDir() + "bad_body.rigid";
+  std::ofstream(path) << "Xsp 3.0\nmass 2\n";
+  const std::string file = scene_error(body("", "<UniformMass filename=\"" + path + "\"/>"));
+  EXPECT_NE(file.find("bad_body.rigid:2"), std::string::npos) << file;
+  std::remove(path.c_str());
+}
+
+}  // namespace
+}  // namespace fastcorot
