@@ -1,5 +1,6 @@
 #include "fastcorot/mapping/rigid_points.h"
 
+#include <cmath>
 #include <utility>
 
 namespace fastcorot {
@@ -12,6 +13,30 @@ RigidPoints<Real> RigidPoints<Real>::from(std::shared_ptr<const RigidBlocks<Real
   points.local.assign(mapping.local_points().begin(), mapping.local_points().end());
   points.rigid.assign(mapping.rigid_of_point().begin(), mapping.rigid_of_point().end());
   return points;
+}
+
+template <class Real>
+std::optional<RigidPoints<Real>> RigidPoints<Real>::after(const PointMapping<Real>& outer) const {
+  RigidPoints result;
+  result.frames = frames;
+  for (std::size_t i = 0; i < outer.size(); ++i) {
+    Vec3<Real> p = Vec3<Real>::Zero();
+    Real sum = 0;
+    Index body = -1;
+    for (std::size_t k = 0; k < static_cast<std::size_t>(PointMapping<Real>::kSlots); ++k) {
+      const Real w = outer.weights[i][k];
+      if (w == 0) continue;
+      const auto v = static_cast<std::size_t>(outer.vertices[i][k]);
+      if (v >= size() || (body >= 0 && rigid[v] != body)) return std::nullopt;
+      body = rigid[v];
+      p += w * local[v];
+      sum += w;
+    }
+    if (body < 0 || std::abs(sum - 1) > Real(1e-6)) return std::nullopt;
+    result.local.push_back(p);
+    result.rigid.push_back(body);
+  }
+  return result;
 }
 
 template <class Real>

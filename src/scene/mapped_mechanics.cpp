@@ -101,4 +101,42 @@ void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<doubl
   parent.boxes.insert(parent.boxes.end(), child.boxes.begin(), child.boxes.end());
 }
 
+void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<double>& points, SimulatedObject<double>& parent,
+                              const std::string& where) {
+  auto& from = child.system;
+  auto& to = parent.system;
+  if (static_cast<Index>(points.size()) != from.size()) {
+    throw make_error(where, ": the RigidMapping gives ", points.size(), " points, the mapped MechanicalObject has ", from.size());
+  }
+  if (!from.fixed.empty() || !from.projections.empty() || !from.couplings.empty() || !from.placements.empty() ||
+      !from.motions.empty()) {
+    throw make_error(where, ": projective constraints on a mapped state are not supported (put them on the simulated object)");
+  }
+  if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");
+  // A mass or a constant load on points carried by rigids would be Jᵀ M J and Jᵀ f with J turning
+  // with the rigid: not folded yet.
+  if (from.mass.size() != 0) {
+    throw make_error(where, ": a mass on points carried by rigid bodies (RigidMapping) is not supported yet: put it on the rigid (UniformMass)");
+  }
+  if (!from.constant_forces.empty()) {
+    throw make_error(where, ": constant forces on points carried by rigid bodies (RigidMapping) are not supported yet");
+  }
+  for (const auto& field : from.force_fields) {
+    to.force_fields.push_back(
+        std::make_shared<MappedForceField<double>>(field, std::make_unique<RigidPointMapping<double>>(points), to.size()));
+    parent.force_field_drawing.push_back({});
+  }
+  for (auto& surface : child.visual_surfaces) {
+    if (surface.rigid) continue;
+    surface.rigid = points.after(surface.map);
+    if (surface.rigid) parent.visual_surfaces.push_back(std::move(surface));
+  }
+  for (auto& state : child.mapped_states) {
+    if (state.rigid) continue;
+    state.rigid = points.after(state.map);
+    if (state.rigid) parent.mapped_states.push_back(std::move(state));
+  }
+  parent.boxes.insert(parent.boxes.end(), child.boxes.begin(), child.boxes.end());
+}
+
 }  // namespace fastcorot::scene_detail

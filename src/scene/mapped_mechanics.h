@@ -4,6 +4,7 @@
 #pragma once
 
 #include "fastcorot/mapping/point_mapping.h"
+#include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/sim/simulation.h"
 
 #include <string>
@@ -17,5 +18,12 @@ namespace fastcorot::scene_detail {
 // scripted topological changes.
 void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<double>& map, SimulatedObject<double>& parent,
                         const std::string& where);
+
+// The same for a mapped node under a RigidMapping (`points` carried by the parent's rigids): its
+// force fields act through the RigidMapping's Jᵀ; visual models and mapped states below it follow
+// when each of their points lies on one rigid. Throws fastcorot::Error for a mass or constant
+// load on the carried points (not folded yet), projective constraints, scripted changes.
+void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<double>& points, SimulatedObject<double>& parent,
+                              const std::string& where);
 
 }  // namespace fastcorot::scene_detail

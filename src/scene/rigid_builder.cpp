@@ -3,8 +3,6 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/state/rigid_mass.h"
-#include "solver_builder.h"
-#include "visual_surface_builder.h"
 
 #include <memory>
 
@@ -87,22 +85,6 @@ ConstantForce<double> rigid_constant_force(SceneData& data, std::vector<std::str
   return constant;
 }
 
-// The mapping component of a mapped node, when it is a RigidMapping.
-Component* rigid_mapping_of(GraphNode& node) {
-  for (const auto& c : node.components) {
-    if (c->type() == "RigidMapping") return c.get();
-  }
-  return nullptr;
-}
-
-bool has_mechanics(const GraphNode& node) {
-  if (!node.of_category("forcefield").empty() || !node.of_category("mass").empty()) return true;
-  for (const auto& child : node.children) {
-    if (has_mechanics(*child)) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 RigidMapping<double> build_rigid_mapping(SceneData& data, Component& mapping, const SimulatedObject<double>& object,
@@ -123,8 +105,7 @@ RigidMapping<double> build_rigid_mapping(SceneData& data, Component& mapping, co
 }
 
 SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::string>& info, Component& state,
-                                           const std::vector<GraphNode*>& nodes, const std::vector<GraphNode*>& mapped,
-                                           const Vec3<double>& gravity) {
+                                           const std::vector<GraphNode*>& nodes, const Vec3<double>& gravity) {
   SimulatedObject<double> object;
   object.path = state.node->path;
   auto& system = object.system;
@@ -203,26 +184,6 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
                          " is not supported (on rigids: UniformMass, FixedProjectiveConstraint, ConstantForceField)");
       }
     }
-  }
-  for (GraphNode* node : mapped) {
-    if (has_mechanics(*node)) {
-      throw make_error(node->scene->location.to_string(), ": mapped node ", node->path,
-                       ": force fields or masses on points carried by rigid bodies are not supported yet");
-    }
-  }
-  try {
-    system.finalize();
-  } catch (const Error& error) {
-    throw make_error(state.where(), ": ", error.what());
-  }
-  for (GraphNode* node : mapped) {
-    if (!rigid_mapping_of(*node)) {
-      info.push_back(node->scene->location.to_string() + ": mapped node " + node->path +
-                     " under the Rigid3 state " + object.path + " has no RigidMapping: not drawn, not in outputs");
-      continue;
-    }
-    add_visual_surfaces(data, info, *node, object);
-    add_mapped_states(data, info, *node, object);
   }
   return object;
 }

@@ -188,20 +188,29 @@ class Builder {
     scene_detail::add_mapped_states(data_, info_, node, object);
     if (object.mapped_states.size() == known) {
       throw make_error(where, ": its mapping is not one fastcorot carries forces through ",
-                       "(IdentityMapping, SubsetMapping, BarycentricMapping; rigid bodies are not supported yet)");
+                       "(IdentityMapping, SubsetMapping, BarycentricMapping, RigidMapping)");
     }
-    const PointMapping<double> map = object.mapped_states.back().map;
+    const MappedState mapped_state = object.mapped_states.back();
     MechanicalState<double> placed;
-    placed.position.resize(map.size());
-    placed.velocity.resize(map.size());
-    map.apply(object.system.state.position, placed.position);
-    map.apply(object.system.state.velocity, placed.velocity);
+    placed.position.resize(mapped_state.size());
+    placed.velocity.resize(mapped_state.size());
+    if (mapped_state.rigid) {
+      mapped_state.rigid->positions(object.system.state.position, placed.position);
+      mapped_state.rigid->velocities(object.system.state.position, object.system.state.velocity, placed.velocity);
+    } else {
+      mapped_state.map.apply(object.system.state.position, placed.position);
+      mapped_state.map.apply(object.system.state.velocity, placed.velocity);
+    }
     std::vector<GraphNode*> nodes{&node}, mapped;
     for (auto& child : node.children) collect(*child, nodes, mapped);
     SimulatedObject<double> mapped_object = build_part(*states.front(), nodes, mapped, &placed);
     // Springs of the mapped nodes join points of the mapped state (object1 and object2 its own).
     scene_detail::add_interaction_springs(data_, nodes, {states.front()}, {0}, {mapped_object.system.size()}, mapped_object);
-    scene_detail::fold_mapped_object(mapped_object, map, object, "node " + node.path);
+    if (mapped_state.rigid) {
+      scene_detail::fold_rigid_mapped_object(mapped_object, *mapped_state.rigid, object, "node " + node.path);
+    } else {
+      scene_detail::fold_mapped_object(mapped_object, mapped_state.map, object, "node " + node.path);
+    }
   }
 
   // The nearest state at or above `node` among `states` (nullptr when none is).
@@ -232,7 +241,9 @@ class Builder {
     }
     if (is_rigid_template(data_.text(state, "template", "Vec3d"))) {
       if (placed) throw make_error(state.where(), ": a Rigid3 state in a mapped node is not supported");
-      return scene_detail::build_rigid_object(data_, info_, state, nodes, visuals, system.gravity);
+      object = scene_detail::build_rigid_object(data_, info_, state, nodes, system.gravity);
+      finish_part(state, visuals, object);
+      return object;
     }
     system.state.position = data_.points(state, "position");
     system.state.rest_position = data_.points(state, "rest_position");
@@ -313,11 +324,18 @@ class Builder {
         }
       }
     }
+    finish_part(state, visuals, object);
+    return object;
+  }
+
+  // The mapped nodes of a part: their mechanics folded in, then the part checked, then their
+  // visual models and mapped states.
+  void finish_part(Component& state, const std::vector<GraphNode*>& visuals, SimulatedObject<double>& object) {
     for (GraphNode* mapped_node : visuals) {
       if (has_mechanics(*mapped_node)) add_mapped_mechanics(*mapped_node, object);
     }
     try {
-      system.finalize();
+      object.system.finalize();
     } catch (const Error& error) {
       throw make_error(state.where(), ": ", error.what());
     }
@@ -325,7 +343,6 @@ class Builder {
       scene_detail::add_visual_surfaces(data_, info_, *mapped_node, object);
       if (!has_mechanics(*mapped_node)) scene_detail::add_mapped_states(data_, info_, *mapped_node, object);
     }
-    return object;
   }
 
   void build_object(GraphNode& solver_node, Component& integrator) {

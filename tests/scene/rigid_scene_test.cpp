@@ -1,7 +1,8 @@
 // Rigid bodies in scenes (template="Rigid3d"): integrated by the ODE solvers with two Vec3 blocks per
 // rigid, against closed forms: free fall, spinning at constant ω (SOFA's convention: no gyroscopic
-// term, the inertia not rotated), a constant torque; fixed rigids; points carried by a RigidMapping;
-// bad input refused in one line.
+// term, the inertia not rotated), a constant torque, a pendulum held by a spring on a carried point
+// against the small-angle period; fixed rigids; points carried by a RigidMapping; bad input
+// refused in one line.
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/sim/mapped_state.h"
 
@@ -12,6 +13,8 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numbers>
+#include <sstream>
 #include <string>
 
 namespace fastcorot {
@@ -130,6 +133,64 @@ TEST(RigidScene, RigidMappedPointsAndVisualModelsFollowTheRigid) {
   EXPECT_LT((states[1].velocity[0] - Vec3<double>(0, 0, 1).cross(turned * Vec3<double>(1, 0, 0))).norm(), 1e-12);
 }
 
+// A rigid pendulum: the body's point (0, L, 0) (local) is held at the origin by a stiff
+// RestShapeSpringsForceField written on the carried point, so the body swings about it under
+// gravity. Small angles: θ(t) = θ0 cos(2π t / T), T = 2π sqrt((I + m L²) / (m g L)), I = m i_zz.
+std::string pendulum(double theta0, const std::string& solver) {
+  const double L = 1;
+  const Vec3<double> center = -(Eigen::AngleAxisd(theta0, Vec3<double>::UnitZ()) * Vec3<double>(0, L, 0));
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(theta0, Vec3<double>::UnitZ()));
+  std::ostringstream position;
+  position.precision(17);
+  position << center.x() << ' ' << center.y() << " 0 0 0 " << q.z() << ' ' << q.w();
+  return body("position=\"" + position.str() + "\"", "<UniformMass vertexMass=\"1 1 0.1 0 0 0 0.1 0 0 0 0.1\"/>",
+              "<MechanicalObject name=\"pivot\" position=\"0 1 0\" rest_position=\"0 0 0\"/>"
+              "<RestShapeSpringsForceField stiffness=\"1e5\"/><RigidMapping/>",
+              "<EulerImplicitSolver/>" + solver);
+}
+
+double swing_angle(const LoadedScene& scene) {
+  const Eigen::Quaterniond q = rigid(scene).orientation;
+  return 2 * std::atan2(q.z(), q.w());
+}
+
+TEST(RigidScene, PendulumHeldByASpringOnACarriedPointSwingsWithTheSmallAnglePeriod) {
+  const double period = 2 * std::numbers::pi * std::sqrt((0.1 + 1.0) / 9.81);
+  for (const std::string solver : {"<CGLinearSolver iterations=\"100\" tolerance=\"1e-20\" threshold=\"1e-20\"/>", "<SparseLDLSolver/>"}) {
+    LoadedScene scene = build_scene_text(pendulum(0.05, solver), "dt=\"0.001\" gravity=\"0 -9.81 0\"");
+    // Upward zero crossings of θ: a period apart.
+    std::vector<double> crossings;
+    double previous = swing_angle(scene);
+    for (int s = 1; s <= 8000; ++s) {
+      scene.simulation.step();
+      const double angle = swing_angle(scene);
+      if (previous < 0 && angle >= 0) crossings.push_back((s - 1 + previous / (previous - angle)) * 0.001);
+      previous = angle;
+    }
+    ASSERT_GE(crossings.size(), 3u) << solver;
+    const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+    EXPECT_NEAR(measured, period, 0.005 * period) << solver;
+    // The pivot stays at the origin (to the spring's give: m g / k plus the swing's pull).
+    const auto states = state_snapshots(scene.simulation.objects.at(0));
+    EXPECT_LT(states.at(1).position.at(0).norm(), 2e-4) << solver;
+  }
+}
+
+TEST(RigidScene, OneAndTwoThreadsGiveTheSameBits) {
+  std::vector<Vec3<double>> results[2];
+  std::vector<Eigen::Vector4d> orientations[2];
+  for (int threads : {1, 2}) {
+    LoadedScene scene = build_scene_text(pendulum(0.3, "<CGLinearSolver iterations=\"25\" tolerance=\"1e-12\" threshold=\"1e-20\"/>"),
+                                         "dt=\"0.001\"");
+    scene.simulation.threads = threads;
+    step(scene, 200);
+    results[threads - 1] = scene.simulation.objects.at(0).system.state.position;
+    orientations[threads - 1].push_back(rigid(scene).orientation.coeffs());
+  }
+  EXPECT_EQ(results[0], results[1]);
+  EXPECT_EQ(orientations[0], orientations[1]);
+}
+
 TEST(RigidScene, BadInputIsRefusedInOneLine) {
   const std::string mass = "<UniformMass totalMass=\"1\"/>";
   EXPECT_NE(scene_error(body("position=\"0 0 0 0 0 0 0\"", mass)).find("zero"), std::string::npos);
@@ -146,6 +207,8 @@ TEST(RigidScene, BadInputIsRefusedInOneLine) {
       "<Node name=\"b\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"0 0 0\"/><UniformMass totalMass=\"1\"/>"
       "<Node name=\"c\"><MechanicalObject position=\"1 0 0\"/><RigidMapping/></Node></Node>");
   EXPECT_NE(wrong_parent.find("needs a Rigid3 parent"), std::string::npos) << wrong_parent;
+  const std::string carried_mass = scene_error(body("", mass, "<MechanicalObject position=\"1 0 0\"/><UniformMass totalMass=\"1\"/><RigidMapping/>"));
+  EXPECT_NE(carried_mass.find("mass on points carried by rigid bodies"), std::string::npos) << carried_mass;
   const std::string index = scene_error(body("", mass, "<MechanicalObject position=\"1 0 0\"/><RigidMapping index=\"3\"/>"));
   EXPECT_NE(index.find("index 3"), std::string::npos) << index;
   // A .rigid file that does not parse names the file and line.

@@ -1,15 +1,17 @@
 // MappedForceField<Real>: a force field written on a mapped state (a MechanicalObject in a child
-// node under an IdentityMapping, SubsetMapping or BarycentricMapping) acting on the simulated
-// state above it, as SOFA's mechanical visitors make it act: positions and velocities go down the
-// mapping (y = J x), the field's forces come back up through Jᵀ, its stiffness enters products as
-// Jᵀ K J dx and assembled matrices as the blocks of Jᵀ K J (a linear mapping has no geometric
-// stiffness). Chains (tetrahedra → surface → points) are fields of fields: the inner field may be
+// node under an IdentityMapping, SubsetMapping, BarycentricMapping or RigidMapping) acting on the
+// simulated state above it, as SOFA's mechanical visitors make it act: positions go down the
+// mapping (y = map(x)), velocities and increments through J, the field's forces come back up
+// through Jᵀ, its stiffness enters products as Jᵀ K J dx and assembled matrices as the blocks of
+// Jᵀ K J (no geometric stiffness: none for a linear mapping, SOFA's default for RigidMapping).
+// A nonlinear mapping is linearised where add_force last evaluated it. Chains (tetrahedra → surface → points) are fields of fields: the inner field may be
 // a MappedForceField itself. The inner field keeps its own rest positions and mesh, in the mapped
 // state's numbering; mesh() is the parent's points with no elements. Topological changes are
 // refused. Design: docs/mechanical-graph.md.
 #pragma once
 
 #include "fastcorot/fem/force_field.h"
+#include "fastcorot/mapping/mechanical_mapping.h"
 #include "fastcorot/mapping/point_mapping.h"
 
 #include <memory>
@@ -24,13 +26,14 @@ class MappedForceField final : public ForceField<Real> {
   // `inner` acts on the map.size() points of the mapped state; the parent has `parent_points`.
   // Throws fastcorot::Error when the inner field's points are not the mapping's, or the mapping
   // reaches beyond the parent.
-  MappedForceField(std::shared_ptr<ForceField<Real>> inner, PointMapping<Real> map, Index parent_points);
+  MappedForceField(std::shared_ptr<ForceField<Real>> inner, std::unique_ptr<MechanicalMapping<Real>> map, Index parent_points);
+  MappedForceField(std::shared_ptr<ForceField<Real>> inner, PointMapping<Real> map, Index parent_points)
+      : MappedForceField(std::move(inner), std::make_unique<LinearMapping<Real>>(std::move(map)), parent_points) {}
 
   std::string component() const override { return inner_->component(); }
   std::string method_name() const override { return inner_->method_name(); }
   const TetMesh& mesh() const override { return parent_mesh_; }
   const ForceField<Real>& inner() const { return *inner_; }
-  const PointMapping<Real>& mapping() const { return map_; }
 
   void set_velocity(std::span<const Vec3<Real>> v) override;
   void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
@@ -55,8 +58,9 @@ class MappedForceField final : public ForceField<Real> {
   std::vector<Eigen::Triplet<Real>> inner_blocks(Real k_factor, Real b_factor) const;
 
   std::shared_ptr<ForceField<Real>> inner_;
-  PointMapping<Real> map_;
+  std::unique_ptr<MechanicalMapping<Real>> map_;
   TetMesh parent_mesh_;
+  std::span<const Vec3<Real>> parent_velocity_;  // from set_velocity, read by add_force
   // Work vectors in the mapped numbering (the mapped positions, velocities, increments, forces).
   std::vector<Vec3<Real>> x_, v_;
   mutable std::vector<Vec3<Real>> dx_, f_;

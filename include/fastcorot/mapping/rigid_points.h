@@ -6,10 +6,12 @@
 #pragma once
 
 #include "fastcorot/core/types.h"
+#include "fastcorot/mapping/point_mapping.h"
 #include "fastcorot/mapping/rigid_mapping.h"
 #include "fastcorot/state/rigid_blocks.h"
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -23,6 +25,12 @@ struct RigidPoints {
 
   // The points of `mapping`, carried by the rigids of `frames`.
   static RigidPoints from(std::shared_ptr<const RigidBlocks<Real>> frames, const RigidMapping<Real>& mapping);
+
+  // `outer` applied after these points (a chain rigid → points → outer's points): a rigid moves its
+  // points affinely, so a point whose weights sum to 1 over points of one rigid is that rigid's
+  // point at the weighted local coordinates. nullopt when a point mixes rigids or its weights do
+  // not sum to 1 (to round-off).
+  std::optional<RigidPoints> after(const PointMapping<Real>& outer) const;
 
   std::size_t size() const { return local.size(); }
   // Positions for the system's positions x (out: size() points).

@@ -1,0 +1,101 @@
+#include "fastcorot/mapping/mechanical_mapping.h"
+
+#include <algorithm>
+
+namespace fastcorot {
+
+namespace {
+
+// [r]×: the matrix of v ↦ r × v.
+template <class Real>
+Mat3<Real> cross_matrix(const Vec3<Real>& r) {
+  Mat3<Real> m;
+  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return m;
+}
+
+}  // namespace
+
+template <class Real>
+void LinearMapping<Real>::row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const {
+  out.clear();
+  for (std::size_t k = 0; k < static_cast<std::size_t>(PointMapping<Real>::kSlots); ++k) {
+    if (map_.weights[i][k] != 0) out.emplace_back(map_.vertices[i][k], map_.weights[i][k] * Mat3<Real>::Identity());
+  }
+}
+
+template <class Real>
+std::vector<double> LinearMapping<Real>::model_values() const {
+  std::vector<double> values{static_cast<double>(map_.size())};
+  for (std::size_t i = 0; i < map_.size(); ++i) {
+    for (std::size_t k = 0; k < static_cast<std::size_t>(PointMapping<Real>::kSlots); ++k) {
+      if (map_.weights[i][k] == 0) continue;
+      values.push_back(static_cast<double>(map_.vertices[i][k]));
+      values.push_back(static_cast<double>(map_.weights[i][k]));
+    }
+  }
+  return values;
+}
+
+template <class Real>
+RigidPointMapping<Real>::RigidPointMapping(RigidPoints<Real> points)
+    : points_(std::move(points)), rotated_(points_.size(), Vec3<Real>::Zero()) {}
+
+template <class Real>
+Index RigidPointMapping<Real>::parent_extent() const {
+  Index extent = 0;
+  for (std::size_t i = 0; i < size(); ++i) extent = std::max(extent, linear_block(i) + 2);
+  return extent;
+}
+
+template <class Real>
+void RigidPointMapping<Real>::apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) {
+  const std::vector<RigidCoord<Real>> coords = points_.frames->coords(x);
+  for (std::size_t i = 0; i < size(); ++i) {
+    const RigidCoord<Real>& frame = coords[static_cast<std::size_t>(points_.rigid[i])];
+    rotated_[i] = frame.rotate(points_.local[i]);
+    y[i] = frame.center + rotated_[i];
+  }
+}
+
+template <class Real>
+void RigidPointMapping<Real>::apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const {
+  for (std::size_t i = 0; i < size(); ++i) {
+    const auto b = static_cast<std::size_t>(linear_block(i));
+    dy[i] = dx[b] + dx[b + 1].cross(rotated_[i]);
+  }
+}
+
+template <class Real>
+void RigidPointMapping<Real>::apply_jt(std::span<const Vec3<Real>> f, std::span<Vec3<Real>> parent) const {
+  for (std::size_t i = 0; i < size(); ++i) {
+    const auto b = static_cast<std::size_t>(linear_block(i));
+    parent[b] += f[i];
+    parent[b + 1] += rotated_[i].cross(f[i]);
+  }
+}
+
+template <class Real>
+void RigidPointMapping<Real>::row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const {
+  out.clear();
+  const Index b = linear_block(i);
+  out.emplace_back(b, Mat3<Real>::Identity());
+  out.emplace_back(b + 1, -cross_matrix(rotated_[i]));
+}
+
+template <class Real>
+std::vector<double> RigidPointMapping<Real>::model_values() const {
+  std::vector<double> values{static_cast<double>(size())};
+  for (std::size_t i = 0; i < size(); ++i) {
+    values.push_back(static_cast<double>(points_.rigid[i]));
+    for (int c = 0; c < 3; ++c) values.push_back(static_cast<double>(points_.local[i][c]));
+  }
+  return values;
+}
+
+template class LinearMapping<float>;
+template class LinearMapping<double>;
+template class RigidPointMapping<float>;
+template class RigidPointMapping<double>;
+
+}  // namespace fastcorot
