@@ -181,7 +181,7 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
         system.constant_forces.push_back(rigid_constant_force(data, info, *c, count));
       } else if (category == "forcefield" || category == "mass" || category == "constraint") {
         throw make_error(c->where(), ": ", type, " on the Rigid3 state ", state.where(),
-                         " is not supported (on rigids: UniformMass, FixedProjectiveConstraint, ConstantForceField)");
+                         ": not supported on rigid bodies yet (there: UniformMass, FixedProjectiveConstraint, ConstantForceField)");
       }
     }
   }

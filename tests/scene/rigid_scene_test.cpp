@@ -3,6 +3,7 @@
 // term, the inertia not rotated), a constant torque, a pendulum held by a spring on a carried point
 // against the small-angle period; fixed rigids; points carried by a RigidMapping; bad input
 // refused in one line.
+#include "fastcorot/io/checkpoint.h"
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/sim/mapped_state.h"
 
@@ -217,6 +218,15 @@ TEST(RigidScene, BadInputIsRefusedInOneLine) {
   const std::string file = scene_error(body("", "<UniformMass filename=\"" + path + "\"/>"));
   EXPECT_NE(file.find("bad_body.rigid:2"), std::string::npos) << file;
   std::remove(path.c_str());
+  // Checkpoints do not hold orientations yet: refused rather than resumed unturned.
+  LoadedScene scene = build_scene_text(body("", mass));
+  const std::string checkpoint = ::testing::TempDir() + "rigid.ckpt";
+  try {
+    write_checkpoint(checkpoint, scene.simulation, "rigid.scn");
+    ADD_FAILURE() << "a checkpoint of a rigid body was written";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("checkpoints of rigid bodies are not supported"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace
