@@ -58,6 +58,19 @@ Mass<double> add_mapped_mass(const Mass<double>& parent, const Mass<double>& chi
   return mass;
 }
 
+// What no mapped node can hold here, whatever its mapping, and a mapping of the wrong size.
+void check_foldable(const SimulatedObject<double>& child, std::size_t mapped_points, const char* mapping, const std::string& where) {
+  const auto& from = child.system;
+  if (static_cast<Index>(mapped_points) != from.size()) {
+    throw make_error(where, ": the ", mapping, " gives ", mapped_points, " points, the mapped MechanicalObject has ", from.size());
+  }
+  if (!from.fixed.empty() || !from.projections.empty() || !from.couplings.empty() || !from.placements.empty() ||
+      !from.motions.empty()) {
+    throw make_error(where, ": projective constraints on a mapped state are not supported (put them on the simulated object)");
+  }
+  if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");
+}
+
 }  // namespace
 
 void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<double>& map, SimulatedObject<double>& parent,
@@ -65,14 +78,7 @@ void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<doubl
   auto& from = child.system;
   auto& to = parent.system;
   const Index n = to.size();
-  if (static_cast<Index>(map.size()) != from.size()) {
-    throw make_error(where, ": the mapping gives ", map.size(), " points, the mapped MechanicalObject has ", from.size());
-  }
-  if (!from.fixed.empty() || !from.projections.empty() || !from.couplings.empty() || !from.placements.empty() ||
-      !from.motions.empty()) {
-    throw make_error(where, ": projective constraints on a mapped state are not supported (put them on the simulated object)");
-  }
-  if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");
+  check_foldable(child, map.size(), "mapping", where);
   for (std::size_t k = 0; k < from.force_fields.size(); ++k) {
     to.force_fields.push_back(std::make_shared<MappedForceField<double>>(from.force_fields[k], map, n));
     parent.force_field_drawing.push_back({});
@@ -105,14 +111,7 @@ void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<
                               const std::string& where) {
   auto& from = child.system;
   auto& to = parent.system;
-  if (static_cast<Index>(points.size()) != from.size()) {
-    throw make_error(where, ": the RigidMapping gives ", points.size(), " points, the mapped MechanicalObject has ", from.size());
-  }
-  if (!from.fixed.empty() || !from.projections.empty() || !from.couplings.empty() || !from.placements.empty() ||
-      !from.motions.empty()) {
-    throw make_error(where, ": projective constraints on a mapped state are not supported (put them on the simulated object)");
-  }
-  if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");
+  check_foldable(child, points.size(), "RigidMapping", where);
   // A mass or a constant load on points carried by rigids would be Jᵀ M J and Jᵀ f with J turning
   // with the rigid: not folded yet.
   if (from.mass.size() != 0) {
