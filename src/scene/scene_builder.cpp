@@ -207,9 +207,9 @@ class Builder {
     // Springs of the mapped nodes join points of the mapped state (object1 and object2 its own).
     scene_detail::add_interaction_springs(data_, nodes, {states.front()}, {0}, {mapped_object.system.size()}, mapped_object);
     if (mapped_state.rigid) {
-      scene_detail::fold_rigid_mapped_object(mapped_object, *mapped_state.rigid, object, "node " + node.path);
+      scene_detail::fold_rigid_mapped_object(mapped_object, *mapped_state.rigid, object, where);
     } else {
-      scene_detail::fold_mapped_object(mapped_object, mapped_state.map, object, "node " + node.path);
+      scene_detail::fold_mapped_object(mapped_object, mapped_state.map, object, where);
     }
   }
 
