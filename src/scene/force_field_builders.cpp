@@ -169,19 +169,24 @@ ConstantForce<double> build_quad_pressure(SceneData& data, Component& c, std::sp
   }
 }
 
+std::vector<Index> constant_force_indices(SceneData& data, Component& c, Index size) {
+  std::vector<Index> indices = data.indices(c, "indices");
+  if (indices.empty()) {
+    for (Index i = 0; i < size; ++i) indices.push_back(i);
+  }
+  if (data.boolean(c, "indexFromEnd", false)) {
+    for (Index& i : indices) i = size - 1 - i;
+  }
+  for (Index i : indices) {
+    if (i < 0 || i >= size) throw make_error(c.where(), ": index ", i, " out of range [0, ", size, ")");
+  }
+  return indices;
+}
+
 ConstantForce<double> build_constant_force(SceneData& data, std::vector<std::string>& info, Component& c, Index size) {
   ConstantForce<double> constant;
-  constant.indices = data.indices(c, "indices");
-  if (constant.indices.empty()) {
-    for (Index i = 0; i < size; ++i) constant.indices.push_back(i);
-  }
+  constant.indices = constant_force_indices(data, c, size);
   const auto count = constant.indices.size();
-  if (data.boolean(c, "indexFromEnd", false)) {
-    for (Index& i : constant.indices) i = size - 1 - i;
-  }
-  for (Index i : constant.indices) {
-    if (i < 0 || i >= size) throw make_error(c.where(), ": index out of range [0, ", size, ")");
-  }
   if (c.has("forces")) {
     constant.forces = data.points(c, "forces");
     if (constant.forces.size() != count) {

@@ -43,6 +43,9 @@ ConstantForce<double> build_quad_pressure(SceneData& data, Component& c, std::sp
 // ConstantForceField's forces on a state of `size` points: `forces` (one per index), or `force` on
 // each, or `totalForce` shared out; indices default to every point (indexFromEnd counts from the
 // last). Without any force, an info line and no load.
+// ConstantForceField's points (or rigids) among `size`: `indices`, every one when empty, counted
+// from the end with indexFromEnd; throws naming c for one out of range.
+std::vector<Index> constant_force_indices(SceneData& data, Component& c, Index size);
 ConstantForce<double> build_constant_force(SceneData& data, std::vector<std::string>& info, Component& c, Index size);
 
 }  // namespace fastcorot::scene_detail

@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/state/rigid_mass.h"
+#include "force_field_builders.h"
 
 #include <memory>
 
@@ -42,16 +43,7 @@ std::vector<Index> fixed_rigids(SceneData& data, Component& c, Index rigids) {
 
 // ConstantForceField on rigids: 6 numbers per force (fx fy fz τx τy τz) on the two blocks.
 ConstantForce<double> rigid_constant_force(SceneData& data, std::vector<std::string>& info, Component& c, Index rigids) {
-  std::vector<Index> indices = data.indices(c, "indices");
-  if (indices.empty()) {
-    for (Index k = 0; k < rigids; ++k) indices.push_back(k);
-  }
-  if (data.boolean(c, "indexFromEnd", false)) {
-    for (Index& k : indices) k = rigids - 1 - k;
-  }
-  for (Index k : indices) {
-    if (k < 0 || k >= rigids) throw make_error(c.where(), ": index ", k, " out of range [0, ", rigids, ") (rigids)");
-  }
+  const std::vector<Index> indices = constant_force_indices(data, c, rigids);
   const auto count = indices.size();
   std::vector<double> values;
   const auto six = [&](const char* name) {
