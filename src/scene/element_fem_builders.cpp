@@ -151,7 +151,7 @@ std::shared_ptr<ForceField<double>> build_element_fem(SceneData& data, Component
   try {
     return nodes == 4 ? make_field<4>(data, c, rest, tetrahedra, drawn) : make_field<8>(data, c, rest, tetrahedra, drawn);
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -162,7 +162,7 @@ Mass<double> build_fem_mass(SceneData& data, Component& c, std::span<const Vec3<
     return Mass<double>::consistent(nodes == 4 ? mass_matrix<4>(data, c, rest, tetrahedra)
                                                : mass_matrix<8>(data, c, rest, tetrahedra));
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 

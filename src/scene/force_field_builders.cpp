@@ -51,7 +51,7 @@ std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Componen
     return std::make_shared<SpringForceField<double>>(std::move(mesh), std::move(springs),
                                                       data.real(c, "rayleighStiffness", 0), "MeshSpringForceField");
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -64,7 +64,7 @@ std::shared_ptr<ForceField<double>> build_mesh_springs(SceneData& data, Componen
     return std::make_shared<SpringForceField<double>>(std::move(points), std::move(springs),
                                                       data.real(c, "rayleighStiffness", 0), "MeshSpringForceField");
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -93,7 +93,7 @@ std::shared_ptr<ForceField<double>> build_penalty_force_field(SceneData& data, C
     p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
     return std::make_shared<ConicalForceField<double>>(std::move(mesh), p);
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -130,7 +130,7 @@ ConstantForce<double> build_triangle_pressure(SceneData& data, Component& c, std
     }
     return load;
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -165,7 +165,7 @@ ConstantForce<double> build_quad_pressure(SceneData& data, Component& c, std::sp
     }
     return load;
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 

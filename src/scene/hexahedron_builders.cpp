@@ -80,7 +80,7 @@ std::shared_ptr<HexahedronFEMForceField<double>> build_hexahedron_fem(SceneData&
     return std::make_shared<HexahedronFEMForceField<double>>(static_cast<Index>(rest.size()), std::move(hexahedra), rest,
                                                              parameters);
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 

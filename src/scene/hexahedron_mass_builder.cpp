@@ -11,7 +11,7 @@ Mass<double> build_hexahedron_fem_mass(SceneData& data, Component& c, const Hexa
     if (c.has("massMatrices")) throw make_error("massMatrices: element masses given by hand are not supported (they are computed)");
     return hexahedron_fem_mass<double>(field, rest, data.real(c, "density", 1.0), data.boolean(c, "lumpedMass", false));
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 

@@ -95,7 +95,7 @@ std::unique_ptr<LinearSolver<double>> build_minres(SceneData& data, Component& c
   try {
     return std::make_unique<MinResSolver<double>>(p, points);
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -120,7 +120,7 @@ std::shared_ptr<PreconditioningSolver<double>> build_preconditioning_solver(Scen
   try {
     return std::make_shared<SSORPreconditioner<double>>(p);
   } catch (const Error& error) {
-    throw make_error(preconditioner.where(), ": ", error.what());
+    throw error_at(preconditioner.where(), error);
   }
 }
 

@@ -112,11 +112,23 @@ void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<
   auto& from = child.system;
   auto& to = parent.system;
   check_foldable(child, points.size(), "RigidMapping", where);
-  // A mass or a constant load on points carried by rigids would be Jᵀ M J and Jᵀ f with J turning
-  // with the rigid: not folded yet.
   if (from.mass.size() != 0) {
-    throw make_error(where, ": a mass on points carried by rigid bodies (RigidMapping) is not supported yet: put it on the rigid (UniformMass)");
+    if (!from.mass.is_lumped()) {
+      throw make_error(where, ": a mass matrix (MeshMatrixMass without lumping) on points carried by rigid bodies is not supported: lump it or use UniformMass or DiagonalMass");
+    }
+    auto mapped = std::make_shared<RigidMappedMass<double>>();
+    if (to.rigid_mapped_mass) {
+      *mapped = *to.rigid_mapped_mass;
+    } else {
+      mapped->own = to.mass;
+    }
+    const auto masses = from.mass.vertex_masses();
+    const auto weights = from.mass.gravity_masses();
+    mapped->carried.push_back({points, {masses.begin(), masses.end()}, {weights.begin(), weights.end()}});
+    to.rigid_mapped_mass = std::move(mapped);
+    to.update_mass();
   }
+  // A constant load on carried points would be Jᵀ f with J turning with the rigid: not folded yet.
   if (!from.constant_forces.empty()) {
     throw make_error(where, ": constant forces on points carried by rigid bodies (RigidMapping) are not supported yet");
   }

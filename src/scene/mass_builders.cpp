@@ -53,7 +53,7 @@ Mass<double> build_mass(SceneData& data, Component& c, const Points<double>& res
     mass.follow_tetrahedra(mesh, factor);
     return mass;
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 

@@ -31,7 +31,7 @@ Numbers mesh_tetra_stuffing(SceneData& scene, Component& c, const std::string& n
   try {
     stuffed = stuff_tetrahedra(points, triangles, quads, options);
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
   Numbers out_points, out_tetrahedra;
   for (const auto& p : stuffed.points) out_points.insert(out_points.end(), {p[0], p[1], p[2]});

@@ -107,7 +107,7 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
     coords = parse_rigid_coords<double>(data.data(state, "position"), "position");
     rest = state.has("rest_position") ? parse_rigid_coords<double>(data.data(state, "rest_position"), "rest_position") : coords;
   } catch (const Error& error) {
-    throw make_error(state.where(), ": ", error.what());
+    throw error_at(state.where(), error);
   }
   const auto count = static_cast<Index>(coords.size());
   if (count == 0) throw make_error(state.where(), ": the state has no rigids");
@@ -119,7 +119,7 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
     try {
       velocity = parse_rigid_derivs<double>(data.data(state, "velocity"), "velocity");
     } catch (const Error& error) {
-      throw make_error(state.where(), ": ", error.what());
+      throw error_at(state.where(), error);
     }
     if (velocity.size() == 2) {
       const std::vector<Vec3<double>> one = velocity;

@@ -337,7 +337,7 @@ class Builder {
     try {
       object.system.finalize();
     } catch (const Error& error) {
-      throw make_error(state.where(), ": ", error.what());
+      throw error_at(state.where(), error);
     }
     for (GraphNode* mapped_node : visuals) {
       scene_detail::add_visual_surfaces(data_, info_, *mapped_node, object);
@@ -397,7 +397,7 @@ class Builder {
       try {
         object = merge_objects(std::move(parts), solver_node.path);
       } catch (const Error& error) {
-        throw make_error(integrator.where(), ": ", error.what());
+        throw error_at(integrator.where(), error);
       }
     }
     add_attach_constraints(nodes, states, offsets, sizes, object.system);
@@ -435,7 +435,7 @@ class Builder {
     try {
       system.finalize();
     } catch (const Error& error) {
-      throw make_error(states.front()->where(), ": ", error.what());
+      throw error_at(states.front()->where(), error);
     }
   }
 
@@ -503,7 +503,7 @@ class Builder {
       }
       return meshes_[topology] = mesh;
     } catch (const Error& error) {
-      throw make_error(topology->where(), ": ", error.what());
+      throw error_at(topology->where(), error);
     }
   }
 
@@ -529,7 +529,7 @@ class Builder {
       object.force_field_drawing.push_back(drawing);
       if (!object.mesh) object.mesh = mesh;
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
   }
 
@@ -601,7 +601,7 @@ class Builder {
       object.force_field_drawing.push_back(drawing);
       if (!object.mesh) object.mesh = mesh;
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
   }
 

@@ -280,7 +280,7 @@ const MeshData& SceneData::mesh_file(Component& loader) {
     const auto path = find_data_file(loader.object->location.file, filename->second);
     mesh = loader.type() == "GIDMeshLoader" ? read_gid(path) : read_mesh_file(path);
   } catch (const Error& error) {
-    throw make_error(loader.where(), ": ", error.what());
+    throw error_at(loader.where(), error);
   }
   mesh.points = transformed(std::move(mesh.points), vec3(loader, "scale3d", {1, 1, 1}),
                             vec3(loader, "rotation", {0, 0, 0}), vec3(loader, "translation", {0, 0, 0}));
@@ -325,7 +325,7 @@ RegularGrid SceneData::grid(Component& c) {
   try {
     validate(grid);
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
   return grid;
 }
@@ -340,7 +340,7 @@ CylinderGrid SceneData::cylinder_grid(Component& c) {
   try {
     cylinder_grid_points(cylinder);  // validates
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
   return cylinder;
 }

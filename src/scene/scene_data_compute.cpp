@@ -64,7 +64,7 @@ std::vector<Vec3<double>> sphere_grid_points_of(SceneData& data, Component& c) {
   try {
     return sphere_grid_points(sphere_grid(data, c));
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -73,7 +73,7 @@ T checked(Component& c, const std::function<T()>& make) {
   try {
     return make();
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -204,7 +204,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
         if (name == "triangles") return flatten_indices(mesh.triangles);
         return {};
       } catch (const Error& error) {
-        throw make_error(c.where(), ": ", error.what());
+        throw error_at(c.where(), error);
       }
     }
   }
@@ -306,7 +306,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
         if (name == "position") return flatten(cut.points);
         if (name == "tetrahedra") return flatten_indices(cut.tetrahedra);
       } catch (const Error& error) {
-        throw make_error(m->where(), ": ", error.what());
+        throw error_at(m->where(), error);
       }
     }
     // SOFA creates the triangle array from the tetrahedra when it is asked for and has none.
@@ -379,7 +379,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     try {
       spheres = read_sphere_file(find_data_file(c.object->location.file, file));
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
     if (name == "listRadius") return Numbers(spheres.radii.begin(), spheres.radii.end());
     for (const auto& line : spheres.warnings) warn(c.where() + ": " + line);

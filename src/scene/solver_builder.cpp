@@ -107,7 +107,7 @@ class SolverBuilder {
       }
       return std::make_unique<StaticSolver<double>>(p);
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
   }
 
@@ -208,7 +208,7 @@ class SolverBuilder {
     try {
       return std::make_unique<ConjugateGradientSolver<double>>(p);
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
   }
 
@@ -225,7 +225,7 @@ class SolverBuilder {
     try {
       return std::make_unique<PetscLinearSolver>(p);
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
   }
 
@@ -315,7 +315,7 @@ class SolverBuilder {
     try {
       return std::make_unique<PreconditionedConjugateGradientSolver<double>>(p, points);
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
   }
 

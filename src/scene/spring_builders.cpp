@@ -134,7 +134,7 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
             std::move(mesh), std::move(springs), data.real(*c, "rayleighStiffness", 0), "SpringForceField"));
         object.force_field_drawing.push_back({});
       } catch (const Error& error) {
-        throw make_error(c->where(), ": ", error.what());
+        throw error_at(c->where(), error);
       }
     }
   }
@@ -184,7 +184,7 @@ std::shared_ptr<ForceField<double>> build_regular_grid_springs(SceneData& data, 
     field->set_assembled_springs(listed);
     return field;
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 
@@ -249,7 +249,7 @@ std::shared_ptr<ForceField<double>> build_rest_shape_springs(SceneData& data, Co
     }
     return std::make_shared<RestShapeSpringsForceField<double>>(std::move(mesh), std::move(p));
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
 }
 

@@ -146,7 +146,7 @@ TopologyScript build_topology_script(SceneData& data, Component& c, std::shared_
   try {
     script.events = read_topology_changes(c.object->location.file.parent_path() / name);
   } catch (const Error& error) {
-    throw make_error(c.where(), ": ", error.what());
+    throw error_at(c.where(), error);
   }
   script.shift = shift;  // SOFA compares T with the time plus shift
   return script;

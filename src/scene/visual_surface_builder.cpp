@@ -70,9 +70,9 @@ class VisualSurfaceBuilder {
           break;
         }
       }
-      if (!model->has("src") && !model->has("filename") && !model->has("fileMesh")) {
+      if (!model->has("src") && !model->has("filename") && !model->has("fileMesh") && !has_own_geometry(*model)) {
         info_.push_back(model->where() + ": " + std::string(model->type()) + " of mapped node " + node.path +
-                        " has no src (a surface loader) or filename: nothing to draw");
+                        " has no src (a surface loader), filename or position and triangles: nothing to draw");
         continue;
       }
       if (!mapping) {
@@ -83,9 +83,20 @@ class VisualSurfaceBuilder {
       try {
         object.visual_surfaces.push_back(build_surface(node, *model, *mapping, object));
       } catch (const Error& error) {
-        throw make_error(model->where(), ": ", error.what());
+        throw error_at(model->where(), error);
       }
     }
+  }
+
+  static bool has_own_geometry(Component& model) {
+    return (model.has("position") || model.has("vertices")) && model.has("triangles");
+  }
+
+  static std::vector<Triangle> triangles_of(const std::vector<Index>& flat) {
+    if (flat.size() % 3 != 0) throw make_error("triangles: ", flat.size(), " indices, not a multiple of 3");
+    std::vector<Triangle> triangles;
+    for (std::size_t i = 0; i + 2 < flat.size(); i += 3) triangles.push_back({flat[i], flat[i + 1], flat[i + 2]});
+    return triangles;
   }
 
   VisualSurface build_surface(GraphNode& node, Component& model, Component& mapping, SimulatedObject<double>& object) {
@@ -100,8 +111,21 @@ class VisualSurfaceBuilder {
       data = load_surface(loader, "filename");
     } else if (model.has("filename") || model.has("fileMesh")) {
       data = load_surface(model, model.has("filename") ? "filename" : "fileMesh");
+    } else if (has_own_geometry(model)) {
+      // SOFA's OglModel data written in the scene or linked (position="@topology.position").
+      data.points = data_.points(model, model.has("position") ? "position" : "vertices");
+      data.triangles = triangles_of(data_.indices(model, "triangles"));
+      const std::vector<Index> quads = model.has("quads") ? data_.indices(model, "quads") : std::vector<Index>{};
+      for (std::size_t i = 0; i + 3 < quads.size(); i += 4) data.quads.push_back({quads[i], quads[i + 1], quads[i + 2], quads[i + 3]});
+      for (const Triangle& t : data.all_triangles()) {
+        for (Index v : t) {
+          if (v < 0 || v >= static_cast<Index>(data.points.size())) {
+            throw make_error("triangle vertex ", v, " is outside its ", data.points.size(), " positions");
+          }
+        }
+      }
     } else {
-      throw make_error("no src (a surface loader) or filename: fastcorot cannot tell what to draw");
+      throw make_error("no src (a surface loader), filename or position and triangles: fastcorot cannot tell what to draw");
     }
     // The model's own placement (SOFA's VisualModelImpl: scale, then rotation, then translation).
     data.points = transformed(std::move(data.points), data_.placement(model, "scale3d"),
@@ -158,7 +182,7 @@ class VisualSurfaceBuilder {
         mapped.map = map_points(node, *mapping, points, object, "the state", mapped.mapping);
         object.mapped_states.push_back(std::move(mapped));
       } catch (const Error& error) {
-        throw make_error(state->where(), ": ", error.what());
+        throw error_at(state->where(), error);
       }
     }
   }
@@ -256,7 +280,7 @@ class VisualSurfaceBuilder {
     try {
       surface = read_surface_file(find_data_file(c.object->location.file, name));
     } catch (const Error& error) {
-      throw make_error(c.where(), ": ", error.what());
+      throw error_at(c.where(), error);
     }
     if (c.spec && c.spec->category == "surfaceloader") {
       Vec3<double> scale = data_.vec3(c, "scale3d", {1, 1, 1});

@@ -2,6 +2,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include <Eigen/Cholesky>
+
 namespace fastcorot {
 
 template <class Real>
@@ -20,6 +22,17 @@ StepReport explicit_acceleration(MechanicalSystem<Real>& system, LinearSolver<Re
       const Mat3<Real>& b = blocks[i];
       const bool scalar = b.isDiagonal(Real(0)) && b(0, 0) == b(1, 1) && b(1, 1) == b(2, 2);
       acceleration[i] = scalar ? Vec3<Real>(force[i] / b(0, 0)) : Vec3<Real>(b.inverse() * force[i]);
+    }
+    // A rigid carrying masses couples its two blocks: their accelerations solve the 6×6 system.
+    for (const auto& c : system.mass.couplings()) {
+      const auto a = static_cast<std::size_t>(c.first), d = static_cast<std::size_t>(c.second);
+      Eigen::Matrix<Real, 6, 6> m;
+      m << blocks[a], c.block, c.block.transpose(), blocks[d];
+      Eigen::Matrix<Real, 6, 1> f;
+      f << force[a], force[d];
+      const Eigen::Matrix<Real, 6, 1> solved = m.ldlt().solve(f);
+      acceleration[a] = solved.template head<3>();
+      acceleration[d] = solved.template tail<3>();
     }
     system.project(acceleration);
   } else if (system.mass.is_lumped()) {

@@ -52,6 +52,31 @@ Mass<Real> Mass<Real>::block_diagonal(std::vector<Mat3<Real>> blocks) {
 }
 
 template <class Real>
+void Mass<Real>::set_couplings(std::vector<Coupling> couplings) {
+  if (!is_block_diagonal()) throw make_error("mass couplings: only a block mass has them");
+  const auto n = static_cast<Index>(blocks_.size());
+  for (const Coupling& c : couplings) {
+    if (c.first < 0 || c.first >= n || c.second < 0 || c.second >= n || c.first == c.second) {
+      throw make_error("mass coupling (", c.first, ", ", c.second, "): needs two different blocks of ", n);
+    }
+    if (!c.block.allFinite()) throw make_error("mass coupling (", c.first, ", ", c.second, "): must be finite");
+  }
+  couplings_ = std::move(couplings);
+}
+
+template <class Real>
+void Mass<Real>::set_gravity_blocks(std::vector<Mat3<Real>> blocks) {
+  if (!is_block_diagonal()) throw make_error("gravity blocks: only a block mass has them");
+  if (blocks.size() != blocks_.size()) {
+    throw make_error("gravity blocks: ", blocks.size(), " blocks for ", blocks_.size(), " points");
+  }
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!blocks[i].allFinite()) throw make_error("gravity block of vertex ", i, ": must be finite");
+  }
+  gravity_blocks_ = std::move(blocks);
+}
+
+template <class Real>
 Real Mass<Real>::total_mass() const {
   Real total = 0;
   for (Real m : vertex_masses_) total += m;
@@ -78,6 +103,7 @@ void Mass<Real>::add_mdx(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> o
   if (is_block_diagonal()) {
     // As SOFA's UniformMass<Rigid3>::addMDx: the mass scaled by the factor first.
     for (std::size_t i = 0; i < blocks_.size(); ++i) out[i] += (factor * blocks_[i]) * dx[i];
+    add_couplings(dx, out, factor);
     return;
   }
   if (is_lumped()) {
@@ -93,6 +119,7 @@ template <class Real>
 void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor, int threads) const {
   if (is_block_diagonal()) {
     for (std::size_t i = 0; i < blocks_.size(); ++i) out[i] = (factor * blocks_[i]) * dx[i];
+    add_couplings(dx, out, factor);
     return;
   }
   if (is_lumped()) {
@@ -127,9 +154,32 @@ void Mass<Real>::multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> 
 }
 
 template <class Real>
+void Mass<Real>::add_couplings(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor) const {
+  for (const Coupling& c : couplings_) {
+    const auto a = static_cast<std::size_t>(c.first), b = static_cast<std::size_t>(c.second);
+    const Mat3<Real> scaled = factor * c.block;
+    out[a] += scaled * dx[b];
+    out[b] += scaled.transpose() * dx[a];
+  }
+}
+
+template <class Real>
 void Mass<Real>::add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const {
+  if (!gravity_blocks_.empty()) {
+    for (std::size_t i = 0; i < gravity_blocks_.size(); ++i) f[i] += gravity_blocks_[i] * gravity;
+    return;
+  }
   const std::span<const Real> masses = gravity_masses();
   for (std::size_t i = 0; i < masses.size(); ++i) f[i] += masses[i] * gravity;
+}
+
+template <class Real>
+Real Mass<Real>::gravity_energy(const Vec3<Real>& gravity, std::span<const Vec3<Real>> x) const {
+  std::vector<Vec3<Real>> weight(static_cast<std::size_t>(size()), Vec3<Real>::Zero());
+  add_gravity(gravity, weight);
+  Real energy = 0;
+  for (std::size_t i = 0; i < weight.size(); ++i) energy -= weight[i].dot(x[i]);
+  return energy;
 }
 
 template <class Real>
@@ -151,6 +201,11 @@ void Mass<Real>::add_to_matrix(MatrixSink<Real>& sink, Real factor, Index offset
     for (std::size_t i = 0; i < blocks_.size(); ++i) {
       const Index row = offset + 3 * static_cast<Index>(i);
       sink.add_block(row, row, factor * blocks_[i]);
+    }
+    for (const Coupling& c : couplings_) {
+      const Index a = offset + 3 * c.first, b = offset + 3 * c.second;
+      sink.add_block(a, b, factor * c.block);
+      sink.add_block(b, a, factor * c.block.transpose());
     }
     return;
   }

@@ -388,10 +388,7 @@ template <class Real>
 Real MechanicalSystem<Real>::potential_energy(std::span<const Vec3<Real>> x) const {
   Real energy = 0;
   for (const auto& field : force_fields) energy += field->potential_energy(x);
-  if (mass.size() != 0) {
-    const auto masses = mass.gravity_masses();
-    for (std::size_t i = 0; i < masses.size(); ++i) energy -= masses[i] * gravity.dot(x[i]);
-  }
+  if (mass.size() != 0) energy += mass.gravity_energy(gravity, x);
   for (const auto& constant : constant_forces) {
     for (std::size_t i = 0; i < constant.indices.size(); ++i) {
       energy -= constant.forces[i].dot(x[static_cast<std::size_t>(constant.indices[i])]);

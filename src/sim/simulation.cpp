@@ -75,6 +75,7 @@ StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number,
   StepReport report;
   const Real time = static_cast<Real>(step_number) * dt;
   try {
+    object.system.update_mass();
     report = object.ode_solver->step(object.system, *object.linear_solver, dt);
   } catch (const Error& error) {
     throw Error(

@@ -1,9 +1,11 @@
 // MechanicalMapping: the RigidMapping on a system's rigid blocks (RigidPointMapping) against central
 // finite differences of its apply (an angular increment displaces the rigid as SOFA's x += dx does),
 // Jᵀ against J by the dot-product test, J's row blocks against apply_j; a force field on carried
-// points (MappedForceField through RigidPointMapping) against the same derivatives.
+// points (MappedForceField through RigidPointMapping) against the same derivatives; a mass on
+// carried points (RigidMappedMass) against Jᵀ M J and Jᵀ m g through the mapping.
 #include "fastcorot/mapping/mapped_force_field.h"
 #include "fastcorot/mapping/mechanical_mapping.h"
+#include "fastcorot/mapping/rigid_mapped_mass.h"
 #include "fastcorot/fem/spring_force_field.h"
 
 #include <gtest/gtest.h>
@@ -141,6 +143,56 @@ TEST(RigidPointMapping, SpringsOnCarriedPointsActThroughTheRigids) {
   for (std::size_t b = 0; b < 5; ++b) d.segment<3>(3 * static_cast<Eigen::Index>(b)) = dx[b];
   const Eigen::VectorXd product = k * d;
   for (std::size_t b = 0; b < 5; ++b) EXPECT_LT((product.segment<3>(3 * static_cast<Eigen::Index>(b)) - df[b]).norm(), 1e-10) << b;
+}
+
+// The straightforward form: M dx = M_own dx + Jᵀ (m ⊙ J dx), gravity = own weights + Jᵀ (w g).
+TEST(RigidMappedMass, IsJTransposeMJAndCarriesTheWeightsUp) {
+  Rigids r;
+  std::vector<Mat3<double>> own_blocks(5, Mat3<double>::Zero());
+  own_blocks[0] = 4 * Mat3<double>::Identity();  // the plain point
+  own_blocks[1] = 2 * Mat3<double>::Identity();
+  own_blocks[2] = Vec3<double>(0.2, 0.3, 0.4).asDiagonal();
+  own_blocks[3] = 3 * Mat3<double>::Identity();
+  own_blocks[4] = Vec3<double>(0.5, 0.6, 0.7).asDiagonal();
+  RigidMappedMass<double> mapped;
+  mapped.own = Mass<double>::block_diagonal(own_blocks);
+  mapped.own.set_gravity_masses({4, 2, 0, 3, 0});
+  mapped.carried.push_back({r.points(), {1.5, 0.25, 2.0, 0.75}, {1.5, 0.25, 2.0, 0.75}});
+  const Mass<double> mass = mapped.at(r.x, 5);
+  ASSERT_EQ(mass.couplings().size(), 2u);
+
+  RigidPointMapping<double> map(r.points());
+  std::vector<V3> y(4);
+  map.apply(r.x, y);
+  const auto dx = random_vectors(5, 11);
+  std::vector<V3> jdx(4), expected(5, V3::Zero()), product(5);
+  map.apply_j(dx, jdx);
+  for (std::size_t i = 0; i < 4; ++i) jdx[i] *= mapped.carried[0].masses[i];
+  map.apply_jt(jdx, expected);
+  mapped.own.add_mdx(dx, expected, 1.0);
+  mass.multiply(dx, product, 2.0, 1);
+  for (std::size_t b = 0; b < 5; ++b) EXPECT_LT((product[b] - 2.0 * expected[b]).norm(), 1e-12 * (1 + expected[b].norm())) << b;
+  // The assembled blocks are the same matrix, and symmetric.
+  TripletSink<double> sink;
+  mass.add_to_matrix(sink, 2.0);
+  Eigen::SparseMatrix<double> m(15, 15);
+  m.setFromTriplets(sink.triplets.begin(), sink.triplets.end());
+  EXPECT_LT(Eigen::MatrixXd(m - Eigen::SparseMatrix<double>(m.transpose())).norm(), 1e-14);
+  Eigen::VectorXd d(15);
+  for (std::size_t b = 0; b < 5; ++b) d.segment<3>(3 * static_cast<Eigen::Index>(b)) = dx[b];
+  const Eigen::VectorXd assembled = m * d;
+  for (std::size_t b = 0; b < 5; ++b) {
+    EXPECT_LT((assembled.segment<3>(3 * static_cast<Eigen::Index>(b)) - product[b]).norm(), 1e-12 * (1 + product[b].norm())) << b;
+  }
+  // Kinetic energy ½ vᵀ M v, and weights: own m g plus Jᵀ (w g).
+  EXPECT_NEAR(mass.kinetic_energy(dx), 0.5 * dot(dx, expected), 1e-12);
+  const V3 g(0.3, -9.81, 1.2);
+  std::vector<V3> weights(4), expected_weight(5, V3::Zero()), weight(5, V3::Zero());
+  for (std::size_t i = 0; i < 4; ++i) weights[i] = mapped.carried[0].weights[i] * g;
+  map.apply_jt(weights, expected_weight);
+  mapped.own.add_gravity(g, expected_weight);
+  mass.add_gravity(g, weight);
+  for (std::size_t b = 0; b < 5; ++b) EXPECT_LT((weight[b] - expected_weight[b]).norm(), 1e-12 * (1 + expected_weight[b].norm())) << b;
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Rigid bodies in scenes (template="Rigid3d"): integrated by the ODE solvers with two Vec3 blocks per
 // rigid, against closed forms: free fall, spinning at constant ω (SOFA's convention: no gyroscopic
 // term, the inertia not rotated), a constant torque, a pendulum held by a spring on a carried point
-// against the small-angle period; fixed rigids; points carried by a RigidMapping; bad input
+// against the small-angle period, with and without a mass on carried points; fixed rigids; points carried by a RigidMapping; bad input
 // refused in one line.
 #include "fastcorot/io/checkpoint.h"
 #include "fastcorot/scene/scene_builder.h"
@@ -137,7 +137,8 @@ TEST(RigidScene, RigidMappedPointsAndVisualModelsFollowTheRigid) {
 // A rigid pendulum: the body's point (0, L, 0) (local) is held at the origin by a stiff
 // RestShapeSpringsForceField written on the carried point, so the body swings about it under
 // gravity. Small angles: θ(t) = θ0 cos(2π t / T), T = 2π sqrt((I + m L²) / (m g L)), I = m i_zz.
-std::string pendulum(double theta0, const std::string& solver) {
+// `bob`: a second carried node (its own masses swing with the body).
+std::string pendulum(double theta0, const std::string& solver, const std::string& bob = "") {
   const double L = 1;
   const Vec3<double> center = -(Eigen::AngleAxisd(theta0, Vec3<double>::UnitZ()) * Vec3<double>(0, L, 0));
   const Eigen::Quaterniond q(Eigen::AngleAxisd(theta0, Vec3<double>::UnitZ()));
@@ -146,7 +147,8 @@ std::string pendulum(double theta0, const std::string& solver) {
   position << center.x() << ' ' << center.y() << " 0 0 0 " << q.z() << ' ' << q.w();
   return body("position=\"" + position.str() + "\"", "<UniformMass vertexMass=\"1 1 0.1 0 0 0 0.1 0 0 0 0.1\"/>",
               "<MechanicalObject name=\"pivot\" position=\"0 1 0\" rest_position=\"0 0 0\"/>"
-              "<RestShapeSpringsForceField stiffness=\"1e5\"/><RigidMapping/>",
+              "<RestShapeSpringsForceField stiffness=\"1e5\"/><RigidMapping/>" +
+                  (bob.empty() ? "" : "</Node><Node name=\"bob\">" + bob),
               "<EulerImplicitSolver/>" + solver);
 }
 
@@ -175,6 +177,52 @@ TEST(RigidScene, PendulumHeldByASpringOnACarriedPointSwingsWithTheSmallAnglePeri
     const auto states = state_snapshots(scene.simulation.objects.at(0));
     EXPECT_LT(states.at(1).position.at(0).norm(), 2e-4) << solver;
   }
+}
+
+// A mass written on carried points acts through J: the bob (mass 2 at local (0, -0.5, 0), 1.5 below
+// the pivot) adds its inertia m r² about the pivot and its weight's torque, so T = 2π sqrt((I + m0 L²
+// + m (1.5 L)²) / (g (m0 L + 1.5 m L))), with the rigid's own m0 = 1, I = 0.1 (its weight at L).
+TEST(RigidScene, MassOnCarriedPointsSwingsWithTheBody) {
+  const double inertia = 0.1 + 1.0 + 2 * 1.5 * 1.5, moment = 1.0 + 2 * 1.5;
+  const double period = 2 * std::numbers::pi * std::sqrt(inertia / (9.81 * moment));
+  const std::string bob = "<MechanicalObject position=\"0 -0.5 0\"/><UniformMass totalMass=\"2\"/><RigidMapping/>";
+  const std::string cg = "<CGLinearSolver iterations=\"100\" tolerance=\"1e-20\" threshold=\"1e-20\"/>";
+  for (const std::string solver : {cg, std::string("<SparseLDLSolver/>")}) {
+    LoadedScene scene = build_scene_text(pendulum(0.05, solver, bob), "dt=\"0.001\" gravity=\"0 -9.81 0\"");
+    std::vector<double> crossings;
+    double previous = swing_angle(scene);
+    for (int s = 1; s <= 9000; ++s) {
+      scene.simulation.step();
+      const double angle = swing_angle(scene);
+      if (previous < 0 && angle >= 0) crossings.push_back((s - 1 + previous / (previous - angle)) * 0.001);
+      previous = angle;
+    }
+    ASSERT_GE(crossings.size(), 3u) << solver;
+    const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+    EXPECT_NEAR(measured, period, 0.005 * period) << solver;
+  }
+}
+
+// EulerExplicitSolver on a rigid carrying a mass: its acceleration solves the coupled 6×6 system,
+// M a = f with the mass at the step's start (M = M_own + Jᵀ M_points J).
+TEST(RigidScene, ExplicitEulerSolvesTheCoupledBlocksOfACarriedMass) {
+  LoadedScene scene = build_scene_text(
+      body("position=\"0 0 0 0 0 0 1\" velocity=\"0 0 0 0.2 0 0.1\"", "<UniformMass vertexMass=\"1 1 0.1 0 0 0 0.2 0 0 0 0.3\"/>",
+           "<MechanicalObject position=\"0.5 -1 0.2  -0.3 0.4 1\"/><UniformMass vertexMass=\"2\"/><RigidMapping/>",
+           "<EulerExplicitSolver symplectic=\"1\"/>"),
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  auto& system = scene.simulation.objects.at(0).system;
+  ASSERT_EQ(system.mass.couplings().size(), 1u);
+  const std::vector<Vec3<double>> v0 = system.state.velocity;
+  std::vector<Vec3<double>> f(2), ma(2), a(2);
+  system.compute_force(system.state.position, f);
+  const Mass<double> mass = system.mass;
+  scene.simulation.step();
+  for (std::size_t i = 0; i < 2; ++i) a[i] = (system.state.velocity[i] - v0[i]) / 0.01;
+  mass.multiply(a, ma, 1.0, 1);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_LT((ma[i] - f[i]).norm(), 1e-10 * (1 + f[i].norm())) << i;
+  // The weight of the carried points turns the body: a torque r × m g about the centre.
+  EXPECT_GT(f[1].norm(), 1.0);
 }
 
 TEST(RigidScene, OneAndTwoThreadsGiveTheSameBits) {
@@ -208,8 +256,9 @@ TEST(RigidScene, BadInputIsRefusedInOneLine) {
       "<Node name=\"b\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"0 0 0\"/><UniformMass totalMass=\"1\"/>"
       "<Node name=\"c\"><MechanicalObject position=\"1 0 0\"/><RigidMapping/></Node></Node>");
   EXPECT_NE(wrong_parent.find("needs a Rigid3 parent"), std::string::npos) << wrong_parent;
-  const std::string carried_mass = scene_error(body("", mass, "<MechanicalObject position=\"1 0 0\"/><UniformMass totalMass=\"1\"/><RigidMapping/>"));
-  EXPECT_NE(carried_mass.find("mass on points carried by rigid bodies"), std::string::npos) << carried_mass;
+  const std::string carried_mass = scene_error(body("", mass, "<MeshTopology position=\"1 0 0  2 0 0  1 1 0  1 0 1\" tetrahedra=\"0 1 2 3\"/><MechanicalObject/>"
+                                                    "<MeshMatrixMass massDensity=\"1\"/><RigidMapping/>"));
+  EXPECT_NE(carried_mass.find("mass matrix (MeshMatrixMass without lumping) on points carried by rigid bodies"), std::string::npos) << carried_mass;
   const std::string index = scene_error(body("", mass, "<MechanicalObject position=\"1 0 0\"/><RigidMapping index=\"3\"/>"));
   EXPECT_NE(index.find("index 3"), std::string::npos) << index;
   // A .rigid file that does not parse names the file and line.

@@ -25,4 +25,12 @@ Error make_error(Parts&&... parts) {
   return Error(out.str());
 }
 
+// `error` placed at `where` ("file:line: Type"): "where: message", unless the message already
+// starts there (an inner check that named the same place).
+inline Error error_at(const std::string& where, const Error& error) {
+  const std::string message = error.what();
+  if (message.starts_with(where)) return error;
+  return Error(where + ": " + message);
+}
+
 }  // namespace fastcorot

@@ -1,8 +1,9 @@
 // Mass of a deformable object: lumped (one mass per vertex: SOFA's DiagonalMass, UniformMass and
 // MeshMatrixMass with lumping), consistent (a symmetric #V×#V scalar matrix applied to each axis:
 // MeshMatrixMass without lumping) or block-diagonal (one symmetric 3×3 block per vertex: rigid
-// bodies, whose angular block is m·inertia: state/rigid_mass.h). Gravity acts through the mass:
-// f_i += (sum_j M_ij) g, or the gravity masses when set.
+// bodies, whose angular block is m·inertia: state/rigid_mass.h), with optional couplings between
+// two blocks (a rigid carrying masses: mapping/rigid_mapped_mass.h). Gravity acts through the mass:
+// f_i += (sum_j M_ij) g, or the gravity masses when set, or a block mass's gravity blocks.
 #pragma once
 
 #include "fastcorot/core/types.h"
@@ -34,6 +35,21 @@ class Mass {
   // Throws fastcorot::Error for a non-finite or non-symmetric block.
   static Mass block_diagonal(std::vector<Mat3<Real>> blocks);
 
+  // An off-diagonal block pair of a block mass: M_{first,second} = block, M_{second,first} = blockᵀ.
+  struct Coupling {
+    Index first = 0;
+    Index second = 0;
+    Mat3<Real> block = Mat3<Real>::Zero();
+  };
+  // Sets the couplings of a block-diagonal mass (replacing any before). Throws fastcorot::Error for
+  // another kind of mass, an index out of range, first == second or a non-finite block.
+  void set_couplings(std::vector<Coupling> couplings);
+  std::span<const Coupling> couplings() const { return couplings_; }
+  // Gravity on a block mass as 3×3 blocks, f_i += G_i g (a rigid carrying masses m_j at offsets
+  // r_j: G = Σ m_j I on its linear block, [Σ m_j r_j]× on its angular one). Throws fastcorot::Error
+  // for another kind of mass, a wrong size or a non-finite block.
+  void set_gravity_blocks(std::vector<Mat3<Real>> blocks);
+
   bool is_lumped() const { return matrix_.size() == 0 && blocks_.empty(); }
   bool is_block_diagonal() const { return !blocks_.empty(); }
   std::span<const Mat3<Real>> blocks() const { return blocks_; }
@@ -49,8 +65,10 @@ class Mass {
   // out = factor · M dx (every point written; the rows on up to `threads` threads, the same bits for
   // any count).
   void multiply(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor, int threads) const;
-  // f += m_i g for each vertex i, m_i its gravity mass (below).
+  // f += m_i g for each vertex i, m_i its gravity mass (below), or f_i += G_i g (gravity blocks).
   void add_gravity(const Vec3<Real>& gravity, std::span<Vec3<Real>> f) const;
+  // The potential of gravity at x: -Σ (weight of i) · x_i.
+  Real gravity_energy(const Vec3<Real>& gravity, std::span<const Vec3<Real>> x) const;
   // The masses gravity acts on: vertex_masses() unless set otherwise. SOFA's
   // HexahedronFEMForceFieldAndMass weighs its points (density x volume / 8 from each hexahedron)
   // otherwise than its mass matrix's row sums. Throws fastcorot::Error for a wrong size or a
@@ -77,6 +95,8 @@ class Mass {
 
  private:
   void add_tetrahedron(const Tetrahedron& tet, std::span<const Vec3<Real>> rest, Real sign);
+  // out += factor · (the couplings' blocks) dx.
+  void add_couplings(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> out, Real factor) const;
 
   std::shared_ptr<const TetMesh> topology_;
   Real density_ = 0;
@@ -84,6 +104,8 @@ class Mass {
   Eigen::SparseMatrix<Real, Eigen::RowMajor> matrix_;  // empty when lumped
   std::vector<Real> gravity_masses_;                  // empty: vertex_masses_
   std::vector<Mat3<Real>> blocks_;                    // block-diagonal masses only
+  std::vector<Coupling> couplings_;                   // block masses only
+  std::vector<Mat3<Real>> gravity_blocks_;            // block masses only; empty: gravity masses
 };
 
 // SOFA's DiagonalMass on tetrahedra: each tetrahedron gives density · |V| / 4 to each of its vertices.

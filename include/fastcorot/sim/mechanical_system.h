@@ -9,6 +9,7 @@
 #include "fastcorot/core/phase_times.h"
 #include "fastcorot/core/types.h"
 #include "fastcorot/fem/force_field.h"
+#include "fastcorot/mapping/rigid_mapped_mass.h"
 #include "fastcorot/sim/mass.h"
 #include "fastcorot/sim/mechanical_state.h"
 #include "fastcorot/state/rigid_blocks.h"
@@ -128,6 +129,9 @@ class MechanicalSystem {
   // the angular blocks as to any other; Simulation folds them into the orientations after each
   // step (RigidBlocks::rebase). Shared with the visual models and mapped states that follow them.
   std::shared_ptr<RigidBlocks<Real>> rigids;
+  // Masses on points the rigids carry (null: none): `mass` is then recomputed from it at the
+  // positions each step starts from (update_mass), as their Jacobian turns with the rigids.
+  std::shared_ptr<const RigidMappedMass<Real>> rigid_mapped_mass;
   // Set in distributed runs (null otherwise): compute_force and multiply complete their sums at the
   // points shared with other ranks, and the energies add over the ranks.
   std::shared_ptr<const PointExchange<Real>> exchange;
@@ -143,6 +147,11 @@ class MechanicalSystem {
   // f = total force at positions x and velocities v (force fields, weight, constant forces;
   // v empty: the state's velocities); overwrites f. The force fields record their linearisation at x.
   void compute_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f, std::span<const Vec3<Real>> v = {});
+
+  // Recomputes `mass` from rigid_mapped_mass at the current positions (nothing without one).
+  void update_mass() {
+    if (rigid_mapped_mass) mass = rigid_mapped_mass->at(state.position, size());
+  }
 
   // out = (m M + b B + k K) dx, then projected (fixed entries zero).
   void multiply(const MatrixFactors<Real>& factors, std::span<const Vec3<Real>> dx,
