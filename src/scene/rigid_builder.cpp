@@ -1,9 +1,12 @@
 #include "rigid_builder.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/rest_shape_springs_force_field.h"
+#include "fastcorot/mapping/mapped_force_field.h"
 #include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/state/rigid_mass.h"
 #include "force_field_builders.h"
+#include "spring_builders.h"
 
 #include <memory>
 
@@ -39,6 +42,57 @@ std::vector<Index> fixed_rigids(SceneData& data, Component& c, Index rigids) {
     if (k < 0 || k >= rigids) throw make_error(c.where(), ": index ", k, " out of range [0, ", rigids, ") (rigids)");
   }
   return indices;
+}
+
+// SOFA's RestShapeSpringsForceField<Rigid3>: the rigids' centres pulled to their rest centres, their
+// orientations turned back to their rest orientations (angularStiffness: SOFA's init gives 100 to
+// each stiffness entry without one and drops the extra ones).
+std::shared_ptr<ForceField<double>> rigid_rest_shape_springs(SceneData& data, Component& c, const MechanicalSystem<double>& system,
+                                                             const std::shared_ptr<const RigidBlocks<double>>& rigids) {
+  try {
+    const auto count = static_cast<Index>(rigids->size());
+    for (const char* unsupported : {"external_rest_shape", "pivot_points", "pivotPoints"}) {
+      if (c.has(unsupported)) throw make_error(unsupported, " is not supported on rigid bodies");
+    }
+    RestShapeSpringsForceField<double>::Parameters p;
+    std::vector<Index> picked = data.indices(c, "points");
+    if (picked.empty()) {
+      for (Index k = 0; k < count; ++k) picked.push_back(k);
+    }
+    for (Index k : picked) {
+      if (k < 0 || k >= count) throw make_error("points: index ", k, " out of range [0, ", count, ") (rigids)");
+      const auto at = static_cast<std::size_t>(k);
+      p.points.push_back(rigids->block[at]);
+      p.rigid_of_point.push_back(k);
+      const RigidCoord<double> rest = rigids->rest_coord(system.state.rest_position, at);
+      p.anchors.push_back(rest.center);
+      p.rest_orientations.push_back(rest.orientation);
+    }
+    if (c.has("stiffness")) p.stiffness = data.data(c, "stiffness");
+    if (p.stiffness.empty()) p.stiffness = {100};
+    if (c.has("angularStiffness")) p.angular_stiffness = data.data(c, "angularStiffness");
+    p.angular_stiffness.resize(p.stiffness.size(), 100.0);
+    if (c.has("activeDirections")) {
+      const Numbers& active = data.data(c, "activeDirections");
+      if (active.size() != 6) throw make_error("activeDirections has ", active.size(), " values: 6 (x y z rx ry rz) for Rigid3");
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        p.active_directions[axis] = active[axis] != 0;
+        p.active_rotations[axis] = active[axis + 3] != 0;
+      }
+    }
+    p.rayleigh_stiffness = data.real(c, "rayleighStiffness", 0);
+    p.rigids = rigids;
+    auto mesh = std::make_shared<const TetMesh>(system.size(), std::vector<Tetrahedron>{});
+    return std::make_shared<RestShapeSpringsForceField<double>>(std::move(mesh), std::move(p));
+  } catch (const Error& error) {
+    throw error_at(c.where(), error);
+  }
+}
+
+// A field on points (PlaneForceField) acting on the rigids' centres: the field on one point per
+// rigid, mapped onto the linear blocks (SOFA's PlaneForceField<Rigid3> reads and pushes the centres).
+std::shared_ptr<ForceField<double>> on_rigid_centres(std::shared_ptr<ForceField<double>> field, const RigidBlocks<double>& rigids, Index points) {
+  return std::make_shared<MappedForceField<double>>(std::move(field), PointMapping<double>::subset(rigids.block), points);
 }
 
 // ConstantForceField on rigids: 6 numbers per force (fx fy fz τx τy τz) on the two blocks.
@@ -148,6 +202,7 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
       if (!c->spec) continue;
       const std::string_view type = c->type();
       const std::string_view category = c->spec->category;
+      if (is_interaction_spring(type)) continue;  // joins objects: added with them (add_interaction_springs)
       if (type == "UniformMass") {
         if (system.mass.size() != 0) throw make_error(c->where(), ": a second mass for ", object.path);
         const RigidMass<double> mass = uniform_mass(data, *c, count);
@@ -171,9 +226,17 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
         }
       } else if (type == "ConstantForceField") {
         system.constant_forces.push_back(rigid_constant_force(data, info, *c, count));
+      } else if (type == "RestShapeSpringsForceField") {
+        system.force_fields.push_back(rigid_rest_shape_springs(data, *c, system, blocks));
+        object.force_field_drawing.push_back({});
+      } else if (type == "PlaneForceField") {
+        auto centres = std::make_shared<const TetMesh>(count, std::vector<Tetrahedron>{});
+        system.force_fields.push_back(on_rigid_centres(build_penalty_force_field(data, *c, std::move(centres)), *blocks, system.size()));
+        object.force_field_drawing.push_back({});
       } else if (category == "forcefield" || category == "mass" || category == "constraint") {
         throw make_error(c->where(), ": ", type, " on the Rigid3 state ", state.where(),
-                         ": not supported on rigid bodies yet (there: UniformMass, FixedProjectiveConstraint, ConstantForceField)");
+                         ": not supported on rigid bodies yet (there: UniformMass, FixedProjectiveConstraint, ConstantForceField, "
+                         "RestShapeSpringsForceField, PlaneForceField)");
       }
     }
   }

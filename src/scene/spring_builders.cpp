@@ -12,8 +12,9 @@ namespace fastcorot::scene_detail {
 namespace {
 
 // Only 3D points: SOFA's Vec3 (Vec3d, Vec3f) template.
-void check_template(SceneData& data, Component& c) {
+void check_template(SceneData& data, Component& c, bool rigid_allowed = false) {
   const std::string name = data.text(c, "template", "Vec3d");
+  if (rigid_allowed && is_rigid_template(name)) return;
   if (!name.starts_with("Vec3")) throw make_error("template=\"", name, "\": only Vec3 (3D points) is supported");
 }
 
@@ -111,7 +112,7 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
     for (const auto& c : node->components) {
       if (!c->spec || !is_interaction_spring(c->type())) continue;
       try {
-        check_template(data, *c);
+        check_template(data, *c, true);
         const auto which = [&](const char* name) {
           Component& state = linked_state(data, *c, name);
           for (std::size_t k = 0; k < states.size(); ++k) {
@@ -122,10 +123,14 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
         };
         const std::size_t first = which("object1"), second = which("object2");
         std::vector<Spring<double>> springs = listed_springs(data, *c);
-        check_ranges(springs, sizes[first], sizes[second], c->has("spring") ? "spring" : "indices1/indices2");
+        // On a rigid state a spring joins rigid centres (SOFA's SpringForceField<Rigid3> reads and
+        // pushes the centres): rigid k's centre is block 2k of its object.
+        const auto rigid = [&](std::size_t k) { return is_rigid_template(data.text(*states[k], "template", "Vec3d")); };
+        const auto points = [&](std::size_t k) { return rigid(k) ? sizes[k] / 2 : sizes[k]; };
+        check_ranges(springs, points(first), points(second), c->has("spring") ? "spring" : "indices1/indices2");
         for (Spring<double>& s : springs) {
-          s.a += offsets[first];
-          s.b += offsets[second];
+          s.a = offsets[first] + (rigid(first) ? 2 * s.a : s.a);
+          s.b = offsets[second] + (rigid(second) ? 2 * s.b : s.b);
         }
         auto mesh = object.mesh && object.mesh->num_points() == total
                         ? std::shared_ptr<const TetMesh>(object.mesh)

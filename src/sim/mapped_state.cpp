@@ -9,9 +9,12 @@ namespace {
 StateSnapshot rigid_snapshot(const StateRange& range, const RigidBlocks<double>& rigids, const MechanicalState<double>& state) {
   StateSnapshot snapshot{range.node, range.name, false, {}, {}, true, {}, {}};
   const std::vector<RigidCoord<double>> coords = rigids.coords(state.position);
-  snapshot.rigid_position = to_values<double>(coords);
   for (std::size_t k = 0; k < rigids.size(); ++k) {
+    // The rigids of this range only (several objects may be solved together).
+    if (rigids.block[k] < range.offset || rigids.block[k] >= range.offset + range.size) continue;
     const auto b = static_cast<std::size_t>(rigids.block[k]);
+    const std::vector<double> values = to_values<double>(std::span<const RigidCoord<double>>(&coords[k], 1));
+    snapshot.rigid_position.insert(snapshot.rigid_position.end(), values.begin(), values.end());
     snapshot.position.push_back(coords[k].center);
     snapshot.velocity.push_back(state.velocity[b]);
     for (std::size_t j = 0; j < 2; ++j) {

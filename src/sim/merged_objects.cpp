@@ -14,6 +14,36 @@ TetMesh shifted_mesh(const TetMesh& mesh, Index offset, Index total) {
   return TetMesh(total, std::move(tetrahedra));
 }
 
+// The parts' masses as one block mass, when some part has rigid bodies: a lumped mass m gives
+// blocks m I₃; a rigid part gives its own blocks (without what its carried points add: the merged
+// object recomputes that from its RigidMappedMass). Weights: each part's gravity masses.
+Mass<double> merged_block_mass(const std::vector<SimulatedObject<double>>& parts) {
+  std::vector<Mat3<double>> blocks;
+  std::vector<double> weights;
+  for (const auto& part : parts) {
+    const auto& s = part.system;
+    const Mass<double>& own = s.rigid_mapped_mass ? s.rigid_mapped_mass->own : s.mass;
+    if (own.size() == 0) {
+      blocks.insert(blocks.end(), static_cast<std::size_t>(s.size()), Mat3<double>::Zero());
+      weights.insert(weights.end(), static_cast<std::size_t>(s.size()), 0.0);
+      continue;
+    }
+    if (own.is_block_diagonal()) {
+      blocks.insert(blocks.end(), own.blocks().begin(), own.blocks().end());
+    } else if (own.is_lumped()) {
+      for (double m : own.vertex_masses()) blocks.push_back(m * Mat3<double>::Identity());
+    } else {
+      throw make_error(part.path, ": a mass matrix (MeshMatrixMass without lumping) solved together with rigid bodies is not supported ",
+                       "(lump it, or give the rigid bodies their own ODE solver)");
+    }
+    const auto w = own.gravity_masses();
+    weights.insert(weights.end(), w.begin(), w.end());
+  }
+  Mass<double> mass = Mass<double>::block_diagonal(std::move(blocks));
+  mass.set_gravity_masses(std::move(weights));
+  return mass;
+}
+
 }  // namespace
 
 template <class Real>
@@ -65,6 +95,9 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
   }
   const bool massive = parts.front().system.mass.size() != 0;
   bool lumped = true;
+  bool blocks = false;  // some part has a block mass (rigid bodies)
+  std::shared_ptr<RigidBlocks<double>> rigids;
+  std::vector<RigidMappedMass<double>::Carried> carried_masses;
   std::vector<Tetrahedron> all_tetrahedra;
   Index offset = 0;
   for (auto& part : parts) {
@@ -75,11 +108,30 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
     if (!part.topology_scripts.empty()) {
       throw make_error(part.path, ": scripted topological changes of objects solved together are not supported");
     }
+    const std::size_t rigid_offset = rigids ? rigids->size() : 0;
     if (s.rigids) {
-      throw make_error(part.path, ": a Rigid3 state solved together with other objects under one solver is not supported yet ",
-                       "(give each its own ODE solver)");
+      // The part's rigids become the merged object's, their blocks shifted; the part keeps its
+      // own RigidBlocks for what was built on its range (force fields), as a follower.
+      if (!rigids) rigids = std::make_shared<RigidBlocks<double>>();
+      for (std::size_t k = 0; k < s.rigids->size(); ++k) {
+        rigids->block.push_back(shift(s.rigids->block[k]));
+        rigids->orientation.push_back(s.rigids->orientation[k]);
+        rigids->rest_orientation.push_back(s.rigids->rest_orientation[k]);
+      }
+      rigids->followers.emplace_back(s.rigids, rigid_offset);
+    }
+    const auto repoint = [&](RigidPoints<double>& points) {
+      points.frames = rigids;
+      for (Index& k : points.rigid) k += static_cast<Index>(rigid_offset);
+    };
+    if (s.rigid_mapped_mass) {
+      for (auto carried : s.rigid_mapped_mass->carried) {
+        repoint(carried.points);
+        carried_masses.push_back(std::move(carried));
+      }
     }
     lumped = lumped && s.mass.is_lumped();
+    blocks = blocks || s.mass.is_block_diagonal();
     system.state.position.insert(system.state.position.end(), s.state.position.begin(), s.state.position.end());
     system.state.velocity.insert(system.state.velocity.end(), s.state.velocity.begin(), s.state.velocity.end());
     system.state.rest_position.insert(system.state.rest_position.end(), s.state.rest_position.begin(), s.state.rest_position.end());
@@ -108,12 +160,14 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
       for (auto& slots : mapped.map.vertices) {
         for (Index& v : slots) v = shift(v);
       }
+      if (mapped.rigid) repoint(*mapped.rigid);
       merged.mapped_states.push_back(std::move(mapped));
     }
     for (auto surface : part.visual_surfaces) {
       for (auto& slots : surface.map.vertices) {
         for (Index& v : slots) v = shift(v);
       }
+      if (surface.rigid) repoint(*surface.rigid);
       merged.visual_surfaces.push_back(std::move(surface));
     }
     if (part.mesh) {
@@ -124,7 +178,16 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
     }
     offset += s.size();
   }
-  if (massive) {
+  system.rigids = rigids;
+  if (massive && blocks) {
+    system.mass = merged_block_mass(parts);
+    if (!carried_masses.empty()) {
+      auto mapped = std::make_shared<RigidMappedMass<double>>();
+      mapped->own = system.mass;
+      mapped->carried = std::move(carried_masses);
+      system.rigid_mapped_mass = std::move(mapped);
+    }
+  } else if (massive) {
     // Masses one after the other: lumped stays lumped, else a block-diagonal matrix.
     if (lumped) {
       std::vector<double> masses;
@@ -161,6 +224,7 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
     if (own_gravity_masses) system.mass.set_gravity_masses(std::move(gravity_masses));
   }
   if (!all_tetrahedra.empty()) merged.mesh = std::make_shared<TetMesh>(total, std::move(all_tetrahedra));
+  system.update_mass();
   system.finalize();
   return merged;
 }

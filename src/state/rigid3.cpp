@@ -66,6 +66,34 @@ void normalize_as_sofa(Eigen::Quaternion<Real>& q) {
 }
 
 template <class Real>
+Eigen::Quaternion<Real> quaternion_inverse(const Eigen::Quaternion<Real>& q) {
+  Real norm = std::sqrt(q.x() * q.x() + q.y() * q.y() + q.z() * q.z() + q.w() * q.w());
+  if (norm == 0) return q;
+  norm = 1 / norm;
+  return quaternion_xyzw(-q.x() * norm, -q.y() * norm, -q.z() * norm, q.w() * norm);
+}
+
+template <class Real>
+void quaternion_to_axis(const Eigen::Quaternion<Real>& quaternion, Vec3<Real>& axis, Real& angle) {
+  Eigen::Quaternion<Real> q = quaternion;
+  if (q.w() < 0) q.coeffs() *= Real(-1);
+  Real sin_half;
+  if (q.w() > Real(0.999)) {
+    sin_half = std::sqrt(q.x() * q.x() + q.y() * q.y() + q.z() * q.z());
+    angle = static_cast<Real>(2.0 * std::asin(sin_half));
+  } else {
+    const Real half = std::acos(q.w());
+    sin_half = std::sin(half);
+    angle = 2 * half;
+  }
+  if (sin_half < std::numeric_limits<Real>::epsilon()) {
+    axis = Vec3<Real>(0, 1, 0);
+  } else {
+    axis = Vec3<Real>(q.x(), q.y(), q.z()) / sin_half;
+  }
+}
+
+template <class Real>
 void integrate(RigidCoord<Real>& x, const std::type_identity_t<Vec3<Real>>& dlinear,
                const std::type_identity_t<Vec3<Real>>& dangular) {
   x.center += dlinear;
@@ -159,6 +187,8 @@ std::vector<double> rigid_deriv_values(std::span<const Vec3<Real>> blocks) {
   template Eigen::Quaternion<Real> quaternion_product(const Eigen::Quaternion<Real>&,                      \
                                                       const Eigen::Quaternion<Real>&);                     \
   template void normalize_as_sofa(Eigen::Quaternion<Real>&);                                               \
+  template Eigen::Quaternion<Real> quaternion_inverse(const Eigen::Quaternion<Real>&);                     \
+  template void quaternion_to_axis(const Eigen::Quaternion<Real>&, Vec3<Real>&, Real&);                  \
   template void integrate(RigidCoord<Real>&, const Vec3<Real>&, const Vec3<Real>&);                        \
   template std::vector<RigidCoord<Real>> parse_rigid_coords(std::span<const double>, const std::string&);  \
   template std::vector<double> to_values(std::span<const RigidCoord<Real>>);                               \

@@ -1,5 +1,7 @@
 #include "fastcorot/state/rigid_blocks.h"
 
+#include <algorithm>
+
 #include "fastcorot/core/error.h"
 
 namespace fastcorot {
@@ -40,6 +42,9 @@ void RigidBlocks<Real>::rebase(std::span<Vec3<Real>> x) {
     integrate(c, Vec3<Real>::Zero(), theta);
     orientation[k] = c.orientation;
     theta.setZero();
+  }
+  for (auto& [follower, first] : followers) {
+    std::copy_n(orientation.begin() + static_cast<std::ptrdiff_t>(first), follower->size(), follower->orientation.begin());
   }
 }
 

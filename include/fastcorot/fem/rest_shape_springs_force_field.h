@@ -4,9 +4,15 @@
 // where mask zeroes the axes that activeDirections turns off, and K is the diagonal -k_i · mask on
 // point i (SOFA's addKToMatrix), constant. No damping of its own beyond rayleighStiffness. The
 // energy is Σ k_i |mask ∘ (x_i - p0_i)|² / 2 (SOFA reports 0: it does not implement it).
+// On rigid bodies (Parameters::rigids set: SOFA's RestShapeSpringsForceField<Rigid3>) the points
+// are the rigids' linear blocks, pulled to their rest centres as above, and each rigid is also
+// turned back towards its rest orientation q0: with dq = q ⊗ q0⁻¹ (normalised, w ≥ 0) as axis u
+// and angle φ (SOFA's quatToAxis), τ -= k_a · mask_r ∘ (φ u) on the angular block; its K is the
+// constant diagonal -k_a · mask_r there (SOFA's, no geometric term).
 #pragma once
 
 #include "fastcorot/fem/force_field.h"
+#include "fastcorot/state/rigid_blocks.h"
 
 #include <array>
 #include <memory>
@@ -23,6 +29,14 @@ class RestShapeSpringsForceField final : public ForceField<Real> {
     std::vector<Real> stiffness{Real(100)};  // one per point, or one for all (SOFA's rule: k[i] when i < #k, else k[0])
     std::array<bool, 3> active_directions{true, true, true};
     Real rayleigh_stiffness = 0;
+    // Rigid bodies only (null otherwise): the rigid of each point (points[i] is its linear block),
+    // the angular stiffness (one per point, or SOFA's rule as for stiffness), the rest
+    // orientations (one per point) and the rotations' active axes.
+    std::shared_ptr<const RigidBlocks<Real>> rigids;
+    std::vector<Index> rigid_of_point;
+    std::vector<Real> angular_stiffness;
+    std::vector<Eigen::Quaternion<Real>> rest_orientations;
+    std::array<bool, 3> active_rotations{true, true, true};
   };
 
   // Throws fastcorot::Error for a point outside the mesh's points, as many anchors as points
@@ -55,6 +69,11 @@ class RestShapeSpringsForceField final : public ForceField<Real> {
 
  private:
   Real stiffness(std::size_t i) const { return p_.stiffness[i < p_.stiffness.size() ? i : 0]; }
+  Real angular_stiffness(std::size_t i) const { return p_.angular_stiffness[i < p_.angular_stiffness.size() ? i : 0]; }
+  // The rotation vector φ u of rigid spring i at positions x, masked.
+  Vec3<Real> rotation_offset(std::span<const Vec3<Real>> x, std::size_t i) const;
+  // k_a · mask_r as a diagonal matrix.
+  Mat3<Real> angular_block(std::size_t i) const;
   // k_i · mask as a diagonal matrix.
   Mat3<Real> block(std::size_t i) const;
   Real factor(Real k_factor, Real b_factor) const { return k_factor + b_factor * p_.rayleigh_stiffness; }

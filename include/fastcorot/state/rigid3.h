@@ -51,6 +51,16 @@ Eigen::Quaternion<Real> quaternion_product(const Eigen::Quaternion<Real>& a, con
 template <class Real>
 void normalize_as_sofa(Eigen::Quaternion<Real>& q);
 
+// SOFA's Quat::inverse: the conjugate divided by the norm (not its square); zero stays zero.
+template <class Real>
+Eigen::Quaternion<Real> quaternion_inverse(const Eigen::Quaternion<Real>& q);
+
+// SOFA's Quat::quatToAxis: the axis and angle in [0, π] of q (negated first when w < 0); the angle
+// from asin of the vector part's norm when w > 0.999, else from acos(w); axis (0, 1, 0) when the
+// vector part's norm is below machine epsilon.
+template <class Real>
+void quaternion_to_axis(const Eigen::Quaternion<Real>& q, Vec3<Real>& axis, Real& angle);
+
 // SOFA's RigidCoord `x += dx` for a displacement (dlinear, dangular) in the world frame:
 // center += dlinear; q ← e ⊗ q with e = exp(dangular / 2) = (sin θ/θ · dangular/2, cos θ),
 // θ = |dangular/2|; when θ < machine epsilon of Real, e = (dangular/2, 1) normalised

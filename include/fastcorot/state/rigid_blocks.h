@@ -15,7 +15,9 @@
 #include "fastcorot/core/types.h"
 #include "fastcorot/state/rigid3.h"
 
+#include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace fastcorot {
@@ -25,6 +27,10 @@ struct RigidBlocks {
   std::vector<Index> block;                              // the linear block of each rigid
   std::vector<Eigen::Quaternion<Real>> orientation;      // q_k, the orientation at the last rebase
   std::vector<Eigen::Quaternion<Real>> rest_orientation;  // from the state's rest_position
+  // The rigid blocks of the objects merged into this one (sim/merged_objects.h), each with the
+  // index of its first rigid here: rebase() copies their orientations to them, so that what was
+  // built on an object's own blocks (force fields on its range of the state) reads them.
+  std::vector<std::pair<std::shared_ptr<RigidBlocks>, std::size_t>> followers;
 
   std::size_t size() const { return block.size(); }
 
@@ -34,7 +40,7 @@ struct RigidBlocks {
   // The rest position of rigid k for the Vec3 rest positions (angular blocks zero).
   RigidCoord<Real> rest_coord(std::span<const Vec3<Real>> rest, std::size_t k) const;
 
-  // q_k ← exp(θ_k/2) ⊗ q_k and θ_k ← 0 for every rigid (the end of a step).
+  // q_k ← exp(θ_k/2) ⊗ q_k and θ_k ← 0 for every rigid (the end of a step); then the followers'.
   void rebase(std::span<Vec3<Real>> x);
 
   // Throws fastcorot::Error when a block is outside a state of `points` blocks or the sizes differ.

@@ -1,0 +1,154 @@
+// Rigid bodies solved together with other objects under one ODE solver (SOFA's solver integrates
+// every state below it as one system), the fields SOFA writes on rigid states, and springs
+// between rigid centres:
+// - two rigid balls joined by a SpringForceField, each on a PlaneForceField floor, one held by a
+//   RestShapeSpringsForceField, move their centres exactly as two 3D points with the same masses and
+//   fields do (nothing turns them, so their angular blocks stay at rest);
+// - a rigid turned away from its rest orientation by an angular RestShapeSpringsForceField
+//   oscillates with ω = sqrt(k_a / I), about the axes activeDirections leaves on;
+// - points carried by each of two merged rigids (mapped states and masses) follow their own rigid.
+#include "fastcorot/scene/scene_builder.h"
+#include "fastcorot/sim/mapped_state.h"
+
+#include "../support/scene_text.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_scene_text;
+using testing::scene_error;
+
+// A ball at x: a rigid body or a 3D point of mass 1, on the floor y = -3 (a PlaneForceField).
+std::string ball(const std::string& name, double x, bool rigid, const std::string& extra = "") {
+  const std::string position = std::to_string(x) + " 0 0" + (rigid ? " 0 0 0 1" : "");
+  return "<Node name=\"" + name + "\"><MechanicalObject name=\"dofs\" template=\"" + (rigid ? "Rigid3d" : "Vec3d") +
+         "\" position=\"" + position + "\"/><UniformMass totalMass=\"1\"/>"
+         "<PlaneForceField normal=\"0 1 0\" d=\"-3\" stiffness=\"10000\"/>" + extra + "</Node>";
+}
+
+std::string balls(bool first_rigid, bool second_rigid) {
+  return "<EulerImplicitSolver rayleighStiffness=\"0.1\" rayleighMass=\"0.1\"/>"
+         "<CGLinearSolver iterations=\"100\" tolerance=\"1e-30\" threshold=\"1e-30\"/>" +
+         ball("ball_0", -2, first_rigid, "<RestShapeSpringsForceField stiffness=\"10\" angularStiffness=\"1000\"/>") +
+         ball("ball_1", 2, second_rigid) +
+         "<SpringForceField object1=\"@ball_0/dofs\" object2=\"@ball_1/dofs\" indices1=\"0\" indices2=\"0\" length=\"4\" stiffness=\"2\"/>";
+}
+
+// The centres (or points) of both balls after `steps` steps.
+std::vector<Vec3<double>> centres(LoadedScene& scene, int steps) {
+  for (int s = 0; s < steps; ++s) scene.simulation.step();
+  std::vector<Vec3<double>> out;
+  for (const StateSnapshot& state : state_snapshots(scene.simulation.objects.at(0))) out.push_back(state.position.at(0));
+  return out;
+}
+
+TEST(RigidInteraction, RigidBallsJoinedBySpringsMoveAsPointsWithTheSameFields) {
+  LoadedScene points = build_scene_text(balls(false, false), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const auto expected = centres(points, 300);
+  ASSERT_EQ(expected.size(), 2u);
+  EXPECT_LT(expected[1].y(), -2.9);  // the second ball fell to the floor
+  for (const auto [first, second] : {std::pair{true, true}, std::pair{true, false}, std::pair{false, true}}) {
+    LoadedScene scene = build_scene_text(balls(first, second), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+    ASSERT_EQ(scene.simulation.objects.size(), 1u);
+    const auto got = centres(scene, 300);
+    ASSERT_EQ(got.size(), 2u);
+    for (std::size_t k = 0; k < 2; ++k) {
+      EXPECT_LT((got[k] - expected[k]).norm(), 1e-10 * (1 + expected[k].norm())) << first << second << " ball " << k;
+    }
+    const auto states = state_snapshots(scene.simulation.objects.at(0));
+    EXPECT_EQ(states[0].rigid, first);
+    EXPECT_EQ(states[1].rigid, second);
+    if (second) EXPECT_EQ(states[1].rigid_position.size(), 7u);
+  }
+}
+
+// Turned by φ0 about z from rest: τ = -k_a φ, I = m i_zz, so φ(t) ≈ φ0 cos(sqrt(k_a / I) t).
+TEST(RigidInteraction, AngularRestShapeSpringsTurnARigidBackWithTheirPeriod) {
+  const double phi0 = 0.2, ka = 50, izz = 0.5;
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(phi0, Vec3<double>::UnitZ()));
+  const std::string state = "<MechanicalObject template=\"Rigid3d\" position=\"0 0 0 0 0 " + std::to_string(q.z()) + " " +
+                            std::to_string(q.w()) + "\" rest_position=\"0 0 0 0 0 0 1\"/>";
+  for (const std::string directions : {"", "1 1 1 1 1 0"}) {
+    LoadedScene scene = build_scene_text(
+        "<EulerImplicitSolver/><CGLinearSolver iterations=\"50\" tolerance=\"1e-30\" threshold=\"1e-30\"/>" + state +
+            "<UniformMass vertexMass=\"1 1 1 0 0 0 1 0 0 0 " + std::to_string(izz) + "\"/>"
+            "<RestShapeSpringsForceField stiffness=\"100\" angularStiffness=\"" + std::to_string(ka) + "\"" +
+            (directions.empty() ? "" : " activeDirections=\"" + directions + "\"") + "/>",
+        "dt=\"0.0005\" gravity=\"0 0 0\"");
+    const auto& system = scene.simulation.objects.at(0).system;
+    const auto angle = [&] {
+      const Eigen::Quaterniond o = system.rigids->coord(system.state.position, 0).orientation;
+      return 2 * std::atan2(o.z(), o.w());
+    };
+    std::vector<double> crossings;
+    const double start = angle();
+    double previous = start;
+    for (int s = 1; s <= 8000; ++s) {
+      scene.simulation.step();
+      const double now = angle();
+      if (previous < 0 && now >= 0) crossings.push_back((s - 1 + previous / (previous - now)) * 0.0005);
+      previous = now;
+    }
+    if (!directions.empty()) {
+      // Rotation about z switched off: the rigid keeps its turn.
+      EXPECT_TRUE(crossings.empty());
+      EXPECT_NEAR(angle(), start, 1e-12);
+      continue;
+    }
+    ASSERT_GE(crossings.size(), 3u);
+    const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+    const double period = 2 * std::numbers::pi * std::sqrt(izz / ka);
+    EXPECT_NEAR(measured, period, 0.005 * period);
+  }
+}
+
+// Two rigids, each carrying a point (with a mass) and a mapped state, under one solver: after a
+// spin, each carried point is its own rigid's centre plus its turned offset.
+TEST(RigidInteraction, PointsCarriedByMergedRigidsFollowTheirOwnRigid) {
+  const auto body = [](const std::string& name, const std::string& position, const std::string& velocity) {
+    return "<Node name=\"" + name + "\"><MechanicalObject template=\"Rigid3d\" position=\"" + position + "\" velocity=\"" + velocity +
+           "\"/><UniformMass totalMass=\"1\"/><Node name=\"carried\"><MechanicalObject position=\"1 0 0\"/>"
+           "<UniformMass totalMass=\"0.5\"/><RigidMapping/></Node></Node>";
+  };
+  LoadedScene scene = build_scene_text("<EulerImplicitSolver/><CGLinearSolver iterations=\"50\" tolerance=\"1e-30\" threshold=\"1e-30\"/>" +
+                                           body("a", "0 0 0 0 0 0 1", "0 0 0 0 0 1") + body("b", "5 0 0 0 0 0 1", "0 0 0 1 0 0"),
+                                       "dt=\"0.01\" gravity=\"0 0 0\"");
+  ASSERT_EQ(scene.simulation.objects.size(), 1u);
+  for (int s = 0; s < 50; ++s) scene.simulation.step();
+  const auto& system = scene.simulation.objects.at(0).system;
+  ASSERT_EQ(system.rigids->size(), 2u);
+  ASSERT_TRUE(system.rigid_mapped_mass);
+  int carried = 0;
+  for (const StateSnapshot& state : state_snapshots(scene.simulation.objects.at(0))) {
+    if (!state.mapped) continue;
+    ++carried;
+    const std::size_t k = state.node.find("/a/") != std::string::npos ? 0 : 1;
+    const RigidCoord<double> frame = system.rigids->coord(system.state.position, k);
+    EXPECT_LT((state.position.at(0) - frame.project_point(Vec3<double>(1, 0, 0))).norm(), 1e-12) << state.node;
+    // Each turned: a about z, b about x (the carried point on b's axis stays put).
+    if (k == 0) EXPECT_GT(std::abs(state.position.at(0).y()), 0.1);
+  }
+  EXPECT_EQ(carried, 2);
+}
+
+TEST(RigidInteraction, BadInputIsRefusedInOneLine) {
+  const std::string solver = "<EulerImplicitSolver/><CGLinearSolver/>";
+  const std::string rigid = "<MechanicalObject name=\"dofs\" template=\"Rigid3d\" position=\"0 0 0 0 0 0 1\"/><UniformMass totalMass=\"1\"/>";
+  const std::string directions = scene_error(solver + rigid + "<RestShapeSpringsForceField activeDirections=\"1 1 1\"/>");
+  EXPECT_NE(directions.find("6 (x y z rx ry rz) for Rigid3"), std::string::npos) << directions;
+  const std::string index = scene_error(solver + "<Node name=\"a\">" + rigid + "</Node><Node name=\"b\">" + rigid +
+                                        "</Node><SpringForceField object1=\"@a/dofs\" object2=\"@b/dofs\" "
+                                        "indices1=\"1\" indices2=\"0\" length=\"1\" stiffness=\"1\"/>");
+  EXPECT_NE(index.find("out of range [0, 1) of object1"), std::string::npos) << index;
+  const std::string external = scene_error(solver + rigid + "<RestShapeSpringsForceField external_rest_shape=\"@.\"/>");
+  EXPECT_NE(external.find("external_rest_shape is not supported on rigid bodies"), std::string::npos) << external;
+}
+
+}  // namespace
+}  // namespace fastcorot
