@@ -103,6 +103,8 @@ class BaseObject:
 
     def _live_array(self, name):
         if self._object._binding is not None and name in ("position", "velocity") and self._object.type == "MechanicalObject":
+            if name == "position" and self._object._is_rigid():
+                return None  # (n, 7) rows are a copy: writeableArray writes them back
             return self._object._read(name)
         return None
 

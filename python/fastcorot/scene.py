@@ -141,20 +141,42 @@ class Object:
 
     # --- data -----------------------------------------------------------------------------------
     def _canonical(self, name, value):
+        if name in _STATE_VIEWS and self._is_rigid() and not isinstance(value, str):
+            # Rigid3 rows (7 or 6 numbers each) are kept as SOFA's text: flat numbers.
+            return to_text(np.asarray(value, dtype=float).reshape(-1))
         kind = self._kind(name)
         if isinstance(value, Object) and kind == "link":
             value = value.link()
         return canonical(kind, name, value, f"{self.location}: {self._label()}")
 
+    def _is_rigid(self):
+        template = self._data.get("template")
+        return isinstance(template, str) and template.startswith("Rigid")
+
     def _read(self, name):
         if self._binding is not None and name in _STATE_VIEWS:
             core, k, start, stop = self._binding
+            if self._is_rigid():
+                # Rigid3: (n, 7) x y z qx qy qz qw (a copy: the orientations live beside the state);
+                # velocities (n, 6) v ω, a view of the state's two blocks per rigid.
+                if name == "velocity":
+                    return core.velocity(k)[start:stop].reshape(-1, 6)
+                return core.rigid_rest_position(k, start, stop) if name == "rest_position" else core.rigid_position(k, start, stop)
             return getattr(core, name)(k)[start:stop]
         if self._binding is not None and name in _VON_MISES:
             core, k = self._binding[:2]
             return core.von_mises_stress(k, name == "vonMisesPerNode")
         kind = self._kind(name)
         where = f"{self.location}: {self._label()}"
+        if name in _STATE_VIEWS and self._is_rigid() and name in self._data:
+            value = self._data[name]
+            if isinstance(value, str) and value.startswith("@"):
+                return value
+            array = from_text("reals", name, value, where) if isinstance(value, str) else np.asarray(value, dtype=float)
+            width = 6 if name == "velocity" else 7
+            if array.size % width:
+                raise ValueError(f"{where}: {name} has {array.size} numbers: {width} per rigid are needed")
+            return array.reshape(-1, width)
         if name in self._data:
             value = self._data[name]
             return from_text(kind, name, value, where) if isinstance(value, str) else value
@@ -177,6 +199,15 @@ class Object:
             if name == "rest_position":
                 raise ValueError(f"{self.location}: {self._label()}: rest_position cannot change once the "
                                  "Simulation is built (the force fields' rest data come from it)")
+            if self._is_rigid():
+                if name == "position":
+                    try:
+                        core.set_rigid_position(k, np.asarray(value, dtype=float).reshape(-1), start, stop)
+                    except ValueError as error:
+                        raise ValueError(f"{self.location}: {self._label()}: {error}") from None
+                else:
+                    core.set_velocity(k, np.asarray(value, dtype=float).reshape(-1, 3), start, stop)
+                return
             getattr(core, "set_" + name)(k, value, start, stop)
             return
         self._check([name])

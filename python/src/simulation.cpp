@@ -72,6 +72,35 @@ void assign(SimulationCore& core, std::size_t k, std::vector<Vec3<double>> Mecha
   std::copy_n(as_points<double>(given).begin(), stop - start, points.begin() + static_cast<std::ptrdiff_t>(start));
 }
 
+// The rigids of object k whose blocks lie in [start, stop) (a Rigid3 MechanicalObject's range).
+std::vector<std::size_t> rigids_in(SimulationCore& core, std::size_t k, std::size_t start, std::size_t stop) {
+  const auto& rigids = core.simulation().objects[k].system.rigids;
+  std::vector<std::size_t> out;
+  if (!rigids) return out;
+  for (std::size_t r = 0; r < rigids->size(); ++r) {
+    const auto b = static_cast<std::size_t>(rigids->block[r]);
+    if (b >= start && b < stop) out.push_back(r);
+  }
+  return out;
+}
+
+// (n, 7) rows x y z qx qy qz qw of those rigids, at the positions or the rest positions.
+py::array_t<double> rigid_rows(SimulationCore& core, std::size_t k, std::size_t start, std::size_t stop, bool rest) {
+  core.state(k);  // checks k
+  std::lock_guard lock(core.stepping);
+  const auto& system = core.simulation().objects[k].system;
+  const auto picked = rigids_in(core, k, start, stop);
+  py::array_t<double> out({static_cast<py::ssize_t>(picked.size()), py::ssize_t(7)});
+  auto o = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < picked.size(); ++i) {
+    const RigidCoord<double> c = rest ? system.rigids->rest_coord(system.state.rest_position, picked[i])
+                                      : system.rigids->coord(system.state.position, picked[i]);
+    const std::vector<double> values = to_values<double>(std::span<const RigidCoord<double>>(&c, 1));
+    for (py::ssize_t j = 0; j < 7; ++j) o(static_cast<py::ssize_t>(i), j) = values[static_cast<std::size_t>(j)];
+  }
+  return out;
+}
+
 Vec3<double> vec3_of(py::handle value, const std::string& what) {
   const auto numbers = number_list(value, what);
   if (numbers.size() != 3) throw py::value_error(what + ": expected 3 numbers, got " + std::to_string(numbers.size()));
@@ -242,6 +271,42 @@ void bind_simulation(py::module_& m) {
           "set_position",
           [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
             assign(c, k, &MechanicalState<double>::position, value, start, stop, "position");
+          },
+          py::arg("k"), py::arg("value"), py::arg("start"), py::arg("stop"))
+      .def(
+          "rigid_position",
+          [](SimulationCore& c, std::size_t k, std::size_t start, std::size_t stop) { return rigid_rows(c, k, start, stop, false); },
+          py::arg("k"), py::arg("start"), py::arg("stop"),
+          "(n, 7) positions x y z qx qy qz qw of object k's rigids with blocks in [start, stop) (a copy).")
+      .def(
+          "rigid_rest_position",
+          [](SimulationCore& c, std::size_t k, std::size_t start, std::size_t stop) { return rigid_rows(c, k, start, stop, true); },
+          py::arg("k"), py::arg("start"), py::arg("stop"), "(n, 7) rest positions of those rigids (a copy).")
+      .def(
+          "set_rigid_position",
+          [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
+            c.state(k);
+            const auto picked = rigids_in(c, k, start, stop);
+            const auto numbers = number_list(value, "position");
+            if (numbers.size() != 7 * picked.size()) {
+              throw py::value_error("position: " + std::to_string(numbers.size()) + " numbers for " + std::to_string(picked.size()) +
+                                    " rigids (7 each: x y z qx qy qz qw)");
+            }
+            std::vector<RigidCoord<double>> coords;
+            try {
+              coords = parse_rigid_coords<double>(numbers, "position");
+            } catch (const Error& error) {
+              throw py::value_error(error.what());
+            }
+            std::lock_guard lock(c.stepping);
+            auto& system = c.simulation().objects[k].system;
+            for (std::size_t i = 0; i < picked.size(); ++i) {
+              const auto b = static_cast<std::size_t>(system.rigids->block[picked[i]]);
+              system.state.position[b] = coords[i].center;
+              system.state.position[b + 1].setZero();
+              system.rigids->orientation[picked[i]] = coords[i].orientation;
+            }
+            system.rigids->rebase(system.state.position);  // passes the orientations on to the followers
           },
           py::arg("k"), py::arg("value"), py::arg("start"), py::arg("stop"))
       .def(
