@@ -176,6 +176,7 @@ struct SavedObject {
   ObjectFingerprint print;
   std::vector<Vec3<double>> position, velocity;
   std::vector<std::int64_t> ode_state, linear_state;
+  std::vector<Eigen::Quaterniond> orientation;  // version 2: the rigids'
 };
 
 std::string read_whole_file(const std::filesystem::path& path) {
@@ -193,19 +194,9 @@ std::uint64_t read_u64_at(const std::string& bytes, std::size_t at) {
   return value;
 }
 
-// The format holds Vec3 states only: a rigid body's orientation (RigidBlocks) is not in it yet,
-// and a checkpoint without it would resume the body unturned.
-void refuse_rigid_bodies(const Simulation<double>& simulation, const std::string& what) {
-  for (const auto& object : simulation.objects) {
-    if (object.system.rigids) {
-      throw make_error(what, ": ", object.path, " is a Rigid3 state; checkpoints of rigid bodies are not supported yet");
-    }
-  }
-}
-
 // Checks the frame of the file (magic, version, size, checksum) in the order that gives the most
 // useful message: a file of another kind or version is named as such before any talk of damage.
-void check_frame(const std::string& bytes, const std::string& file) {
+std::uint32_t check_frame(const std::string& bytes, const std::string& file) {
   if (bytes.size() < kMagic.size() || std::string_view(bytes).substr(0, kMagic.size()) != kMagic) {
     if (bytes.size() < kMagic.size() && kMagic.substr(0, bytes.size()) == bytes) {
       throw make_error(file, ": truncated checkpoint: only ", bytes.size(), " bytes");
@@ -217,9 +208,9 @@ void check_frame(const std::string& bytes, const std::string& file) {
     throw make_error(file, ": truncated checkpoint: only ", bytes.size(), " bytes");
   ByteReader header(bytes, kMagic.size(), kHeaderSize, file);
   const std::uint32_t version = header.u32("the format version");
-  if (version != kCheckpointVersion) {
+  if (version != kCheckpointVersion && version != 1) {
     throw make_error(file, ": checkpoint format version ", version,
-                     "; this fastcorot reads version ", kCheckpointVersion, " only");
+                     "; this fastcorot reads versions 1 and ", kCheckpointVersion, " only");
   }
   const std::uint32_t real_size = header.u32("the real size");
   if (real_size != sizeof(double)) {
@@ -240,6 +231,7 @@ void check_frame(const std::string& bytes, const std::string& file) {
         file, ": corrupt checkpoint: the checksum of its content does not match the one stored (",
         "the file was changed or damaged after it was written)");
   }
+  return version;
 }
 
 }  // namespace
@@ -261,7 +253,6 @@ std::vector<ObjectFingerprint> scene_fingerprints(const Simulation<double>& simu
 
 void write_checkpoint(const std::filesystem::path& path, const Simulation<double>& simulation,
                       const std::string& scene_name, const std::vector<ObjectFingerprint>* fingerprints) {
-  refuse_rigid_bodies(simulation, path.string() + ": not written");
   const std::vector<ObjectFingerprint> prints = fingerprints ? *fingerprints : scene_fingerprints(simulation);
   if (prints.size() != simulation.objects.size()) {
     throw make_error(path.string(), ": not written: ", prints.size(), " fingerprints for ", simulation.objects.size(),
@@ -299,6 +290,14 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
                                    : std::vector<std::int64_t>{});
     out.integers(object.linear_solver ? object.linear_solver->carried_state()
                                       : std::vector<std::int64_t>{});
+    // Version 2: the rigid bodies' orientations (x y z w each; none for a deformable object).
+    const auto& rigids = object.system.rigids;
+    out.u64(rigids ? rigids->size() : 0);
+    if (rigids) {
+      for (const auto& q : rigids->orientation) {
+        for (int c = 0; c < 4; ++c) out.f64(q.coeffs()[c]);
+      }
+    }
   }
   const std::uint64_t size = out.bytes.size() + kChecksumSize;
   for (int i = 0; i < 8; ++i)
@@ -312,9 +311,8 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
 void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& simulation,
                         const std::vector<ObjectFingerprint>* fingerprints) {
   const std::string file = path.string();
-  refuse_rigid_bodies(simulation, file + ": not restored");
   const std::string bytes = read_whole_file(path);
-  check_frame(bytes, file);
+  const std::uint32_t version = check_frame(bytes, file);
   ByteReader in(bytes, kHeaderSize, bytes.size() - kChecksumSize, file);
   const std::string scene_name = in.string("the scene name");
   const std::string made_for = "the checkpoint was written for scene \"" + scene_name + "\"";
@@ -339,6 +337,15 @@ void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& s
     s.velocity = in.points(s.print.vertices, "the velocities");
     s.ode_state = in.integers("the ODE solver state");
     s.linear_state = in.integers("the linear solver state");
+    if (version >= 2) {
+      const std::uint64_t rigids = in.u64("the rigid count");
+      if (rigids > s.print.vertices) throw make_error(file, ": malformed checkpoint: ", rigids, " rigids in ", s.print.vertices, " blocks");
+      for (std::uint64_t k = 0; k < rigids; ++k) {
+        Eigen::Quaterniond q;
+        for (int c = 0; c < 4; ++c) q.coeffs()[c] = in.f64("an orientation");
+        s.orientation.push_back(q);
+      }
+    }
   }
   if (!in.at_end())
     throw make_error(file, ": malformed checkpoint: extra bytes after the last object");
@@ -379,6 +386,11 @@ void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& s
                        " had another model (masses, fixed points, constant forces, gravity, ",
                        "force-field parameters or kinds of solver differ)");
     }
+    const std::size_t rigids = object.system.rigids ? object.system.rigids->size() : 0;
+    if (s.orientation.size() != rigids) {
+      throw make_error(where, s.path, " has ", s.orientation.size(), " rigid orientations; in this scene it has ", rigids, " rigids",
+                       version == 1 ? " (a version-1 checkpoint holds none)" : "");
+    }
     const std::size_t ode_size = object.ode_solver ? object.ode_solver->carried_state().size() : 0;
     if (s.ode_state.size() != ode_size) {
       throw make_error(where, s.path, ": its ODE solver state has ", s.ode_state.size(),
@@ -402,6 +414,10 @@ void restore_checkpoint(const std::filesystem::path& path, Simulation<double>& s
     if (object.linear_solver) object.linear_solver->restore_carried_state(saved[o].linear_state);
     object.system.state.position = std::move(saved[o].position);
     object.system.state.velocity = std::move(saved[o].velocity);
+    if (auto& rigids = object.system.rigids) {
+      rigids->orientation = saved[o].orientation;
+      rigids->rebase(object.system.state.position);  // passes them on to the followers
+    }
   }
   simulation.set_steps_done(static_cast<long>(step));
 }

@@ -225,9 +225,9 @@ TEST(Checkpoint, TruncatedFilesAreRefused) {
 TEST(Checkpoint, OtherFormatVersionsAndOtherFilesAreRefusedAsSuch) {
   std::string bytes = testing::read_file_bytes(checkpoint_at(2, "version_source.ckpt"));
   const fs::path path = folder() / "version.ckpt";
-  bytes[8] = 2;  // the u32 version at offset 8, little-endian
+  bytes[8] = 3;  // the u32 version at offset 8, little-endian
   testing::write_file_bytes(path, bytes);
-  EXPECT_NE(refusal(path).find("checkpoint format version 2; this fastcorot reads version 1"),
+  EXPECT_NE(refusal(path).find("checkpoint format version 3; this fastcorot reads versions 1 and 2 only"),
             std::string::npos)
       << refusal(path);
   testing::write_file_bytes(path, "<?xml version=\"1.0\"?>\n<VTKFile/>\n");
@@ -265,11 +265,40 @@ TEST(Checkpoint, ACheckpointOfAnotherSceneIsRefusedNamingTheDifference) {
             std::string::npos);
 }
 
+// A version-1 file (before rigid bodies: no orientation count after each object) still resumes: the
+// version-2 file of the same run with those counts taken out, its header and checksum redone.
+TEST(Checkpoint, AVersionOneCheckpointStillResumes) {
+  std::string bytes = testing::read_file_bytes(checkpoint_at(4, "version_two.ckpt"));
+  // Each object's rigid count (u64 zero) ends its record: before the next object's path (a u32
+  // length, then "root/direct") and before the checksum.
+  const std::size_t second = bytes.find("root/direct");
+  ASSERT_NE(second, std::string::npos);
+  const std::size_t end = bytes.size() - 8;
+  ASSERT_EQ(bytes.substr(end - 8, 8), std::string(8, '\0'));
+  ASSERT_EQ(bytes.substr(second - 12, 8), std::string(8, '\0'));
+  bytes.erase(end - 8, 8);
+  bytes.erase(second - 12, 8);
+  bytes[8] = 1;
+  const std::uint64_t size = bytes.size();
+  for (int i = 0; i < 8; ++i) bytes[16 + static_cast<std::size_t>(i)] = static_cast<char>((size >> (8 * i)) & 0xff);
+  const std::uint64_t sum = fnv1a64(bytes.data(), bytes.size() - 8);
+  for (int i = 0; i < 8; ++i) bytes[bytes.size() - 8 + static_cast<std::size_t>(i)] = static_cast<char>((sum >> (8 * i)) & 0xff);
+  const fs::path path = folder() / "version_one.ckpt";
+  testing::write_file_bytes(path, bytes);
+  Simulation<double> uninterrupted = build();
+  run_to(uninterrupted, 9);
+  Simulation<double> resumed = build();
+  restore_checkpoint(path, resumed);
+  EXPECT_EQ(resumed.steps_done(), 4);
+  run_to(resumed, 9);
+  expect_same_state(resumed, uninterrupted);
+}
+
 TEST(Checkpoint, TheFileStartsWithTheDocumentedHeader) {
   const std::string bytes = testing::read_file_bytes(checkpoint_at(1, "header.ckpt"));
   ASSERT_GE(bytes.size(), 32u);
   EXPECT_EQ(bytes.substr(0, 8), "FCOROTCK");
-  EXPECT_EQ(bytes.substr(8, 4), std::string("\x01\x00\x00\x00", 4));   // version 1
+  EXPECT_EQ(bytes.substr(8, 4), std::string("\x02\x00\x00\x00", 4));   // version 2
   EXPECT_EQ(bytes.substr(12, 4), std::string("\x08\x00\x00\x00", 4));  // 8-byte reals
   std::uint64_t size = 0;
   for (int i = 0; i < 8; ++i)

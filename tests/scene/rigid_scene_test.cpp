@@ -267,15 +267,36 @@ TEST(RigidScene, BadInputIsRefusedInOneLine) {
   const std::string file = scene_error(body("", "<UniformMass filename=\"" + path + "\"/>"));
   EXPECT_NE(file.find("bad_body.rigid:2"), std::string::npos) << file;
   std::remove(path.c_str());
-  // Checkpoints do not hold orientations yet: refused rather than resumed unturned.
-  LoadedScene scene = build_scene_text(body("", mass));
-  const std::string checkpoint = ::testing::TempDir() + "rigid.ckpt";
+}
+
+// A checkpoint holds the orientations: a spinning, falling body resumed from step 30 is bitwise the
+// uninterrupted run at step 60; a checkpoint of another number of rigids is refused.
+TEST(RigidScene, CheckpointsResumeTurnedBodiesBitwise) {
+  const std::string scene = body("position=\"0 0 0 0 0 0 1  2 0 0 0 0 0 1\" velocity=\"1 0 0 0.3 -0.5 1\"",
+                                 "<UniformMass vertexMass=\"2 1 [1 0 0,0 2 0,0 0 3]\"/>",
+                                 "<MechanicalObject position=\"1 0 0\"/><UniformMass totalMass=\"0.5\"/><RigidMapping/>");
+  LoadedScene uninterrupted = build_scene_text(scene, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  step(uninterrupted, 30);
+  const std::string path = ::testing::TempDir() + "rigid.ckpt";
+  write_checkpoint(path, uninterrupted.simulation, "rigid.scn");
+  step(uninterrupted, 30);
+  LoadedScene resumed = build_scene_text(scene, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  restore_checkpoint(path, resumed.simulation);
+  step(resumed, 30);
+  const auto& a = uninterrupted.simulation.objects.at(0).system;
+  const auto& b = resumed.simulation.objects.at(0).system;
+  EXPECT_EQ(a.state.position, b.state.position);
+  EXPECT_EQ(a.state.velocity, b.state.velocity);
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_EQ(a.rigids->orientation[k].coeffs(), b.rigids->orientation[k].coeffs()) << k;
+  EXPECT_GT(quaternion_distance(a.rigids->orientation[0], Eigen::Quaterniond::Identity()), 0.1);
+  LoadedScene other = build_scene_text(body("position=\"0 0 0 0 0 0 1\"", "<UniformMass totalMass=\"1\"/>"), "dt=\"0.01\"");
   try {
-    write_checkpoint(checkpoint, scene.simulation, "rigid.scn");
-    ADD_FAILURE() << "a checkpoint of a rigid body was written";
+    restore_checkpoint(path, other.simulation);
+    ADD_FAILURE() << "a checkpoint of two rigids resumed one";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("checkpoints of rigid bodies are not supported"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("written for scene"), std::string::npos) << error.what();
   }
+  std::remove(path.c_str());
 }
 
 }  // namespace

@@ -41,7 +41,9 @@
 
 namespace fastcorot {
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+// Version 2 adds the rigid bodies' orientations after each object's solver states; version 1
+// files (no rigid bodies) are still read.
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 
 // What a checkpoint records of one object's scene, to check that a resumed run has the same one:
 // counts, and the fingerprints described above.
