@@ -130,6 +130,7 @@ class VtuSeries {
     for (const auto& object : simulation.objects) names_.push_back(file_stem(object.path));
     frames_.resize(simulation.objects.size());
     drawing_frames_.resize(simulation.objects.size());
+    rigid_frames_.resize(simulation.objects.size());
     for (std::size_t o = 0; o < simulation.objects.size(); ++o) {
       const auto& object = simulation.objects[o];
       surface_stems_.emplace_back();
@@ -167,6 +168,14 @@ class VtuSeries {
       write_vtu(std::filesystem::path(dir_) / file, x, cells, point_fields, cell_fields);
       frames_[o].push_back({simulation.time(), file});
       write_pvd(std::filesystem::path(dir_) / (names_[o] + ".pvd"), frames_[o]);
+      if (system.rigids) {
+        // The rigid bodies' frames go to a series of their own (their angular blocks, in the file
+        // above, are rotation offsets: zero between steps).
+        const std::string frames_file = names_[o] + "_frames_" + std::to_string(simulation.steps_done()) + ".vtu";
+        write_rigid_frames_vtu(std::filesystem::path(dir_) / frames_file, *system.rigids, x, system.state.velocity, force);
+        rigid_frames_[o].push_back({simulation.time(), frames_file});
+        write_pvd(std::filesystem::path(dir_) / (names_[o] + "_frames.pvd"), rigid_frames_[o]);
+      }
       // Each visual surface (an OglModel mapped onto the object) goes to a series of its own.
       auto& surface_frames = surface_frames_[o];
       for (std::size_t s = 0; s < object.visual_surfaces.size(); ++s) {
@@ -203,6 +212,8 @@ class VtuSeries {
         if (std::filesystem::exists(std::filesystem::path(dir_) / drawing_file)) {
           drawing_frames_[o].push_back({time, drawing_file});
         }
+        const std::string frames_file = names_[o] + "_frames_" + std::to_string(step) + ".vtu";
+        if (std::filesystem::exists(std::filesystem::path(dir_) / frames_file)) rigid_frames_[o].push_back({time, frames_file});
         for (std::size_t s = 0; s < surface_stems_[o].size(); ++s) {
           const std::string surface_file = surface_stems_[o][s] + "_" + std::to_string(step) + ".vtu";
           if (std::filesystem::exists(std::filesystem::path(dir_) / surface_file)) {
@@ -219,6 +230,7 @@ class VtuSeries {
   std::vector<std::string> names_;
   std::vector<std::vector<std::pair<double, std::string>>> frames_;
   std::vector<std::vector<std::pair<double, std::string>>> drawing_frames_;
+  std::vector<std::vector<std::pair<double, std::string>>> rigid_frames_;  // objects with rigid bodies
   // Per object and visual surface: the file stem and the frames written.
   std::vector<std::vector<std::string>> surface_stems_;
   std::vector<std::vector<std::vector<std::pair<double, std::string>>>> surface_frames_;

@@ -131,9 +131,9 @@ void check_fields(const std::string& file, const std::vector<VtuField>& fields, 
                   const char* kind) {
   for (const VtuField& field : fields) {
     if (field.name.empty()) throw make_error(file, ": a ", kind, " field has no name");
-    if (field.components != 1 && field.components != 3) {
+    if (field.components != 1 && field.components != 3 && field.components != 4) {
       throw make_error(file, ": ", kind, " field '", field.name, "' has ", field.components,
-                       " components (must be 1 or 3)");
+                       " components (must be 1, 3 or 4)");
     }
     if (field.values.size() != count * static_cast<std::size_t>(field.components)) {
       throw make_error(file, ": ", kind, " field '", field.name, "' has ", field.values.size(),
@@ -250,6 +250,31 @@ void write_pvd(const std::filesystem::path& path,
   out << "  </Collection>\n"
       << "</VTKFile>\n";
   write_stream_atomically(path, [&](std::ostream& file_out) { file_out << out.view(); });
+}
+
+void write_rigid_frames_vtu(const std::filesystem::path& path, const RigidBlocks<double>& rigids,
+                            std::span<const Vec3<double>> x, std::span<const Vec3<double>> v,
+                            std::span<const Vec3<double>> f) {
+  std::vector<Vec3<double>> centres;
+  VtuCellBlock vertices{1, 1, {}};
+  VtuField orientation{"orientation", 4, {}}, axis_x{"axis_x", 3, {}}, axis_y{"axis_y", 3, {}}, axis_z{"axis_z", 3, {}};
+  VtuField velocity{"velocity", 3, {}}, angular{"angular_velocity", 3, {}}, force{"force", 3, {}}, torque{"torque", 3, {}};
+  const auto add = [](VtuField& field, const Vec3<double>& value) { field.values.insert(field.values.end(), {value.x(), value.y(), value.z()}); };
+  for (std::size_t k = 0; k < rigids.size(); ++k) {
+    const RigidCoord<double> c = rigids.coord(x, k);
+    const auto b = static_cast<std::size_t>(rigids.block[k]);
+    vertices.connectivity.push_back(static_cast<Index>(k));
+    centres.push_back(c.center);
+    for (int i = 0; i < 4; ++i) orientation.values.push_back(c.orientation.coeffs()[i]);
+    add(axis_x, c.rotate(Vec3<double>::UnitX()));
+    add(axis_y, c.rotate(Vec3<double>::UnitY()));
+    add(axis_z, c.rotate(Vec3<double>::UnitZ()));
+    add(velocity, v[b]);
+    add(angular, v[b + 1]);
+    add(force, f[b]);
+    add(torque, f[b + 1]);
+  }
+  write_vtu(path, centres, {vertices}, {orientation, axis_x, axis_y, axis_z, velocity, angular, force, torque});
 }
 
 }  // namespace fastcorot

@@ -3,6 +3,9 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/render/tetrahedron_drawing.h"
 
+#include <algorithm>
+#include <array>
+
 namespace fastcorot {
 
 namespace {
@@ -156,6 +159,7 @@ void SceneDrawer::draw_object(const SimulatedObject<Real>& object, const DrawOpt
   // Visual models mapped onto the object are what SOFA shows by default; without one (or when the
   // tetrahedra are drawn) the object's own boundary.
   bool drew_surfaces = false;
+  const std::size_t first_corner = geometry.triangles.positions.size();
   if constexpr (std::is_same_v<Real, double>) {
     if (!drew_tetrahedra) {
       for (const VisualSurface& surface : object.visual_surfaces) {
@@ -185,10 +189,31 @@ void SceneDrawer::draw_object(const SimulatedObject<Real>& object, const DrawOpt
       }
     }
   }
+  const auto& rigids = object.system.rigids;
   if (options.fixed_points) {
     for (Index i : object.system.fixed) {
+      // A rigid's angular block holds a rotation, not a point: its centre is drawn once.
+      if (rigids && std::binary_search(rigids->block.begin(), rigids->block.end(), i - 1)) continue;
       geometry.points.positions.push_back(to_float(x[static_cast<std::size_t>(i)]));
       geometry.points.colors.push_back(options.fixed_point_color);
+    }
+  }
+  if (options.rigid_frames && rigids && rigids->size() != 0) {
+    // Axes a third of the size of what the object shows (its surfaces and centres: they reach out
+    // of a body drawn about its centre), or 1 alone.
+    Eigen::AlignedBox3f box;
+    for (std::size_t c = first_corner; c < geometry.triangles.positions.size(); ++c) box.extend(geometry.triangles.positions[c]);
+    for (std::size_t k = 0; k < rigids->size(); ++k) box.extend(to_float(x[static_cast<std::size_t>(rigids->block[k])]));
+    const float diagonal = box.diagonal().norm();
+    const float length = diagonal > 0 ? diagonal / 3 : 1.0f;
+    const std::array<Rgba, 3> colors = {Rgba{0.9f, 0.1f, 0.1f, 1.0f}, Rgba{0.1f, 0.8f, 0.1f, 1.0f}, Rgba{0.15f, 0.3f, 1.0f, 1.0f}};
+    for (std::size_t k = 0; k < rigids->size(); ++k) {
+      const RigidCoord<Real> frame = rigids->coord(positions, k);
+      const Eigen::Vector3f centre = to_float(frame.center);
+      for (int a = 0; a < 3; ++a) {
+        const Eigen::Vector3f axis = to_float(frame.rotate(Vec3<Real>::Unit(a)));
+        add_segment(geometry.lines, centre, centre + length * axis, colors[static_cast<std::size_t>(a)]);
+      }
     }
   }
   if (options.boxes) {

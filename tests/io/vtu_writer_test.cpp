@@ -8,6 +8,8 @@
 #include "fastcorot/core/error.h"
 
 #include <gtest/gtest.h>
+
+#include <numbers>
 #include <tinyxml2.h>
 
 #include <cstdint>
@@ -172,7 +174,7 @@ TEST(VtuWriter, BadInputIsRefused) {
   EXPECT_TRUE(contains(write_error(cells, {VtuField{"u", 3, std::vector<double>(14)}}, {}),
                        "point field 'u' has 14 values, expected 5 × 3"));
   EXPECT_TRUE(contains(write_error(cells, {}, {VtuField{"s", 2, std::vector<double>(6)}}),
-                       "cell field 's' has 2 components (must be 1 or 3)"));
+                       "cell field 's' has 2 components (must be 1, 3 or 4)"));
   EXPECT_TRUE(
       contains(write_error(cells, {}, {VtuField{"", 1, std::vector<double>(3)}}), "has no name"));
   const auto nowhere = temp_path("missing_folder") / "grid.vtu";
@@ -198,6 +200,31 @@ TEST(VtuWriter, PvdListsTimeSteps) {
 </VTKFile>
 )");
   EXPECT_THROW(write_pvd(path, {{std::numeric_limits<double>::quiet_NaN(), "x.vtu"}}), Error);
+}
+
+// Rigid frames: one vertex per rigid at its centre, its quaternion and its turned axes (a rigid
+// turned 90° about z has x along y and y along -x), velocities and forces from its two blocks.
+TEST(VtuWriter, RigidFramesHoldCentresOrientationsAndAxes) {
+  RigidBlocks<double> rigids;
+  rigids.block = {0, 2};
+  rigids.orientation = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond(Eigen::AngleAxisd(std::numbers::pi / 2, Vec3<double>::UnitZ()))};
+  rigids.rest_orientation = rigids.orientation;
+  const std::vector<Vec3<double>> x = {{1, 2, 3}, {0, 0, 0}, {4, 5, 6}, {0, 0, 0}};
+  const std::vector<Vec3<double>> v = {{1, 0, 0}, {0, 0, 2}, {0, 1, 0}, {3, 0, 0}};
+  const std::vector<Vec3<double>> f = {{0, 0, -1}, {0, 1, 0}, {0, 0, -2}, {1, 1, 1}};
+  const auto path = temp_path("frames.vtu");
+  write_rigid_frames_vtu(path, rigids, x, v, f);
+  const MeshData mesh = read_vtu(path);
+  EXPECT_EQ(mesh.points, (std::vector<Vec3<double>>{{1, 2, 3}, {4, 5, 6}}));
+  const auto q = float64_array(path, "orientation");
+  ASSERT_EQ(q.size(), 8u);
+  EXPECT_NEAR(q[6], std::sqrt(0.5), 1e-15);  // z of the second
+  EXPECT_NEAR(q[7], std::sqrt(0.5), 1e-15);  // w
+  const auto ax = float64_array(path, "axis_x"), ay = float64_array(path, "axis_y");
+  EXPECT_NEAR(ax[4], 1, 1e-15);   // second rigid's x axis is the world's y
+  EXPECT_NEAR(ay[3], -1, 1e-15);  // its y axis is -x
+  EXPECT_EQ(float64_array(path, "angular_velocity"), (std::vector<double>{0, 0, 2, 3, 0, 0}));
+  EXPECT_EQ(float64_array(path, "torque"), (std::vector<double>{0, 1, 0, 1, 1, 1}));
 }
 
 }  // namespace

@@ -148,5 +148,29 @@ TEST(DrawGeometry, ParsesTheDrawingMode) {
   EXPECT_TRUE(DrawGeometry{}.bounds().isEmpty());
 }
 
+// A rigid body is drawn as its frame: three segments from its centre along its turned axes (x red,
+// y green, z blue), and a fixed rigid as one dot at its centre (not at its angular block's zeros).
+TEST(DrawGeometry, RigidBodiesShowTheirFrames) {
+  LoadedScene scene = build_scene(parse_scene_text(
+      "<Node name=\"root\"><EulerImplicitSolver/><CGLinearSolver/>"
+      "<MechanicalObject template=\"Rigid3d\" position=\"1 2 3 0 0 0.7071067811865476 0.7071067811865476  5 5 5 0 0 0 1\"/>"
+      "<UniformMass totalMass=\"1\"/><FixedProjectiveConstraint indices=\"1\"/></Node>",
+      "rigid.scn"));
+  SceneDrawer drawer;
+  const DrawGeometry g = drawer.draw(scene.simulation, DrawOptions{});
+  ASSERT_EQ(g.lines.size(), 6u);
+  const Eigen::Vector3f centre(1, 2, 3);
+  EXPECT_LT((g.lines.positions[0] - centre).norm(), 1e-6f);
+  // Turned 90° about z: the body's x axis is the world's y, drawn in red.
+  const Eigen::Vector3f x_axis = (g.lines.positions[1] - g.lines.positions[0]).normalized();
+  EXPECT_LT((x_axis - Eigen::Vector3f(0, 1, 0)).norm(), 1e-6f);
+  EXPECT_GT(g.lines.colors[0][0], 0.5f);
+  ASSERT_EQ(g.points.size(), 1u);
+  EXPECT_LT((g.points.positions[0] - Eigen::Vector3f(5, 5, 5)).norm(), 1e-6f);
+  DrawOptions without;
+  without.rigid_frames = false;
+  EXPECT_EQ(drawer.draw(scene.simulation, without).lines.size(), 0u);
+}
+
 }  // namespace
 }  // namespace fastcorot

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "fastcorot/core/types.h"
+#include "fastcorot/state/rigid_blocks.h"
 
 #include <filesystem>
 #include <span>
@@ -16,7 +17,7 @@ namespace fastcorot {
 // A named per-point (or per-cell) field of 3-vectors or scalars for VTU output.
 struct VtuField {
   std::string name;
-  int components = 3;          // 1 or 3
+  int components = 3;          // 1, 3 or 4 (a quaternion)
   std::vector<double> values;  // size = count × components
 };
 
@@ -37,6 +38,14 @@ VtuCellBlock tetrahedron_cells(std::span<const Tetrahedron> tetrahedra);
 void write_vtu(const std::filesystem::path& path, const std::vector<Vec3<double>>& points,
                const std::vector<VtuCellBlock>& cells, const std::vector<VtuField>& point_fields,
                const std::vector<VtuField>& cell_fields = {});
+
+// Writes the frames of a system's rigid bodies: one VTK vertex per rigid at its centre, with point
+// fields orientation (x y z w, SOFA's order), axis_x / axis_y / axis_z (the body's axes in the
+// world: glyphs of these draw a frame per rigid), velocity and angular_velocity, force and torque
+// (from the two blocks of the state vectors x, v and f).
+void write_rigid_frames_vtu(const std::filesystem::path& path, const RigidBlocks<double>& rigids,
+                            std::span<const Vec3<double>> x, std::span<const Vec3<double>> v,
+                            std::span<const Vec3<double>> f);
 
 // Writes a ParaView collection (.pvd) listing (time, file) pairs; file names relative to the .pvd.
 // Times are written in the shortest form that reads back exactly; a non-finite time is an error.

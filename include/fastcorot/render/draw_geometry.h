@@ -3,7 +3,7 @@
 // a colour each. `SceneDrawer` makes one from a Simulation as SOFA shows a scene with its force
 // fields displayed: force fields with `drawing` on as shrunk tetrahedra in drawColor1..4
 // (tetrahedron_drawing.h), the other objects as their shaded boundary surface, fixed points as
-// dots and BoxROI boxes as wire boxes. Nothing here touches OpenGL, so it is testable and usable
+// dots, BoxROI boxes as wire boxes and each rigid body's frame as three axes. Nothing here touches OpenGL, so it is testable and usable
 // without a display.
 #pragma once
 
@@ -27,6 +27,7 @@ struct DrawOptions {
   TetrahedronDrawing tetrahedra = TetrahedronDrawing::scene;
   bool fixed_points = true;
   bool boxes = true;
+  bool rigid_frames = true;  // each rigid body's axes: x red, y green, z blue (SOFA's colours)
   bool surface_edges = false;  // outline the boundary triangles (shows the mesh)
   Rgba surface_color{0.80f, 0.80f, 0.78f, 1.0f};
   Rgba edge_color{0.15f, 0.15f, 0.17f, 1.0f};
