@@ -8,6 +8,7 @@
 #include "force_field_builders.h"
 #include "spring_builders.h"
 
+#include <array>
 #include <memory>
 
 namespace fastcorot::scene_detail {
@@ -93,6 +94,31 @@ std::shared_ptr<ForceField<double>> rigid_rest_shape_springs(SceneData& data, Co
 // rigid, mapped onto the linear blocks (SOFA's PlaneForceField<Rigid3> reads and pushes the centres).
 std::shared_ptr<ForceField<double>> on_rigid_centres(std::shared_ptr<ForceField<double>> field, const RigidBlocks<double>& rigids, Index points) {
   return std::make_shared<MappedForceField<double>>(std::move(field), PointMapping<double>::subset(rigids.block), points);
+}
+
+// SOFA's PartialFixedProjectiveConstraint<Rigid3>: fixedDirections has 6 flags (x y z rx ry rz; all
+// held when not given); the held components of each listed rigid's increments (and, with
+// projectVelocity, of its velocity after each step) are zeroed on its linear and angular blocks.
+void add_partial_fixed_rigids(SceneData& data, Component& c, const RigidBlocks<double>& rigids, MechanicalSystem<double>& system) {
+  const std::vector<Index> indices = fixed_rigids(data, c, static_cast<Index>(rigids.size()));
+  std::vector<double> axes(6, 1.0);
+  if (c.has("fixedDirections")) {
+    const Numbers& given = data.data(c, "fixedDirections");
+    if (given.size() != 6) throw make_error(c.where(), ": fixedDirections on a Rigid3 state needs 6 values (x y z rx ry rz), got ", given.size());
+    axes.assign(given.begin(), given.end());
+  }
+  std::array<Mat3<double>, 2> free = {Mat3<double>::Identity(), Mat3<double>::Identity()};
+  for (std::size_t a = 0; a < 6; ++a) {
+    if (axes[a] != 0) free[a / 3](static_cast<Eigen::Index>(a % 3), static_cast<Eigen::Index>(a % 3)) = 0;
+  }
+  const bool velocity = data.boolean(c, "projectVelocity", false);
+  for (Index k : indices) {
+    for (Index j = 0; j < 2; ++j) {
+      const Index block = rigids.block[static_cast<std::size_t>(k)] + j;
+      system.projections.push_back({block, free[static_cast<std::size_t>(j)]});
+      if (velocity) system.placements.push_back({block, Mat3<double>::Identity(), Vec3<double>::Zero(), free[static_cast<std::size_t>(j)]});
+    }
+  }
 }
 
 // ConstantForceField on rigids: 6 numbers per force (fx fy fz τx τy τz) on the two blocks.
@@ -224,6 +250,8 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
             if (data.boolean(*c, "activate_projectVelocity", false)) system.zero_velocity.push_back(2 * k + j);
           }
         }
+      } else if (type == "PartialFixedProjectiveConstraint") {
+        add_partial_fixed_rigids(data, *c, *blocks, system);
       } else if (type == "ConstantForceField") {
         system.constant_forces.push_back(rigid_constant_force(data, info, *c, count));
       } else if (type == "RestShapeSpringsForceField") {
@@ -236,7 +264,7 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
       } else if (category == "forcefield" || category == "mass" || category == "constraint") {
         throw make_error(c->where(), ": ", type, " on the Rigid3 state ", state.where(),
                          ": not supported on rigid bodies yet (there: UniformMass, FixedProjectiveConstraint, ConstantForceField, "
-                         "RestShapeSpringsForceField, PlaneForceField)");
+                         "PartialFixedProjectiveConstraint, RestShapeSpringsForceField, PlaneForceField)");
       }
     }
   }

@@ -6,7 +6,8 @@
 //   fields do (nothing turns them, so their angular blocks stay at rest);
 // - a rigid turned away from its rest orientation by an angular RestShapeSpringsForceField
 //   oscillates with ω = sqrt(k_a / I), about the axes activeDirections leaves on;
-// - points carried by each of two merged rigids (mapped states and masses) follow their own rigid.
+// - points carried by each of two merged rigids (mapped states and masses) follow their own rigid;
+// - PartialFixedProjectiveConstraint holds the chosen of a rigid's six directions.
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/sim/mapped_state.h"
 
@@ -135,6 +136,30 @@ TEST(RigidInteraction, PointsCarriedByMergedRigidsFollowTheirOwnRigid) {
     if (k == 0) EXPECT_GT(std::abs(state.position.at(0).y()), 0.1);
   }
   EXPECT_EQ(carried, 2);
+}
+
+// PartialFixedProjectiveConstraint on a rigid: fixedDirections "1 0 1 1 1 0" leaves it falling along
+// y and turning about z only, whatever the gravity and torque push along the held directions.
+TEST(RigidInteraction, PartialFixedRigidsMoveOnlyAlongTheirFreeDirections) {
+  LoadedScene scene = build_scene_text(
+      "<EulerImplicitSolver/><CGLinearSolver iterations=\"50\" tolerance=\"1e-30\" threshold=\"1e-30\"/>"
+      "<MechanicalObject template=\"Rigid3d\" position=\"1 2 3 0 0 0 1\"/><UniformMass totalMass=\"1\"/>"
+      "<ConstantForceField forces=\"1 0 1 2 3 4\"/>"
+      "<PartialFixedProjectiveConstraint indices=\"0\" fixedDirections=\"1 0 1 1 1 0\" projectVelocity=\"1\"/>",
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  for (int s = 0; s < 50; ++s) scene.simulation.step();
+  const auto& system = scene.simulation.objects.at(0).system;
+  const RigidCoord<double> c = system.rigids->coord(system.state.position, 0);
+  EXPECT_EQ(c.center.x(), 1.0);
+  EXPECT_EQ(c.center.z(), 3.0);
+  EXPECT_LT(c.center.y(), 1.0);
+  EXPECT_EQ(c.orientation.x(), 0.0);
+  EXPECT_EQ(c.orientation.y(), 0.0);
+  EXPECT_GT(std::abs(c.orientation.z()), 0.01);
+  const std::string wrong = scene_error(
+      "<EulerImplicitSolver/><CGLinearSolver/><MechanicalObject template=\"Rigid3d\" position=\"0 0 0 0 0 0 1\"/>"
+      "<UniformMass totalMass=\"1\"/><PartialFixedProjectiveConstraint fixedDirections=\"1 0 1\"/>");
+  EXPECT_NE(wrong.find("needs 6 values (x y z rx ry rz)"), std::string::npos) << wrong;
 }
 
 TEST(RigidInteraction, BadInputIsRefusedInOneLine) {
