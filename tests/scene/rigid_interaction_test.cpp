@@ -11,6 +11,7 @@
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/sim/mapped_state.h"
 
+#include "../support/oscillation.h"
 #include "../support/scene_text.h"
 
 #include <gtest/gtest.h>
@@ -87,15 +88,8 @@ TEST(RigidInteraction, AngularRestShapeSpringsTurnARigidBackWithTheirPeriod) {
       const Eigen::Quaterniond o = system.rigids->coord(system.state.position, 0).orientation;
       return 2 * std::atan2(o.z(), o.w());
     };
-    std::vector<double> crossings;
     const double start = angle();
-    double previous = start;
-    for (int s = 1; s <= 8000; ++s) {
-      scene.simulation.step();
-      const double now = angle();
-      if (previous < 0 && now >= 0) crossings.push_back((s - 1 + previous / (previous - now)) * 0.0005);
-      previous = now;
-    }
+    const auto crossings = testing::upward_crossings(scene, 8000, 0.0005, angle);
     if (!directions.empty()) {
       // Rotation about z switched off: the rigid keeps its turn.
       EXPECT_TRUE(crossings.empty());
@@ -103,9 +97,8 @@ TEST(RigidInteraction, AngularRestShapeSpringsTurnARigidBackWithTheirPeriod) {
       continue;
     }
     ASSERT_GE(crossings.size(), 3u);
-    const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
     const double period = 2 * std::numbers::pi * std::sqrt(izz / ka);
-    EXPECT_NEAR(measured, period, 0.005 * period);
+    EXPECT_NEAR(testing::mean_period(crossings), period, 0.005 * period);
   }
 }
 

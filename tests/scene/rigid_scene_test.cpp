@@ -7,6 +7,7 @@
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/sim/mapped_state.h"
 
+#include "../support/oscillation.h"
 #include "../support/scene_text.h"
 
 #include <gtest/gtest.h>
@@ -162,17 +163,9 @@ TEST(RigidScene, PendulumHeldByASpringOnACarriedPointSwingsWithTheSmallAnglePeri
   for (const std::string solver : {"<CGLinearSolver iterations=\"100\" tolerance=\"1e-20\" threshold=\"1e-20\"/>", "<SparseLDLSolver/>"}) {
     LoadedScene scene = build_scene_text(pendulum(0.05, solver), "dt=\"0.001\" gravity=\"0 -9.81 0\"");
     // Upward zero crossings of θ: a period apart.
-    std::vector<double> crossings;
-    double previous = swing_angle(scene);
-    for (int s = 1; s <= 8000; ++s) {
-      scene.simulation.step();
-      const double angle = swing_angle(scene);
-      if (previous < 0 && angle >= 0) crossings.push_back((s - 1 + previous / (previous - angle)) * 0.001);
-      previous = angle;
-    }
+    const auto crossings = testing::upward_crossings(scene, 8000, 0.001, [&] { return swing_angle(scene); });
     ASSERT_GE(crossings.size(), 3u) << solver;
-    const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-    EXPECT_NEAR(measured, period, 0.005 * period) << solver;
+    EXPECT_NEAR(testing::mean_period(crossings), period, 0.005 * period) << solver;
     // The pivot stays at the origin (to the spring's give: m g / k plus the swing's pull).
     const auto states = state_snapshots(scene.simulation.objects.at(0));
     EXPECT_LT(states.at(1).position.at(0).norm(), 2e-4) << solver;
@@ -189,17 +182,9 @@ TEST(RigidScene, MassOnCarriedPointsSwingsWithTheBody) {
   const std::string cg = "<CGLinearSolver iterations=\"100\" tolerance=\"1e-20\" threshold=\"1e-20\"/>";
   for (const std::string solver : {cg, std::string("<SparseLDLSolver/>")}) {
     LoadedScene scene = build_scene_text(pendulum(0.05, solver, bob), "dt=\"0.001\" gravity=\"0 -9.81 0\"");
-    std::vector<double> crossings;
-    double previous = swing_angle(scene);
-    for (int s = 1; s <= 9000; ++s) {
-      scene.simulation.step();
-      const double angle = swing_angle(scene);
-      if (previous < 0 && angle >= 0) crossings.push_back((s - 1 + previous / (previous - angle)) * 0.001);
-      previous = angle;
-    }
+    const auto crossings = testing::upward_crossings(scene, 9000, 0.001, [&] { return swing_angle(scene); });
     ASSERT_GE(crossings.size(), 3u) << solver;
-    const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-    EXPECT_NEAR(measured, period, 0.005 * period) << solver;
+    EXPECT_NEAR(testing::mean_period(crossings), period, 0.005 * period) << solver;
   }
 }
 
