@@ -5,7 +5,7 @@
 // carried points (RigidMappedMass) against Jᵀ M J and Jᵀ m g through the mapping.
 #include "fastcorot/mapping/mapped_force_field.h"
 #include "fastcorot/mapping/mechanical_mapping.h"
-#include "fastcorot/mapping/rigid_mapped_mass.h"
+#include "fastcorot/sim/rigid_mapped_mass.h"
 #include "fastcorot/fem/spring_force_field.h"
 
 #include <gtest/gtest.h>

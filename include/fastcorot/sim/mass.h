@@ -2,7 +2,7 @@
 // MeshMatrixMass with lumping), consistent (a symmetric #V×#V scalar matrix applied to each axis:
 // MeshMatrixMass without lumping) or block-diagonal (one symmetric 3×3 block per vertex: rigid
 // bodies, whose angular block is m·inertia: state/rigid_mass.h), with optional couplings between
-// two blocks (a rigid carrying masses: mapping/rigid_mapped_mass.h). Gravity acts through the mass:
+// two blocks (a rigid carrying masses: sim/rigid_mapped_mass.h). Gravity acts through the mass:
 // f_i += (sum_j M_ij) g, or the gravity masses when set, or a block mass's gravity blocks.
 #pragma once
 

@@ -1,4 +1,4 @@
-#include "fastcorot/mapping/rigid_mapped_mass.h"
+#include "fastcorot/sim/rigid_mapped_mass.h"
 
 #include "fastcorot/core/error.h"
 
