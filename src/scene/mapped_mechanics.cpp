@@ -1,6 +1,7 @@
 #include "mapped_mechanics.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/fem/constant_force_field.h"
 #include "fastcorot/mapping/mapped_force_field.h"
 
 namespace fastcorot::scene_detail {
@@ -128,11 +129,14 @@ void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<
     to.rigid_mapped_mass = std::move(mapped);
     to.update_mass();
   }
-  // A constant load on carried points would be Jᵀ f with J turning with the rigid: not folded yet.
-  if (!from.constant_forces.empty()) {
-    throw make_error(where, ": constant forces on points carried by rigid bodies (RigidMapping) are not supported yet");
+  // Constant loads on carried points come up as Jᵀ F with J turning with the rigid (a force on the
+  // centre and the torque r × F): force fields on the carried points, like the others below.
+  auto fields = from.force_fields;
+  const auto carried = std::make_shared<const TetMesh>(from.size(), std::vector<Tetrahedron>{});
+  for (const auto& load : from.constant_forces) {
+    fields.push_back(std::make_shared<ConstantForceField<double>>(carried, load.indices, load.forces));
   }
-  for (const auto& field : from.force_fields) {
+  for (const auto& field : fields) {
     to.force_fields.push_back(
         std::make_shared<MappedForceField<double>>(field, std::make_unique<RigidPointMapping<double>>(points), to.size()));
     parent.force_field_drawing.push_back({});

@@ -7,7 +7,8 @@
 // - a rigid turned away from its rest orientation by an angular RestShapeSpringsForceField
 //   oscillates with ω = sqrt(k_a / I), about the axes activeDirections leaves on;
 // - points carried by each of two merged rigids (mapped states and masses) follow their own rigid;
-// - PartialFixedProjectiveConstraint holds the chosen of a rigid's six directions.
+// - PartialFixedProjectiveConstraint holds the chosen of a rigid's six directions;
+// - a ConstantForceField on carried points pushes and turns the rigid through Jᵀ.
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/sim/mapped_state.h"
 
@@ -153,6 +154,25 @@ TEST(RigidInteraction, PartialFixedRigidsMoveOnlyAlongTheirFreeDirections) {
       "<EulerImplicitSolver/><CGLinearSolver/><MechanicalObject template=\"Rigid3d\" position=\"0 0 0 0 0 0 1\"/>"
       "<UniformMass totalMass=\"1\"/><PartialFixedProjectiveConstraint fixedDirections=\"1 0 1\"/>");
   EXPECT_NE(wrong.find("needs 6 values (x y z rx ry rz)"), std::string::npos) << wrong;
+}
+
+// A ConstantForceField on a carried point pushes the rigid through Jᵀ: the force on the centre and
+// the torque r × F, r turning with the body. Point (0, 1, 0) pushed along x: unturned, τ = (0, 0, -1);
+// turned 90° about z (r = (-1, 0, 0)), no torque. One explicit step gives v = h F / m, ω = h τ / I.
+TEST(RigidInteraction, ConstantForcesOnCarriedPointsPushAndTurnTheRigid) {
+  for (const bool turned : {false, true}) {
+    const std::string q = turned ? "0 0 0.7071067811865476 0.7071067811865476" : "0 0 0 1";
+    LoadedScene scene = build_scene_text(
+        "<EulerExplicitSolver symplectic=\"1\"/><MechanicalObject template=\"Rigid3d\" position=\"0 0 0 " + q + "\"/>"
+        "<UniformMass vertexMass=\"2 1 0.5 0 0 0 0.5 0 0 0 0.5\"/>"
+        "<Node name=\"carried\"><MechanicalObject position=\"0 1 0\"/><ConstantForceField forces=\"1 0 0\"/><RigidMapping/></Node>",
+        "dt=\"0.01\" gravity=\"0 0 0\"");
+    scene.simulation.step();
+    const auto& v = scene.simulation.objects.at(0).system.state.velocity;
+    EXPECT_LT((v[0] - Vec3<double>(0.01 * 1 / 2, 0, 0)).norm(), 1e-15) << turned;
+    const Vec3<double> expected_omega = turned ? Vec3<double>::Zero() : Vec3<double>(0, 0, -0.01 / (2 * 0.5));
+    EXPECT_LT((v[1] - expected_omega).norm(), 1e-15) << turned;
+  }
 }
 
 TEST(RigidInteraction, BadInputIsRefusedInOneLine) {
