@@ -98,4 +98,59 @@ template class LinearMapping<double>;
 template class RigidPointMapping<float>;
 template class RigidPointMapping<double>;
 
+template <class Real>
+StackedMapping<Real>::StackedMapping(std::vector<std::unique_ptr<MechanicalMapping<Real>>> parts) : parts_(std::move(parts)) {
+  for (const auto& part : parts_) {
+    first_.push_back(size_);
+    size_ += part->size();
+  }
+}
+
+template <class Real>
+Index StackedMapping<Real>::parent_extent() const {
+  Index extent = 0;
+  for (const auto& part : parts_) extent = std::max(extent, part->parent_extent());
+  return extent;
+}
+
+template <class Real>
+void StackedMapping<Real>::apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) {
+  for (std::size_t k = 0; k < parts_.size(); ++k) parts_[k]->apply(x, part_of(y, k));
+}
+
+template <class Real>
+void StackedMapping<Real>::positions(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) const {
+  for (std::size_t k = 0; k < parts_.size(); ++k) parts_[k]->positions(x, part_of(y, k));
+}
+
+template <class Real>
+void StackedMapping<Real>::apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const {
+  for (std::size_t k = 0; k < parts_.size(); ++k) parts_[k]->apply_j(dx, part_of(dy, k));
+}
+
+template <class Real>
+void StackedMapping<Real>::apply_jt(std::span<const Vec3<Real>> f, std::span<Vec3<Real>> parent) const {
+  for (std::size_t k = 0; k < parts_.size(); ++k) parts_[k]->apply_jt(part_of(f, k), parent);
+}
+
+template <class Real>
+void StackedMapping<Real>::row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const {
+  std::size_t k = parts_.size() - 1;
+  while (first_[k] > i) --k;
+  parts_[k]->row_blocks(i - first_[k], out);
+}
+
+template <class Real>
+std::vector<double> StackedMapping<Real>::model_values() const {
+  std::vector<double> values;
+  for (const auto& part : parts_) {
+    const auto v = part->model_values();
+    values.push_back(static_cast<double>(v.size()));
+    values.insert(values.end(), v.begin(), v.end());
+  }
+  return values;
+}
+
+template class StackedMapping<double>;
+
 }  // namespace fastcorot

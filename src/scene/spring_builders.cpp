@@ -4,6 +4,8 @@
 #include "fastcorot/fem/regular_grid_springs.h"
 #include "fastcorot/fem/rest_shape_springs_force_field.h"
 #include "fastcorot/fem/spring_force_field.h"
+#include "fastcorot/mapping/mapped_force_field.h"
+#include "fastcorot/sim/mapped_state.h"
 
 #include <cmath>
 
@@ -104,6 +106,17 @@ void refuse_spring_without_solver(const Component& c, const std::string& node_pa
                    "(springs between objects of different solvers are not supported)");
 }
 
+namespace {
+
+// One end of an interaction spring: an object the solver integrates (its index in `states`), or a
+// mapped state that follows them (a MechanicalObject under a mapping, with no mechanics of its own).
+struct SpringSide {
+  std::size_t state = 0;
+  const MappedState* mapped = nullptr;
+};
+
+}  // namespace
+
 void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nodes, const std::vector<Component*>& states,
                              const std::vector<Index>& offsets, const std::vector<Index>& sizes,
                              SimulatedObject<double>& object) {
@@ -116,27 +129,60 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
         const auto which = [&](const char* name) {
           Component& state = linked_state(data, *c, name);
           for (std::size_t k = 0; k < states.size(); ++k) {
-            if (states[k] == &state) return k;
+            if (states[k] == &state) return SpringSide{k, nullptr};
+          }
+          for (const MappedState& mapped : object.mapped_states) {
+            if (mapped.node == state.node->path && mapped.name == state.sofa_name()) return SpringSide{0, &mapped};
           }
           throw make_error(name, " ", state.where(), " is not integrated by this spring's ODE solver "
                            "(springs between objects of different solvers are not supported)");
         };
-        const std::size_t first = which("object1"), second = which("object2");
-        std::vector<Spring<double>> springs = listed_springs(data, *c);
+        const SpringSide first = which("object1"), second = which("object2");
         // On a rigid state a spring joins rigid centres (SOFA's SpringForceField<Rigid3> reads and
         // pushes the centres): rigid k's centre is block 2k of its object.
-        const auto rigid = [&](std::size_t k) { return is_rigid_template(data.text(*states[k], "template", "Vec3d")); };
-        const auto points = [&](std::size_t k) { return rigid(k) ? sizes[k] / 2 : sizes[k]; };
+        const auto rigid = [&](const SpringSide& side) {
+          return !side.mapped && is_rigid_template(data.text(*states[side.state], "template", "Vec3d"));
+        };
+        const auto points = [&](const SpringSide& side) {
+          if (side.mapped) return static_cast<Index>(side.mapped->size());
+          return rigid(side) ? sizes[side.state] / 2 : sizes[side.state];
+        };
+        std::vector<Spring<double>> springs = listed_springs(data, *c);
         check_ranges(springs, points(first), points(second), c->has("spring") ? "spring" : "indices1/indices2");
-        for (Spring<double>& s : springs) {
-          s.a = offsets[first] + (rigid(first) ? 2 * s.a : s.a);
-          s.b = offsets[second] + (rigid(second) ? 2 * s.b : s.b);
+        const double rayleigh = data.real(*c, "rayleighStiffness", 0);
+        if (!first.mapped && !second.mapped) {
+          for (Spring<double>& s : springs) {
+            s.a = offsets[first.state] + (rigid(first) ? 2 * s.a : s.a);
+            s.b = offsets[second.state] + (rigid(second) ? 2 * s.b : s.b);
+          }
+          auto mesh = object.mesh && object.mesh->num_points() == total
+                          ? std::shared_ptr<const TetMesh>(object.mesh)
+                          : std::make_shared<const TetMesh>(total, std::vector<Tetrahedron>{});
+          object.system.force_fields.push_back(
+              std::make_shared<SpringForceField<double>>(std::move(mesh), std::move(springs), rayleigh, "SpringForceField"));
+          object.force_field_drawing.push_back({});
+          continue;
         }
-        auto mesh = object.mesh && object.mesh->num_points() == total
-                        ? std::shared_ptr<const TetMesh>(object.mesh)
-                        : std::make_shared<const TetMesh>(total, std::vector<Tetrahedron>{});
-        object.system.force_fields.push_back(std::make_shared<SpringForceField<double>>(
-            std::move(mesh), std::move(springs), data.real(*c, "rayleighStiffness", 0), "SpringForceField"));
+        // A mapped end: the spring acts on both ends' points side by side, brought up through each
+        // end's own mapping (a StackedMapping under a MappedForceField).
+        std::vector<std::unique_ptr<MechanicalMapping<double>>> parts;
+        for (const SpringSide& side : {first, second}) {
+          if (side.mapped && side.mapped->rigid) {
+            parts.push_back(std::make_unique<RigidPointMapping<double>>(*side.mapped->rigid));
+          } else if (side.mapped) {
+            parts.push_back(std::make_unique<LinearMapping<double>>(side.mapped->map));
+          } else {
+            std::vector<Index> picked;
+            for (Index i = 0; i < points(side); ++i) picked.push_back(offsets[side.state] + (rigid(side) ? 2 * i : i));
+            parts.push_back(std::make_unique<LinearMapping<double>>(PointMapping<double>::subset(picked)));
+          }
+        }
+        const Index ends = points(first) + points(second);
+        for (Spring<double>& s : springs) s.b += points(first);
+        auto field = std::make_shared<SpringForceField<double>>(std::make_shared<const TetMesh>(ends, std::vector<Tetrahedron>{}),
+                                                                std::move(springs), rayleigh, "SpringForceField");
+        object.system.force_fields.push_back(
+            std::make_shared<MappedForceField<double>>(field, std::make_unique<StackedMapping<double>>(std::move(parts)), total));
         object.force_field_drawing.push_back({});
       } catch (const Error& error) {
         throw error_at(c->where(), error);

@@ -14,6 +14,7 @@
 #include "fastcorot/mapping/point_mapping.h"
 #include "fastcorot/mapping/rigid_points.h"
 
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -76,6 +77,33 @@ class RigidPointMapping final : public MechanicalMapping<Real> {
 
   RigidPoints<Real> points_;
   std::vector<Vec3<Real>> rotated_;  // r_i of the last apply
+};
+
+// Mappings side by side: the child's points are the first mapping's, then the second's, ... (an
+// interaction force field between a mapped state and another state, or two mapped states: SOFA's
+// visitors bring each side's forces up through its own Jᵀ).
+template <class Real>
+class StackedMapping final : public MechanicalMapping<Real> {
+ public:
+  explicit StackedMapping(std::vector<std::unique_ptr<MechanicalMapping<Real>>> parts);
+  std::size_t size() const override { return size_; }
+  Index parent_extent() const override;
+  void apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) override;
+  void positions(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) const override;
+  void apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const override;
+  void apply_jt(std::span<const Vec3<Real>> f, std::span<Vec3<Real>> parent) const override;
+  void row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const override;
+  std::vector<double> model_values() const override;
+
+ private:
+  template <class T>
+  std::span<T> part_of(std::span<T> y, std::size_t k) const {
+    return y.subspan(first_[k], parts_[k]->size());
+  }
+
+  std::vector<std::unique_ptr<MechanicalMapping<Real>>> parts_;
+  std::vector<std::size_t> first_;  // each part's first child point
+  std::size_t size_ = 0;
 };
 
 }  // namespace fastcorot
