@@ -1,20 +1,10 @@
 #include "fastcorot/mapping/mechanical_mapping.h"
 
+#include "fastcorot/state/rigid3.h"
+
 #include <algorithm>
 
 namespace fastcorot {
-
-namespace {
-
-// [r]×: the matrix of v ↦ r × v.
-template <class Real>
-Mat3<Real> cross_matrix(const Vec3<Real>& r) {
-  Mat3<Real> m;
-  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return m;
-}
-
-}  // namespace
 
 template <class Real>
 void LinearMapping<Real>::row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const {

@@ -143,6 +143,8 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
         const auto rigid = [&](const SpringSide& side) {
           return !side.mapped && is_rigid_template(data.text(*states[side.state], "template", "Vec3d"));
         };
+        // The block of point (or rigid centre) i of an integrated end.
+        const auto block_of = [&](const SpringSide& side, Index i) { return offsets[side.state] + (rigid(side) ? 2 * i : i); };
         const auto points = [&](const SpringSide& side) {
           if (side.mapped) return static_cast<Index>(side.mapped->size());
           return rigid(side) ? sizes[side.state] / 2 : sizes[side.state];
@@ -152,8 +154,8 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
         const double rayleigh = data.real(*c, "rayleighStiffness", 0);
         if (!first.mapped && !second.mapped) {
           for (Spring<double>& s : springs) {
-            s.a = offsets[first.state] + (rigid(first) ? 2 * s.a : s.a);
-            s.b = offsets[second.state] + (rigid(second) ? 2 * s.b : s.b);
+            s.a = block_of(first, s.a);
+            s.b = block_of(second, s.b);
           }
           auto mesh = object.mesh && object.mesh->num_points() == total
                           ? std::shared_ptr<const TetMesh>(object.mesh)
@@ -173,7 +175,7 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
             parts.push_back(std::make_unique<LinearMapping<double>>(side.mapped->map));
           } else {
             std::vector<Index> picked;
-            for (Index i = 0; i < points(side); ++i) picked.push_back(offsets[side.state] + (rigid(side) ? 2 * i : i));
+            for (Index i = 0; i < points(side); ++i) picked.push_back(block_of(side, i));
             parts.push_back(std::make_unique<LinearMapping<double>>(PointMapping<double>::subset(picked)));
           }
         }

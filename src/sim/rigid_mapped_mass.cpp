@@ -1,19 +1,9 @@
 #include "fastcorot/sim/rigid_mapped_mass.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/state/rigid3.h"
 
 namespace fastcorot {
-
-namespace {
-
-template <class Real>
-Mat3<Real> cross_matrix(const Vec3<Real>& r) {
-  Mat3<Real> s;
-  s << Real(0), -r.z(), r.y(), r.z(), Real(0), -r.x(), -r.y(), r.x(), Real(0);
-  return s;
-}
-
-}  // namespace
 
 template <class Real>
 Mass<Real> RigidMappedMass<Real>::at(std::span<const Vec3<Real>> x, Index points) const {

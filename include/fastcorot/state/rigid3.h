@@ -35,6 +35,14 @@ struct RigidCoord {
   Vec3<Real> project_point(const Vec3<Real>& p) const { return rotate(p) + center; }
 };
 
+// [r]×: the matrix of v ↦ r × v (a rigid's J block for a point at offset r is [I₃ | −[r]×]).
+template <class Real>
+Mat3<Real> cross_matrix(const Vec3<Real>& r) {
+  Mat3<Real> m;
+  m << Real(0), -r.z(), r.y(), r.z(), Real(0), -r.x(), -r.y(), r.x(), Real(0);
+  return m;
+}
+
 // The quaternion (x, y, z, w) in SOFA's order.
 template <class Real>
 Eigen::Quaternion<Real> quaternion_xyzw(Real x, Real y, Real z, Real w) {
