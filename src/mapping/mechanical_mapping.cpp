@@ -114,6 +114,11 @@ void StackedMapping<Real>::positions(std::span<const Vec3<Real>> x, std::span<Ve
 }
 
 template <class Real>
+void StackedMapping<Real>::velocities(std::span<const Vec3<Real>> x, std::span<const Vec3<Real>> v, std::span<Vec3<Real>> y) const {
+  for (std::size_t k = 0; k < parts_.size(); ++k) parts_[k]->velocities(x, v, part_of(y, k));
+}
+
+template <class Real>
 void StackedMapping<Real>::apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const {
   for (std::size_t k = 0; k < parts_.size(); ++k) parts_[k]->apply_j(dx, part_of(dy, k));
 }

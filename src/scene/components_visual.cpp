@@ -79,7 +79,13 @@ std::vector<ComponentSpec> visual_components() {
         {"last", "int", "", "last parent index"},
         {"radius", "real", "1e-5", "search radius when no indices are given"},
         {"handleTopologyChange", "bool", "true", "accepted"}, {"ignoreNotFound", "bool", "false", "accepted: a point without a match is an error"},
-        {"resizeToModel", "bool", "false", "accepted"}}}
+        {"resizeToModel", "bool", "false", "accepted"}}},
+      {"SubsetMultiMapping", "visualmapping", "The state's points are points of several input states (SOFA's SubsetMultiMapping<Vec3, Vec3>): point i is point j of input k for the pair (k, j) of `indexPairs`. Inputs are states the node's ODE solver integrates or states mapped from them (points carried by rigid bodies among them); force fields on the state act on the inputs through Jᵀ.",
+       {{"input", "string", "", "the input states, as links separated by spaces (\"@../free @../carried\")"},
+        {"output", "link", "", "the mapped state (default: the node's)"},
+        {"indexPairs", "indices", "", "(input, index in that input) for each point of the state"},
+        {"mapForces", "bool", "true", "accepted"}, {"mapConstraints", "bool", "true", "accepted"},
+        {"mapMasses", "bool", "true", "accepted"}, {"isMechanical", "bool", "true", "accepted"}}}
   };
 }
 

@@ -4,6 +4,9 @@
 #include "fastcorot/fem/constant_force_field.h"
 #include "fastcorot/mapping/mapped_force_field.h"
 
+#include <functional>
+#include <memory>
+
 namespace fastcorot::scene_detail {
 
 namespace {
@@ -72,6 +75,24 @@ void check_foldable(const SimulatedObject<double>& child, std::size_t mapped_poi
   if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");
 }
 
+// The child's force fields and constant loads acting on `parent` through mappings `make` gives
+// (one per field: a nonlinear mapping records where its field last evaluated it). A constant load
+// comes up as Jᵀ F with J evaluated where the points are (under a RigidMapping: the force on the
+// centre and the torque r × F, r turning with the body), so it is a force field here too.
+void add_fields_through(SimulatedObject<double>& child, const std::function<std::unique_ptr<MechanicalMapping<double>>()>& make,
+                        SimulatedObject<double>& parent) {
+  auto& from = child.system;
+  auto fields = from.force_fields;
+  const auto points = std::make_shared<const TetMesh>(from.size(), std::vector<Tetrahedron>{});
+  for (const auto& load : from.constant_forces) {
+    fields.push_back(std::make_shared<ConstantForceField<double>>(points, load.indices, load.forces));
+  }
+  for (const auto& field : fields) {
+    parent.system.force_fields.push_back(std::make_shared<MappedForceField<double>>(field, make(), parent.system.size()));
+    parent.force_field_drawing.push_back({});
+  }
+}
+
 }  // namespace
 
 void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<double>& map, SimulatedObject<double>& parent,
@@ -129,27 +150,46 @@ void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<
     to.rigid_mapped_mass = std::move(mapped);
     to.update_mass();
   }
-  // Constant loads on carried points come up as Jᵀ F with J turning with the rigid (a force on the
-  // centre and the torque r × F): force fields on the carried points, like the others below.
-  auto fields = from.force_fields;
-  const auto carried = std::make_shared<const TetMesh>(from.size(), std::vector<Tetrahedron>{});
-  for (const auto& load : from.constant_forces) {
-    fields.push_back(std::make_shared<ConstantForceField<double>>(carried, load.indices, load.forces));
-  }
-  for (const auto& field : fields) {
-    to.force_fields.push_back(
-        std::make_shared<MappedForceField<double>>(field, std::make_unique<RigidPointMapping<double>>(points), to.size()));
-    parent.force_field_drawing.push_back({});
-  }
+  add_fields_through(child, [&] { return std::make_unique<RigidPointMapping<double>>(points); }, parent);
+  // A point below that mixes rigids, or whose weights do not sum to 1, reads the carried points
+  // themselves (`through`).
+  std::shared_ptr<const MechanicalMapping<double>> carried;
+  const auto follow = [&](auto& shown) {
+    if (shown.rigid || shown.through) return false;
+    shown.rigid = points.after(shown.map);
+    if (!shown.rigid) {
+      if (!carried) carried = std::make_shared<RigidPointMapping<double>>(points);
+      shown.through = carried;
+    }
+    return true;
+  };
   for (auto& surface : child.visual_surfaces) {
-    if (surface.rigid) continue;
-    surface.rigid = points.after(surface.map);
-    if (surface.rigid) parent.visual_surfaces.push_back(std::move(surface));
+    if (follow(surface)) parent.visual_surfaces.push_back(std::move(surface));
   }
   for (auto& state : child.mapped_states) {
-    if (state.rigid) continue;
-    state.rigid = points.after(state.map);
-    if (state.rigid) parent.mapped_states.push_back(std::move(state));
+    if (follow(state)) parent.mapped_states.push_back(std::move(state));
+  }
+  parent.boxes.insert(parent.boxes.end(), child.boxes.begin(), child.boxes.end());
+}
+
+void fold_multi_mapped_object(SimulatedObject<double>& child, const std::function<std::unique_ptr<MechanicalMapping<double>>()>& make,
+                              SimulatedObject<double>& parent, const std::string& where) {
+  std::shared_ptr<const MechanicalMapping<double>> through = make();
+  check_foldable(child, through->size(), "SubsetMultiMapping", where);
+  if (child.system.mass.size() != 0) {
+    throw make_error(where, ": a mass on a SubsetMultiMapping that joins points carried by rigid bodies and other points is ",
+                     "not supported: put the masses on its input states");
+  }
+  add_fields_through(child, make, parent);
+  for (auto& surface : child.visual_surfaces) {
+    if (surface.rigid || surface.through) continue;
+    surface.through = through;
+    parent.visual_surfaces.push_back(std::move(surface));
+  }
+  for (auto& state : child.mapped_states) {
+    if (state.rigid || state.through) continue;
+    state.through = through;
+    parent.mapped_states.push_back(std::move(state));
   }
   parent.boxes.insert(parent.boxes.end(), child.boxes.begin(), child.boxes.end());
 }

@@ -3,10 +3,13 @@
 // (scene_builder.cpp); design in docs/mechanical-graph.md.
 #pragma once
 
+#include "fastcorot/mapping/mechanical_mapping.h"
 #include "fastcorot/mapping/point_mapping.h"
 #include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/sim/simulation.h"
 
+#include <functional>
+#include <memory>
 #include <string>
 
 namespace fastcorot::scene_detail {
@@ -21,9 +24,18 @@ void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<doubl
 
 // The same for a mapped node under a RigidMapping (`points` carried by the parent's rigids): its
 // force fields act through the RigidMapping's Jᵀ; visual models and mapped states below it follow
-// when each of their points lies on one rigid. Throws fastcorot::Error for a mass or constant
-// load on the carried points (not folded yet), projective constraints, scripted changes.
+// when each of their points lies on one rigid. Its lumped mass joins the parent's RigidMappedMass
+// (recomputed each step). Throws fastcorot::Error for a mass matrix on the carried points,
+// projective constraints, scripted changes.
 void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<double>& points, SimulatedObject<double>& parent,
                               const std::string& where);
+
+// The same for the child of a SubsetMultiMapping whose points mix points carried by rigid bodies and
+// other points (`make` gives its mapping onto the parent's blocks, one per field): force fields and
+// constant loads act through that mapping's Jᵀ; visual models and mapped states below it read its
+// points (`through`). Throws fastcorot::Error for a mass on it, projective constraints, scripted
+// changes.
+void fold_multi_mapped_object(SimulatedObject<double>& child, const std::function<std::unique_ptr<MechanicalMapping<double>>()>& make,
+                              SimulatedObject<double>& parent, const std::string& where);
 
 }  // namespace fastcorot::scene_detail

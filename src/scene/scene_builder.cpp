@@ -17,6 +17,7 @@
 #include "spring_builders.h"
 #include "topology_change_processor.h"
 #include "mapped_mechanics.h"
+#include "subset_multi_mapping_builder.h"
 #include "rigid_builder.h"
 #include "visual_surface_builder.h"
 
@@ -51,6 +52,18 @@ bool is_mapped_node(const GraphNode& node) {
   }
   return false;
 }
+
+// A node whose state is a SubsetMultiMapping's child: its inputs may be several states.
+bool is_multi_mapped_node(const GraphNode& node) {
+  for (const auto& c : node.components) {
+    if (scene_detail::is_subset_multi_mapping(c->object->type)) return true;
+  }
+  return false;
+}
+
+// A node with a state and no mapping: the state is integrated by the solver above it, even below
+// a mapped node (SOFA's MeshSplittingEngine.scn, STLIB's rigidified objects).
+bool is_independent_node(const GraphNode& node) { return !node.of_category("state").empty() && !is_mapped_node(node); }
 
 // A node whose state only holds the points of a Mesh2PointTopologicalMapping (no mass, force or
 // constraint, no child node; SOFA's Mesh2PointTopologicalMapping.scn): nothing moves them.
@@ -141,13 +154,20 @@ class Builder {
   // Nodes taking part in the mechanics under a solver node: the node and its descendants, minus
   // mapped subtrees, which go to `mapped` (visual and collision models, mapped states, and mapped
   // nodes with mechanics of their own: add_mapped_mechanics).
-  void collect(GraphNode& node, std::vector<GraphNode*>& nodes, std::vector<GraphNode*>& mapped) {
+  // `solver_scope`: collecting for the solver's node (independent states below mapped nodes and
+  // multi-mapped nodes are gathered), else for a mapped node (they are left to the solver's pass).
+  void collect(GraphNode& node, std::vector<GraphNode*>& nodes, std::vector<GraphNode*>& mapped, bool solver_scope = true) {
     if (is_unloaded_point_set(node)) {
       // SOFA integrates this state with no mass and no force: its points stay where the mapping put them.
       info_.push_back(node.scene->location.to_string() + ": node " + node.path + ": the points of its " +
                       "Mesh2PointTopologicalMapping have no mass and no force: they stay put, as in SOFA (not simulated)");
       return;
     }
+    if (is_multi_mapped_node(node)) {
+      if (solver_scope) multi_mapped_.push_back(&node);
+      return;
+    }
+    if (!solver_scope && is_independent_node(node)) return;
     if (is_mapped_node(node)) {
       if (!node.of_category("constraint").empty()) {
         throw make_error(node.of_category("constraint").front()->where(),
@@ -160,16 +180,36 @@ class Builder {
       } else {
         mapped.push_back(&node);
       }
+      if (solver_scope) {
+        for (auto& child : node.children) collect_below_mapped(*child, nodes, mapped);
+      }
       return;
     }
     nodes.push_back(&node);
-    for (auto& child : node.children) collect(*child, nodes, mapped);
+    for (auto& child : node.children) collect(*child, nodes, mapped, solver_scope);
+  }
+
+  // Below a mapped node, what the solver integrates beside it: states with no mapping of their own
+  // (SOFA's solver integrates every independent state below it, wherever it sits) and the nodes of
+  // SubsetMultiMappings (their inputs may be anywhere in the solver's subtree).
+  void collect_below_mapped(GraphNode& node, std::vector<GraphNode*>& nodes, std::vector<GraphNode*>& mapped) {
+    if (is_multi_mapped_node(node)) {
+      multi_mapped_.push_back(&node);
+      for (auto& child : node.children) collect_below_mapped(*child, nodes, mapped);
+      return;
+    }
+    if (is_independent_node(node)) {
+      collect(node, nodes, mapped);
+      return;
+    }
+    for (auto& child : node.children) collect_below_mapped(*child, nodes, mapped);
   }
 
   // Force fields or a mass in the node or below it (a chain of mappings carries them up).
   static bool has_mechanics(const GraphNode& node) {
     if (!node.of_category("forcefield").empty() || !node.of_category("mass").empty()) return true;
     for (const auto& child : node.children) {
+      if (is_independent_node(*child) || is_multi_mapped_node(*child)) continue;
       if (has_mechanics(*child)) return true;
     }
     return false;
@@ -202,7 +242,7 @@ class Builder {
       mapped_state.map.apply(object.system.state.velocity, placed.velocity);
     }
     std::vector<GraphNode*> nodes{&node}, mapped;
-    for (auto& child : node.children) collect(*child, nodes, mapped);
+    for (auto& child : node.children) collect(*child, nodes, mapped, false);
     SimulatedObject<double> mapped_object = build_part(*states.front(), nodes, mapped, &placed);
     // Springs of the mapped nodes join points of the mapped state (object1 and object2 its own).
     scene_detail::add_interaction_springs(data_, nodes, {states.front()}, {0}, {mapped_object.system.size()}, mapped_object);
@@ -210,6 +250,54 @@ class Builder {
       scene_detail::fold_rigid_mapped_object(mapped_object, *mapped_state.rigid, object, where);
     } else {
       scene_detail::fold_mapped_object(mapped_object, mapped_state.map, object, where);
+    }
+  }
+
+  // A SubsetMultiMapping's node, once the solver's objects are merged: its state is built on the
+  // points the mapping gives it and folded into `object` (through a linear mapping, the rigid
+  // bodies' points, or the SubsetMultiMapping itself when its inputs mix both).
+  void add_multi_mapped_mechanics(GraphNode& node, const std::vector<Component*>& states, const std::vector<Index>& offsets,
+                                  const std::vector<Index>& sizes, SimulatedObject<double>& object) {
+    const std::string where = node.scene->location.to_string() + ": mapped node " + node.path;
+    const auto node_states = node.of_category("state");
+    if (node_states.size() != 1) {
+      throw make_error(where, " has ", node_states.size(), " MechanicalObjects: its SubsetMultiMapping needs exactly one to map to");
+    }
+    Component* multi = nullptr;
+    for (const auto& c : node.components) {
+      if (scene_detail::is_subset_multi_mapping(c->type())) multi = c.get();
+    }
+    const auto inputs = scene_detail::read_subset_multi_mapping(data_, node, *multi, states, offsets, sizes, object);
+    const auto mapping = inputs.mapping();
+    MechanicalState<double> placed;
+    placed.position.resize(mapping->size());
+    placed.velocity.resize(mapping->size());
+    mapping->positions(object.system.state.position, placed.position);
+    mapping->velocities(object.system.state.position, object.system.state.velocity, placed.velocity);
+    std::vector<GraphNode*> nodes{&node}, mapped;
+    for (auto& child : node.children) collect(*child, nodes, mapped, false);
+    Component& state = *node_states.front();
+    SimulatedObject<double> child = build_part(state, nodes, mapped, &placed);
+    scene_detail::add_interaction_springs(data_, nodes, {&state}, {0}, {child.system.size()}, child);
+    MappedState shown{node.path, state.sofa_name(), "SubsetMultiMapping", {}, {}, {}};
+    if (auto linear = inputs.linear()) {
+      shown.map = *linear;
+      object.mapped_states.push_back(std::move(shown));
+      scene_detail::fold_mapped_object(child, *linear, object, where);
+    } else if (auto carried = inputs.carried()) {
+      shown.rigid = *carried;
+      object.mapped_states.push_back(std::move(shown));
+      scene_detail::fold_rigid_mapped_object(child, *carried, object, where);
+    } else {
+      shown.map = PointMapping<double>::identity(mapping->size());
+      shown.through = inputs.mapping();
+      object.mapped_states.push_back(std::move(shown));
+      scene_detail::fold_multi_mapped_object(child, [&] { return inputs.mapping(); }, object, where);
+    }
+    try {
+      object.system.finalize();
+    } catch (const Error& error) {
+      throw error_at(where, error);
     }
   }
 
@@ -348,6 +436,7 @@ class Builder {
   void build_object(GraphNode& solver_node, Component& integrator) {
     std::vector<GraphNode*> nodes;
     mapped_.clear();
+    multi_mapped_.clear();
     collect(solver_node, nodes, mapped_);
     std::vector<Component*> states;
     for (GraphNode* node : nodes) {
@@ -400,6 +489,7 @@ class Builder {
         throw error_at(integrator.where(), error);
       }
     }
+    for (GraphNode* node : multi_mapped_) add_multi_mapped_mechanics(*node, states, offsets, sizes, object);
     add_attach_constraints(nodes, states, offsets, sizes, object.system);
     scene_detail::add_interaction_springs(data_, nodes, states, offsets, sizes, object);
     const Index n = object.system.size();
@@ -624,6 +714,7 @@ class Builder {
   std::vector<std::string> info_;
   std::vector<std::string> warnings_;
   std::vector<GraphNode*> mapped_;  // the mapped child nodes with visual models of the object being built
+  std::vector<GraphNode*> multi_mapped_;  // the nodes of its SubsetMultiMappings, in scene order
   SceneData data_;
   Simulation<double> simulation_;
   std::vector<const SceneObject*> states_;  // the (first) MechanicalObject of each simulated object

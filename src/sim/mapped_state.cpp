@@ -43,6 +43,12 @@ std::vector<StateSnapshot> state_snapshots(const SimulatedObject<double>& object
     if (mapped.rigid) {
       mapped.rigid->positions(state.position, snapshot.position);
       mapped.rigid->velocities(state.position, state.velocity, snapshot.velocity);
+    } else if (mapped.through) {
+      std::vector<Vec3<double>> x(mapped.through->size()), v(mapped.through->size());
+      mapped.through->positions(state.position, x);
+      mapped.through->velocities(state.position, state.velocity, v);
+      mapped.map.apply(x, snapshot.position);
+      mapped.map.apply(v, snapshot.velocity);
     } else {
       mapped.map.apply(state.position, snapshot.position);
       mapped.map.apply(state.velocity, snapshot.velocity);

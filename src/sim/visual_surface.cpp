@@ -9,6 +9,12 @@ std::vector<Vec3<double>> VisualSurface::points(std::span<const Vec3<double>> x)
     return out;
   }
   std::vector<Vec3<double>> out(map.size());
+  if (through) {
+    std::vector<Vec3<double>> inner(through->size());
+    through->positions(x, inner);
+    map.apply(inner, out);
+    return out;
+  }
   map.apply(x, out);
   return out;
 }

@@ -55,6 +55,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "Component/Topology/Container/Constant/MeshTopology.scn",
                       "Component/Mapping/Linear/BarycentricTetraMapping.scn", "Component/Mapping/Linear/SubsetMapping.scn",
                       "Component/Mapping/Linear/BarycentricMapping.scn", "Component/Engine/Select/SubsetTopology_subsetbehaviormodel.scn",
+                      "Component/Engine/Select/MeshSplittingEngine.scn",
                       "Component/Playback/WriteState.scn", "Component/Playback/CompareState.scn",
                       "Component/Collision/Geometry/SphereModel.scn",
                       "Component/ODESolver/Forward/EulerSymplecticSolver_diagonal.scn",

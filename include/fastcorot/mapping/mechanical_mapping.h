@@ -32,6 +32,8 @@ class MechanicalMapping {
   virtual void apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) = 0;
   // y = map(x) without recording (energies, outputs).
   virtual void positions(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) const = 0;
+  // v_y = J(x) v_x without recording (the velocities outputs show).
+  virtual void velocities(std::span<const Vec3<Real>> x, std::span<const Vec3<Real>> v, std::span<Vec3<Real>> y) const = 0;
   // dy = J dx (increments and velocities).
   virtual void apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const = 0;
   // parent += Jᵀ f.
@@ -50,6 +52,9 @@ class LinearMapping final : public MechanicalMapping<Real> {
   Index parent_extent() const override { return map_.parent_extent(); }
   void apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) override { map_.apply(x, y); }
   void positions(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) const override { map_.apply(x, y); }
+  void velocities(std::span<const Vec3<Real>>, std::span<const Vec3<Real>> v, std::span<Vec3<Real>> y) const override {
+    map_.apply(v, y);
+  }
   void apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const override { map_.apply(dx, dy); }
   void apply_jt(std::span<const Vec3<Real>> f, std::span<Vec3<Real>> parent) const override { map_.apply_jt(f, parent); }
   void row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const override;
@@ -67,6 +72,9 @@ class RigidPointMapping final : public MechanicalMapping<Real> {
   Index parent_extent() const override;
   void apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) override;
   void positions(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) const override { points_.positions(x, y); }
+  void velocities(std::span<const Vec3<Real>> x, std::span<const Vec3<Real>> v, std::span<Vec3<Real>> y) const override {
+    points_.velocities(x, v, y);
+  }
   void apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const override;
   void apply_jt(std::span<const Vec3<Real>> f, std::span<Vec3<Real>> parent) const override;
   void row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const override;
@@ -90,6 +98,7 @@ class StackedMapping final : public MechanicalMapping<Real> {
   Index parent_extent() const override;
   void apply(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) override;
   void positions(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) const override;
+  void velocities(std::span<const Vec3<Real>> x, std::span<const Vec3<Real>> v, std::span<Vec3<Real>> y) const override;
   void apply_j(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> dy) const override;
   void apply_jt(std::span<const Vec3<Real>> f, std::span<Vec3<Real>> parent) const override;
   void row_blocks(std::size_t i, std::vector<std::pair<Index, Mat3<Real>>>& out) const override;

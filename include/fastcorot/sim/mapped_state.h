@@ -3,7 +3,8 @@
 // one solver integrates several MechanicalObjects as one system); MappedState, a MechanicalObject
 // of a mapped child node (collision spheres or points, markers) whose positions and velocities
 // follow the object's through a linear mapping (x_m = J x, v_m = J v, as SOFA's mappings apply
-// them at the end of a step), or follow its rigid bodies (RigidMapping). Output only: mechanics
+// them at the end of a step), or follow its rigid bodies (RigidMapping), or follow a
+// SubsetMultiMapping's points. Output only: mechanics
 // on mapped states are folded into the object by the scene builder (docs/mechanical-graph.md).
 #pragma once
 
@@ -31,6 +32,8 @@ struct MappedState {
   std::string mapping;  // "BarycentricMapping (tetrahedra)", ... for messages and docs
   PointMapping<double> map;
   std::optional<RigidPoints<double>> rigid;  // under a RigidMapping (map is then unused)
+  // Below a SubsetMultiMapping: map reads the points `through` gives (VisualSurface::through).
+  std::shared_ptr<const MechanicalMapping<double>> through;
   std::size_t size() const { return rigid ? rigid->size() : map.size(); }
 };
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "fastcorot/core/types.h"
+#include "fastcorot/mapping/mechanical_mapping.h"
 #include "fastcorot/mapping/point_mapping.h"
 #include "fastcorot/mapping/rigid_points.h"
 
@@ -26,6 +27,9 @@ struct VisualSurface {
   PointMapping<double> map;
   // Set for a visual model under a RigidMapping: its points follow rigid bodies (map is unused).
   std::optional<RigidPoints<double>> rigid;
+  // Set for a visual model below a SubsetMultiMapping: map reads the points `through` gives (the
+  // multi-mapped state's), not the object's.
+  std::shared_ptr<const MechanicalMapping<double>> through;
 
   // The surface's points for the object's positions x.
   std::vector<Vec3<double>> points(std::span<const Vec3<double>> x) const;
