@@ -69,7 +69,7 @@ void check_foldable(const SimulatedObject<double>& child, std::size_t mapped_poi
     throw make_error(where, ": the ", mapping, " gives ", mapped_points, " points, the mapped MechanicalObject has ", from.size());
   }
   if (!from.fixed.empty() || !from.projections.empty() || !from.couplings.empty() || !from.placements.empty() ||
-      !from.motions.empty()) {
+      !from.motions.empty() || !from.linear_movements.empty()) {
     throw make_error(where, ": projective constraints on a mapped state are not supported (put them on the simulated object)");
   }
   if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");

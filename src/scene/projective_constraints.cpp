@@ -72,6 +72,36 @@ Vec3<double> patch_test_displacement(const std::vector<Vec3<double>>& k, const s
 
 }  // namespace
 
+LinearMovement<double> build_linear_movement(SceneData& data, Component& c, Index count, bool rigid) {
+  LinearMovement<double> movement;
+  for (Index i : constrained_points(data, c, count, false, {0})) {
+    movement.points.push_back(rigid ? 2 * i : i);
+    if (rigid) movement.rigids.push_back(i);
+  }
+  const Numbers& times = data.data(c, "keyTimes");
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    if (!std::isfinite(times[k])) throw make_error(c.where(), ": keyTimes: time ", k, " is not finite");
+    if (k > 0 && times[k] < times[k - 1]) {
+      throw make_error(c.where(), ": keyTimes: ", times[k], " after ", times[k - 1], ": key times must be in order (SOFA assumes it)");
+    }
+  }
+  movement.key_times.assign(times.begin(), times.end());
+  const std::size_t width = rigid ? 6 : 3;
+  // SOFA's default: one key at time 0 with no movement.
+  const Numbers values = c.has("movements") || times.size() != 1 ? data.data(c, "movements") : Numbers(width, 0.0);
+  if (values.size() != width * times.size()) {
+    throw make_error(c.where(), ": movements has ", values.size(), " numbers: ", times.size(), " key times need ", width * times.size(),
+                     " (", width, " per key", rigid ? ": the centre's movement and Euler angles" : "", ")");
+  }
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const double* v = values.data() + width * k;
+    movement.key_movements.emplace_back(v[0], v[1], v[2]);
+    if (rigid) movement.key_angles.emplace_back(v[3], v[4], v[5]);
+  }
+  movement.relative = data.boolean(c, "relativeMovements", true);
+  return movement;
+}
+
 bool is_partial_projective_constraint(std::string_view type) {
   return type == "PartialFixedProjectiveConstraint" || type == "FixedPlaneProjectiveConstraint" ||
          type == "PlaneProjectiveConstraint" || type == "LineProjectiveConstraint" ||

@@ -1,6 +1,7 @@
 // The projective constraints beyond FixedProjectiveConstraint, built onto an object's
 // MechanicalSystem as partial projections and end-of-step placements (mechanical_system.h):
-// PartialFixed-, FixedPlane-, Plane-, Line-, Point-, AffineMovement-, PatchTestMovement- and AttachProjectiveConstraint, each
+// PartialFixed-, FixedPlane-, Plane-, Line-, Point-, AffineMovement-, PatchTestMovement-, LinearMovement- and
+// AttachProjectiveConstraint, each
 // as SOFA defines it.
 // Internal to src/scene (scene_builder.cpp).
 #pragma once
@@ -16,6 +17,12 @@ bool is_partial_projective_constraint(std::string_view type);
 // Adds constraint c to `system` (whose positions are the state at init). Throws fastcorot::Error
 // naming c for an index out of range or a malformed attribute.
 void add_projective_constraint(SceneData& data, Component& c, MechanicalSystem<double>& system);
+
+// LinearMovementProjectiveConstraint c on a state of `count` points, or of `count` rigid bodies
+// (`rigid`: movements of 6 numbers, the centre's and Euler angles; the rigid k's centre is block
+// 2k). Throws fastcorot::Error naming c for an index out of range, key times not in order or not
+// finite, or a movement count that does not match them.
+LinearMovement<double> build_linear_movement(SceneData& data, Component& c, Index count, bool rigid);
 
 // FixedProjectiveConstraint c: its indices (SOFA's default: point 0; fixAll: every point) held,
 // their velocities zeroed after each step with activate_projectVelocity. Throws fastcorot::Error

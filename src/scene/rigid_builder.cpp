@@ -6,6 +6,7 @@
 #include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/state/rigid_mass.h"
 #include "force_field_builders.h"
+#include "projective_constraints.h"
 #include "spring_builders.h"
 
 #include <array>
@@ -252,6 +253,8 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
         }
       } else if (type == "PartialFixedProjectiveConstraint") {
         add_partial_fixed_rigids(data, *c, *blocks, system);
+      } else if (type == "LinearMovementProjectiveConstraint") {
+        system.linear_movements.push_back(build_linear_movement(data, *c, count, true));
       } else if (type == "ConstantForceField") {
         system.constant_forces.push_back(rigid_constant_force(data, info, *c, count));
       } else if (type == "RestShapeSpringsForceField") {
@@ -264,7 +267,7 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
       } else if (category == "forcefield" || category == "mass" || category == "constraint") {
         throw make_error(c->where(), ": ", type, " on the Rigid3 state ", state.where(),
                          ": not supported on rigid bodies yet (there: UniformMass, FixedProjectiveConstraint, ConstantForceField, "
-                         "PartialFixedProjectiveConstraint, RestShapeSpringsForceField, PlaneForceField)");
+                         "PartialFixedProjectiveConstraint, LinearMovementProjectiveConstraint, RestShapeSpringsForceField, PlaneForceField)");
       }
     }
   }

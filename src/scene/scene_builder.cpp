@@ -402,6 +402,9 @@ class Builder {
         }
         if (type == "FixedProjectiveConstraint") scene_detail::add_fixed_constraint(data_, *c, system);
         if (scene_detail::is_partial_projective_constraint(type)) scene_detail::add_projective_constraint(data_, *c, system);
+        if (type == "LinearMovementProjectiveConstraint") {
+          system.linear_movements.push_back(scene_detail::build_linear_movement(data_, *c, system.size(), false));
+        }
         if (type == "BoxROI") add_boxes(*c, object);
         if (type == "TopologicalChangeProcessor") {
           object.topology_scripts.push_back(build_topology_script(data_, *c, mesh_of(*c, system.size())));

@@ -219,7 +219,7 @@ std::shared_ptr<Distribution> distribute(SimulatedObject<double>& object) {
                        "run shares out one mesh");
     }
   }
-  if (!system.projections.empty() || !system.couplings.empty() || !system.motions.empty()) {
+  if (!system.projections.empty() || !system.couplings.empty() || !system.motions.empty() || !system.linear_movements.empty()) {
     throw make_error(name, ": partial, attached or moving projective constraints are not supported in a distributed run");
   }
   if (!object.topology_scripts.empty()) throw make_error(name, ": topological changes are not supported in a distributed run");

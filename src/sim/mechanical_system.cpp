@@ -183,6 +183,7 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
   std::vector<bool> is_fixed(static_cast<std::size_t>(size()), false);
   std::vector<Index> held = fixed;
   held.insert(held.end(), isolated.begin(), isolated.end());
+  held.insert(held.end(), moving.begin(), moving.end());
   for (Index i : held) is_fixed[static_cast<std::size_t>(i)] = true;
   auto& triplets = sink.triplets;
   triplets.erase(std::remove_if(triplets.begin(), triplets.end(),
@@ -285,8 +286,9 @@ void MechanicalSystem<Real>::diagonal_blocks(const MatrixFactors<Real>& factors,
     Mat3<Real>& block = blocks[static_cast<std::size_t>(p.point)];
     block = (p.projector * block * p.projector + (Mat3<Real>::Identity() - p.projector)).eval();
   }
-  for (Index i : fixed) blocks[static_cast<std::size_t>(i)].setIdentity();
-  for (Index i : isolated) blocks[static_cast<std::size_t>(i)].setIdentity();
+  for (const auto* held : {&fixed, &isolated, &moving}) {
+    for (Index i : *held) blocks[static_cast<std::size_t>(i)].setIdentity();
+  }
 }
 
 template <class Real>
@@ -306,8 +308,16 @@ void MechanicalSystem<Real>::project(std::span<Vec3<Real>> v) const {
     Vec3<Real>& entry = v[static_cast<std::size_t>(p.point)];
     entry = (p.projector * entry).eval();
   }
-  for (Index i : fixed) v[static_cast<std::size_t>(i)].setZero();
-  for (Index i : isolated) v[static_cast<std::size_t>(i)].setZero();
+  for (const auto* held : {&fixed, &isolated, &moving}) {
+    for (Index i : *held) v[static_cast<std::size_t>(i)].setZero();
+  }
+}
+
+template <class Real>
+void MechanicalSystem<Real>::begin_step(double time) {
+  if (linear_movements.empty()) return;
+  moving.clear();
+  for (const auto& movement : linear_movements) movement.held(time, moving);
 }
 
 template <class Real>
@@ -337,6 +347,7 @@ void MechanicalSystem<Real>::apply_placements(double time) {
     }
     state.velocity[i].setZero();
   }
+  for (auto& movement : linear_movements) movement.apply(time, state, rigids.get());
 }
 
 template <class Real>

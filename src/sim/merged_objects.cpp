@@ -150,6 +150,11 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
     }
     for (auto p : s.placements) system.placements.push_back({shift(p.point), p.projector, p.origin, p.velocity_projector});
     for (auto m : s.motions) system.motions.push_back({shift(m.point), m.start, m.end, m.begin_time, m.end_time});
+    for (auto movement : s.linear_movements) {
+      for (Index& p : movement.points) p = shift(p);
+      for (Index& k : movement.rigids) k += static_cast<Index>(rigid_offset);
+      system.linear_movements.push_back(std::move(movement));
+    }
     merged.force_field_drawing.insert(merged.force_field_drawing.end(), part.force_field_drawing.begin(), part.force_field_drawing.end());
     merged.boxes.insert(merged.boxes.end(), part.boxes.begin(), part.boxes.end());
     for (auto range : part.states) {

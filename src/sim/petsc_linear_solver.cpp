@@ -111,9 +111,10 @@ struct PetscLinearSolver::Impl {
 
   static std::vector<Index> key_of(const MechanicalSystem<double>& system) {
     std::vector<Index> key{system.size(), static_cast<Index>(system.fixed.size()),
-                           static_cast<Index>(system.isolated.size())};
+                           static_cast<Index>(system.isolated.size()), static_cast<Index>(system.moving.size())};
     key.insert(key.end(), system.fixed.begin(), system.fixed.end());
     key.insert(key.end(), system.isolated.begin(), system.isolated.end());
+    key.insert(key.end(), system.moving.begin(), system.moving.end());
     for (const auto& field : system.force_fields) key.push_back(field->mesh().num_tetrahedra());
     return key;
   }
@@ -174,7 +175,7 @@ struct PetscLinearSolver::Impl {
       const std::span<const Vec3<double>> dx(reinterpret_cast<const Vec3<double>*>(x), static_cast<std::size_t>(owned));
       const std::span<Vec3<double>> df(reinterpret_cast<Vec3<double>*>(y), static_cast<std::size_t>(owned));
       system->multiply(*factors, dx, df);
-      for (const auto* points : {&system->fixed, &system->isolated}) {
+      for (const auto* points : {&system->fixed, &system->isolated, &system->moving}) {
         for (Index i : *points) df[static_cast<std::size_t>(i)] = dx[static_cast<std::size_t>(i)];
       }
     } else {

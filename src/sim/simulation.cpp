@@ -76,6 +76,7 @@ StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number,
   const Real time = static_cast<Real>(step_number) * dt;
   try {
     object.system.update_mass();
+    object.system.begin_step(clock);
     report = object.ode_solver->step(object.system, *object.linear_solver, dt);
   } catch (const Error& error) {
     throw Error(

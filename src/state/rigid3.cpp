@@ -182,6 +182,29 @@ std::vector<double> rigid_deriv_values(std::span<const Vec3<Real>> blocks) {
   return values;
 }
 
+template <class Real>
+Eigen::Quaternion<Real> quaternion_from_euler(const Vec3<Real>& v) {
+  const Real c1 = std::cos(v[0] / 2), c2 = std::cos(v[1] / 2), c3 = std::cos(v[2] / 2);
+  const Real s1 = std::sin(v[0] / 2), s2 = std::sin(v[1] / 2), s3 = std::sin(v[2] / 2);
+  return quaternion_xyzw<Real>(s1 * c2 * c3 - c1 * s2 * s3, c1 * s2 * c3 + s1 * c2 * s3, c1 * c2 * s3 - s1 * s2 * c3,
+                               c1 * c2 * c3 + s1 * s2 * s3);
+}
+
+template <class Real>
+Eigen::Quaternion<Real> slerp2(const Eigen::Quaternion<Real>& a, const Eigen::Quaternion<Real>& b, Real t) {
+  const Real cos_half = a.w() * b.w() + a.x() * b.x() + a.y() * b.y() + a.z() * b.z();
+  if (std::abs(cos_half) >= 1.0) return a;
+  const Real half = std::acos(cos_half);
+  const Real sin_half = static_cast<Real>(std::sqrt(1.0 - cos_half * cos_half));
+  Real ratio_a = 0.5, ratio_b = 0.5;
+  if (!(std::abs(sin_half) < 0.001)) {
+    ratio_a = std::sin((1 - t) * half) / sin_half;
+    ratio_b = std::sin(t * half) / sin_half;
+  }
+  return quaternion_xyzw<Real>(a.x() * ratio_a + b.x() * ratio_b, a.y() * ratio_a + b.y() * ratio_b,
+                               a.z() * ratio_a + b.z() * ratio_b, a.w() * ratio_a + b.w() * ratio_b);
+}
+
 #define FASTCOROT_INSTANTIATE(Real)                                                                        \
   template struct RigidCoord<Real>;                                                                        \
   template Eigen::Quaternion<Real> quaternion_product(const Eigen::Quaternion<Real>&,                      \
@@ -189,6 +212,8 @@ std::vector<double> rigid_deriv_values(std::span<const Vec3<Real>> blocks) {
   template void normalize_as_sofa(Eigen::Quaternion<Real>&);                                               \
   template Eigen::Quaternion<Real> quaternion_inverse(const Eigen::Quaternion<Real>&);                     \
   template void quaternion_to_axis(const Eigen::Quaternion<Real>&, Vec3<Real>&, Real&);                  \
+  template Eigen::Quaternion<Real> quaternion_from_euler(const Vec3<Real>&);                               \
+  template Eigen::Quaternion<Real> slerp2(const Eigen::Quaternion<Real>&, const Eigen::Quaternion<Real>&, Real); \
   template void integrate(RigidCoord<Real>&, const Vec3<Real>&, const Vec3<Real>&);                        \
   template std::vector<RigidCoord<Real>> parse_rigid_coords(std::span<const double>, const std::string&);  \
   template std::vector<double> to_values(std::span<const RigidCoord<Real>>);                               \

@@ -9,6 +9,7 @@
 #include "fastcorot/core/phase_times.h"
 #include "fastcorot/core/types.h"
 #include "fastcorot/fem/force_field.h"
+#include "fastcorot/sim/linear_movement.h"
 #include "fastcorot/sim/mass.h"
 #include "fastcorot/sim/mechanical_state.h"
 #include "fastcorot/sim/rigid_mapped_mass.h"
@@ -118,6 +119,10 @@ class MechanicalSystem {
   // End-of-step placements, applied in the order given after the couplings' (apply_placements).
   std::vector<PointPlacement<Real>> placements;
   std::vector<PointMotion<Real>> motions;  // applied after the placements
+  // LinearMovementProjectiveConstraints, applied after the motions; while one moves its points
+  // (begin_step), they are held like fixed points (`moving`).
+  std::vector<LinearMovement<Real>> linear_movements;
+  std::vector<Index> moving;
   std::vector<ConstantForce<Real>> constant_forces;
   Vec3<Real> gravity = Vec3<Real>::Zero();
   // Points that lost their last tetrahedron and have no mass (cutting): nothing determines their
@@ -171,12 +176,14 @@ class MechanicalSystem {
   // zero when no element joins them, as between two objects).
   void diagonal_blocks(const MatrixFactors<Real>& factors, std::span<Mat3<Real>> blocks) const;
 
-  // Applies the couplings and the partial projections and zeroes the entries of fixed and isolated
-  // points (SOFA's projectResponse).
+  // Applies the couplings and the partial projections and zeroes the entries of fixed, isolated
+  // and moving points (SOFA's projectResponse).
   void project(std::span<Vec3<Real>> v) const;
   // SOFA's projectPosition and projectVelocity after the step that started at `time` (SOFA's
-  // context time): the couplings, the placements, then the motions, on the state.
+  // context time): the couplings, the placements, the motions, then the linear movements, on the state.
   void apply_placements(double time = 0);
+  // Before the step that starts at `time`: the points the linear movements hold during it (`moving`).
+  void begin_step(double time);
 
   // Topological changes of `mesh` (the mesh of one or more of the force fields, or of the mass):
   // the mesh changes, and the force fields and the mass on it follow, at a cost proportional to

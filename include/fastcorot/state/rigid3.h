@@ -69,6 +69,16 @@ Eigen::Quaternion<Real> quaternion_inverse(const Eigen::Quaternion<Real>& q);
 template <class Real>
 void quaternion_to_axis(const Eigen::Quaternion<Real>& q, Vec3<Real>& axis, Real& angle);
 
+// SOFA's Quat::createQuaterFromEuler with its default order (EulerOrder::ZYX): the quaternion of
+// the Euler angles v (radians), terms as SOFA writes them.
+template <class Real>
+Eigen::Quaternion<Real> quaternion_from_euler(const Vec3<Real>& v);
+
+// SOFA's Quat::slerp2: from a (t = 0) to b (t = 1) along the great arc, with no shortest-path flip;
+// a when |a·b| >= 1, the halfway sum when the arc's sine is below 0.001. Not normalised.
+template <class Real>
+Eigen::Quaternion<Real> slerp2(const Eigen::Quaternion<Real>& a, const Eigen::Quaternion<Real>& b, Real t);
+
 // SOFA's RigidCoord `x += dx` for a displacement (dlinear, dangular) in the world frame:
 // center += dlinear; q ← e ⊗ q with e = exp(dangular / 2) = (sin θ/θ · dangular/2, cos θ),
 // θ = |dangular/2|; when θ < machine epsilon of Real, e = (dangular/2, 1) normalised
