@@ -73,6 +73,7 @@ class Object:
         object.__setattr__(self, "_location", location)
         object.__setattr__(self, "_data", {})
         object.__setattr__(self, "_binding", None)  # (SimulationCore, object index) once simulated
+        object.__setattr__(self, "_mapped", None)  # (SimulationCore, state key): a mapped state once simulated
         object.__setattr__(self, "_strict", strict)  # False: unknown attributes are warnings, as SOFA's
         if check:
             self._check(list(attributes))
@@ -163,6 +164,12 @@ class Object:
                     return core.velocity(k)[start:stop].reshape(-1, 6)
                 return core.rigid_rest_position(k, start, stop) if name == "rest_position" else core.rigid_position(k, start, stop)
             return getattr(core, name)(k)[start:stop]
+        if self._mapped is not None and name in ("position", "velocity"):
+            # A mapped MechanicalObject: what its mapping gives at the current step (a copy).
+            core, key = self._mapped
+            array = core.states()[key][name]
+            array.flags.writeable = False
+            return array
         if self._binding is not None and name in _VON_MISES:
             core, k = self._binding[:2]
             return core.von_mises_stress(k, name == "vonMisesPerNode")

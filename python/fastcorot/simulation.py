@@ -39,10 +39,20 @@ class Simulation:
             object.__setattr__(node, "_core", None)
             for obj in node._objects:
                 object.__setattr__(obj, "_binding", None)
+                object.__setattr__(obj, "_mapped", None)
         # Each MechanicalObject views its range of its simulated object's state (several objects
         # under one solver are one state, theirs one after the other).
         for rank, k, offset, size in core.state_parts:
             object.__setattr__(objects[rank], "_binding", (core, k, offset, offset + size))
+        # A mapped MechanicalObject with a name reads what its mapping gives (the states' key is
+        # "node path/object name").
+        mapped = {key for key, entry in core.states().items() if entry["mapped"]}
+        for node in walk(root):
+            for obj in node._objects:
+                name = obj._data.get("name")
+                key = f"{node.path}/{name}"
+                if obj.type == "MechanicalObject" and obj._binding is None and isinstance(name, str) and key in mapped:
+                    object.__setattr__(obj, "_mapped", (core, key))
         # Force fields cut the object whose state is in their node or the nearest node above.
         bound = {id(objects[rank]): k for rank, k, _, _ in core.state_parts}
 

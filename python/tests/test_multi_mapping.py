@@ -1,0 +1,78 @@
+"""SubsetMultiMapping built from Python as STLIB's rigidified objects build it: a beam whose end is
+carried by a fixed rigid body and whose rest is free, one TetrahedronFEMForceField on the joined
+state (input given as a list of link paths). It moves as the same beam with its end fixed."""
+
+import numpy as np
+
+import Sofa
+import Sofa.Core
+import Sofa.Simulation
+
+LENGTH = 4  # points along x: LENGTH x 2 x 2
+
+
+def beam():
+    points = [[i, 0.5 * j, 0.5 * k] for i in range(LENGTH) for j in range(2) for k in range(2)]
+    tetrahedra = []
+    for i in range(LENGTH - 1):
+        def corner(bits):
+            return (i + (bits & 1)) * 4 + ((bits >> 1) & 1) * 2 + ((bits >> 2) & 1)
+        for a, b in ((1, 2), (1, 4), (2, 1), (2, 4), (4, 1), (4, 2)):
+            tetrahedra.append([corner(0), corner(a), corner(a | b), corner(7)])
+    return points, tetrahedra
+
+
+def solvers(node):
+    node.addObject("EulerImplicitSolver", rayleighStiffness=0.1, rayleighMass=0)
+    node.addObject("SparseLDLSolver")
+
+
+def whole_beam():
+    points, tetrahedra = beam()
+    root = Sofa.Core.Node("root")
+    root.dt = 0.01
+    solvers(root)
+    root.addObject("MeshTopology", name="mesh", position=points, tetrahedra=tetrahedra)
+    root.addObject("MechanicalObject", name="dofs", position=points)
+    root.addObject("UniformMass", vertexMass=0.1)
+    root.addObject("FixedProjectiveConstraint", indices=[0, 1, 2, 3])
+    root.addObject("TetrahedronFEMForceField", youngModulus=2000, poissonRatio=0.3)
+    return root, root.dofs
+
+
+def rigidified_beam():
+    points, tetrahedra = beam()
+    root = Sofa.Core.Node("root")
+    root.dt = 0.01
+    solvers(root)
+    frame = root.addChild("frame")
+    frame.addObject("MechanicalObject", name="dofs", template="Rigid3", position=[0.2, 0.1, 0, 0, 0, 0, 1])
+    frame.addObject("UniformMass", totalMass=1)
+    frame.addObject("FixedProjectiveConstraint", indices=[0])
+    carried = frame.addChild("carried")
+    carried.addObject("MechanicalObject", name="dofs", position=points[:4])
+    carried.addObject("RigidMapping", globalToLocalCoords=True)
+    free = root.addChild("free")
+    free.addObject("MechanicalObject", name="dofs", position=points[4:])
+    free.addObject("UniformMass", vertexMass=0.1)
+    joined = free.addChild("joined")
+    joined.addObject("MeshTopology", position=points, tetrahedra=tetrahedra)
+    joined.addObject("MechanicalObject", name="dofs")
+    pairs = [[0, i] for i in range(4)] + [[1, i] for i in range(len(points) - 4)]
+    joined.addObject("SubsetMultiMapping", input=[carried.dofs.getLinkPath(), free.dofs.getLinkPath()],
+                     output=joined.dofs.getLinkPath(), indexPairs=pairs)
+    joined.addObject("TetrahedronFEMForceField", youngModulus=2000, poissonRatio=0.3)
+    return root, joined.dofs
+
+
+def test_a_beam_carried_by_a_fixed_rigid_at_one_end_moves_as_the_beam_fixed_there():
+    results = []
+    for build in (whole_beam, rigidified_beam):
+        root, dofs = build()
+        Sofa.Simulation.init(root)
+        start = np.array(dofs.position.value)
+        for _ in range(30):
+            Sofa.Simulation.animate(root, root.dt.value)
+        results.append(np.array(dofs.position.value))
+        assert np.abs(results[-1] - start).max() > 0.01  # it sags
+    np.testing.assert_allclose(results[1], results[0], rtol=0, atol=1e-10)
