@@ -8,6 +8,8 @@
 #include "fastcorot/sim/rigid_mapped_mass.h"
 #include "fastcorot/fem/spring_force_field.h"
 
+#include "../support/block_vectors.h"
+
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -40,19 +42,8 @@ struct Rigids {
   }
 };
 
-std::vector<V3> random_vectors(std::size_t n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<V3> v(n);
-  for (auto& p : v) p = V3(u(rng), u(rng), u(rng));
-  return v;
-}
-
-double dot(const std::vector<V3>& a, const std::vector<V3>& b) {
-  double s = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) s += a[i].dot(b[i]);
-  return s;
-}
+using testing::dot;
+using testing::random_vectors;
 
 TEST(RigidPointMapping, JacobianIsTheDerivativeOfApply) {
   Rigids r;

@@ -7,6 +7,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include "../support/block_vectors.h"
+
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -51,19 +53,8 @@ struct System {
   static inline const std::vector<std::pair<std::size_t, Index>> kPairs{{1, 0}, {0, 2}, {2, 0}, {1, 2}, {0, 3}, {1, 1}, {2, 1}, {0, 0}};
 };
 
-std::vector<V3> random_vectors(std::size_t n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::vector<V3> v(n);
-  for (auto& p : v) p = V3(u(rng), u(rng), u(rng));
-  return v;
-}
-
-double dot(const std::vector<V3>& a, const std::vector<V3>& b) {
-  double s = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) s += a[i].dot(b[i]);
-  return s;
-}
+using testing::dot;
+using testing::random_vectors;
 
 TEST(SubsetMultiMapping, EachPointIsThePickedPointOfItsInput) {
   System s;
