@@ -4,6 +4,7 @@
 #include "fastcorot/fem/constant_force_field.h"
 #include "fastcorot/mapping/mapped_force_field.h"
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 
@@ -94,6 +95,17 @@ void add_fields_through(SimulatedObject<double>& child, const std::function<std:
 }
 
 }  // namespace
+
+void check_mapped_points_inside(const MappedState& mapped, const std::string& where) {
+  if (mapped.rigid || !mapped.mapping.starts_with("BarycentricMapping (tetrahedra")) return;
+  for (std::size_t i = 0; i < mapped.map.size(); ++i) {
+    const auto& w = mapped.map.weights[i];
+    if (std::min({w[0], w[1], w[2], w[3]}) >= -1) continue;
+    throw make_error(where, ": point ", i, " of its MechanicalObject lies outside every tetrahedron, farther than the ",
+                     "nearest one's size (barycentric coordinates ", w[0], " ", w[1], " ", w[2], " ", w[3],
+                     "): forces on it would act through weights beyond the mesh; move it inside the mesh");
+  }
+}
 
 void fold_mapped_object(SimulatedObject<double>& child, const PointMapping<double>& map, SimulatedObject<double>& parent,
                         const std::string& where) {

@@ -14,6 +14,13 @@
 
 namespace fastcorot::scene_detail {
 
+// A mapped state with mechanics (`mapped`, its mapping onto tetrahedra): throws fastcorot::Error
+// naming `where` and the point when a point lies outside every tetrahedron by more than the size
+// of the one it is extrapolated from (a barycentric coordinate below -1). SOFA extrapolates such
+// points silently; forces there would be carried up with weights beyond the mesh. Points near the
+// surface, inside or slightly outside (as surfaces drawn over coarse meshes are), pass.
+void check_mapped_points_inside(const MappedState& mapped, const std::string& where);
+
 // Makes `child` (built on the mapped state y = J x of `parent`'s points) act on `parent`: its force
 // fields through Jᵀ (MappedForceField), its mass as Jᵀ M J (weighing Jᵀ m g), its constant loads as
 // Jᵀ f; its visual models and mapped states follow the chain. `where` names the mapped node in

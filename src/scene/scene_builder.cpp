@@ -231,6 +231,7 @@ class Builder {
                        "(IdentityMapping, SubsetMapping, BarycentricMapping, RigidMapping)");
     }
     const MappedState mapped_state = object.mapped_states.back();
+    scene_detail::check_mapped_points_inside(mapped_state, where);
     MechanicalState<double> placed;
     placed.position.resize(mapped_state.size());
     placed.velocity.resize(mapped_state.size());

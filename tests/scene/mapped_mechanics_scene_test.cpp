@@ -110,5 +110,21 @@ TEST(MappedMechanicsScene, WhatAMappedNodeCannotCarryIsRefusedInOneLine) {
   EXPECT_EQ(far.find('\n'), std::string::npos) << far;
 }
 
+TEST(MappedMechanicsScene, AMechanicalPointFarOutsideEveryTetrahedronIsRefusedAndOneNearTheSurfaceIsNot) {
+  // One tetrahedron; springs between a point inside and `second` on a barycentrically mapped state.
+  const auto scene = [](const std::string& second) {
+    return "<Node name=\"tet\"><EulerImplicitSolver/><CGLinearSolver iterations=\"50\" tolerance=\"1e-12\" threshold=\"1e-12\"/>"
+           "<MeshTopology name=\"mesh\" position=\"0 0 0  1 0 0  0 1 0  0 0 1\" tetrahedra=\"0 1 2 3\"/>"
+           "<MechanicalObject name=\"dofs\"/><UniformMass totalMass=\"1\"/><FixedProjectiveConstraint indices=\"0 1 2\"/>"
+           "<TetrahedronFEMForceField youngModulus=\"100\" poissonRatio=\"0.3\"/>"
+           "<Node name=\"marks\"><MechanicalObject name=\"marks\" position=\"0.2 0.2 0.2  " + second + "\"/>"
+           "<SpringForceField spring=\"0 1 100 0 0.3\"/><BarycentricMapping/></Node></Node>";
+  };
+  EXPECT_EQ(scene_error(scene("0.5 0.5 0.1")), "");  // just outside the slanted face: extrapolated, as in SOFA
+  const std::string far = scene_error(scene("3 3 3"));
+  EXPECT_NE(far.find("mapped node root/tet/marks: point 1 of its MechanicalObject lies outside every tetrahedron"), std::string::npos) << far;
+  EXPECT_EQ(far.find('\n'), std::string::npos) << far;
+}
+
 }  // namespace
 }  // namespace fastcorot
