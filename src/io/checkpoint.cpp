@@ -259,12 +259,6 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
                      " objects");
   }
   for (const auto& object : simulation.objects) {
-    for (const auto& movement : object.system.linear_movements) {
-      if (movement.started) {
-        throw make_error(path.string(), ": not written: ", object.path, "'s LinearMovementProjectiveConstraint carries the ",
-                         "positions its movements start from, which checkpoints do not save");
-      }
-    }
     for (const auto& field : object.system.force_fields) {
       if (const std::string unsaved = field->unsaved_state(); !unsaved.empty()) {
         throw make_error(path.string(), ": not written: ", object.path, "'s ", field->component(), " carries ", unsaved,

@@ -53,16 +53,19 @@ void SubsetMultiMapping<Real>::apply(std::span<const Vec3<Real>> x, std::span<Ve
   pick(y);
 }
 
+// (Outputs may ask from several threads: these two use a buffer of their own.)
 template <class Real>
 void SubsetMultiMapping<Real>::positions(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> y) const {
-  inputs_.positions(x, stacked_);
-  pick(y);
+  std::vector<Vec3<Real>> stacked(inputs_.size());
+  inputs_.positions(x, stacked);
+  for (std::size_t i = 0; i < picked_.size(); ++i) y[i] = stacked[picked_[i]];
 }
 
 template <class Real>
 void SubsetMultiMapping<Real>::velocities(std::span<const Vec3<Real>> x, std::span<const Vec3<Real>> v, std::span<Vec3<Real>> y) const {
-  inputs_.velocities(x, v, stacked_);
-  pick(y);
+  std::vector<Vec3<Real>> stacked(inputs_.size());
+  inputs_.velocities(x, v, stacked);
+  for (std::size_t i = 0; i < picked_.size(); ++i) y[i] = stacked[picked_[i]];
 }
 
 template <class Real>

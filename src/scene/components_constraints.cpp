@@ -51,7 +51,7 @@ std::vector<ComponentSpec> constraint_components() {
        {{"indices", "indices", "0", "the moved points (rigid bodies)"},
         {"keyTimes", "reals", "0", "the key times, in order"},
         {"movements", "reals", "0 0 0", "one movement per key time: 3 numbers (a rigid body: 6, the centre's movement and Euler angles in radians)"},
-        {"relativeMovements", "bool", "true", "movements from the positions after the first step (else absolute positions)"},
+        {"relativeMovements", "bool", "true", "movements from the positions at init (else absolute positions)"},
         {"showMovement", "bool", "false", "accepted (display)"},
         {"topology", "link", "", "accepted"}}},
       {"PatchTestMovementProjectiveConstraint", "constraint", "Moves points from where they start by the corners' movements interpolated (bi- or trilinearly, SOFA's weights from its corners of constrainedPoints), linearly between beginConstraintTime and endConstraintTime (their increments and velocities projected to zero).",

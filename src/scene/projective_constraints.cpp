@@ -93,6 +93,9 @@ LinearMovement<double> build_linear_movement(SceneData& data, Component& c, Inde
     throw make_error(c.where(), ": movements has ", values.size(), " numbers: ", times.size(), " key times need ", width * times.size(),
                      " (", width, " per key", rigid ? ": the centre's movement and Euler angles" : "", ")");
   }
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    if (!std::isfinite(values[k])) throw make_error(c.where(), ": movements: number ", k, " is not finite");
+  }
   for (std::size_t k = 0; k < times.size(); ++k) {
     const double* v = values.data() + width * k;
     movement.key_movements.emplace_back(v[0], v[1], v[2]);

@@ -103,6 +103,9 @@ class Builder {
       }
     }
     visit(data_.root(), false);
+    // SOFA's init ends with the projective constraints' projectPosition and projectVelocity at time
+    // 0 (Simulation.cpp, initNode): a LinearMovement records x0 there and starts its movement.
+    for (auto& object : simulation_.objects) object.system.apply_placements(0.0);
     if (simulation_.objects.empty() && !allow_empty_) {
       throw make_error(root.location.file.string(), ": the scene has no node with an ODE solver "
                        "(EulerImplicitSolver, StaticSolver, ...) and a MechanicalObject: nothing to simulate");
@@ -164,7 +167,7 @@ class Builder {
       return;
     }
     if (is_multi_mapped_node(node)) {
-      if (solver_scope) multi_mapped_.push_back(&node);
+      if (solver_scope) collect_below_mapped(node, nodes, mapped);
       return;
     }
     if (!solver_scope && is_independent_node(node)) return;

@@ -132,7 +132,12 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
             if (states[k] == &state) return SpringSide{k, nullptr};
           }
           for (const MappedState& mapped : object.mapped_states) {
-            if (mapped.node == state.node->path && mapped.name == state.sofa_name()) return SpringSide{0, &mapped};
+            if (mapped.node != state.node->path || mapped.name != state.sofa_name()) continue;
+            if (mapped.through) {
+              throw make_error(name, " ", state.where(), " is below a SubsetMultiMapping or follows several rigid bodies: ",
+                               "springs on it are not supported (put them in the mapped node, on its own points)");
+            }
+            return SpringSide{0, &mapped};
           }
           throw make_error(name, " ", state.where(), " is not integrated by this spring's ODE solver "
                            "(springs between objects of different solvers are not supported)");

@@ -16,6 +16,7 @@ inline std::vector<bool> held_points(const MechanicalSystem<double>& system) {
   std::vector<bool> held(static_cast<std::size_t>(system.size()), false);
   for (Index i : system.fixed) held[static_cast<std::size_t>(i)] = true;
   for (Index i : system.isolated) held[static_cast<std::size_t>(i)] = true;
+  for (Index i : system.moving) held[static_cast<std::size_t>(i)] = true;
   return held;
 }
 

@@ -45,8 +45,10 @@ std::vector<StateSnapshot> state_snapshots(const SimulatedObject<double>& object
       mapped.rigid->velocities(state.position, state.velocity, snapshot.velocity);
     } else if (mapped.through) {
       std::vector<Vec3<double>> x(mapped.through->size()), v(mapped.through->size());
-      mapped.through->positions(state.position, x);
-      mapped.through->velocities(state.position, state.velocity, v);
+      const auto first = static_cast<std::size_t>(mapped.through_offset);
+      const std::span<const Vec3<double>> positions(state.position), velocities(state.velocity);
+      mapped.through->positions(positions.subspan(first), x);
+      mapped.through->velocities(positions.subspan(first), velocities.subspan(first), v);
       mapped.map.apply(x, snapshot.position);
       mapped.map.apply(v, snapshot.velocity);
     } else {

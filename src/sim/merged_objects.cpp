@@ -161,18 +161,24 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
       range.offset = shift(range.offset);
       merged.states.push_back(std::move(range));
     }
-    for (auto mapped : part.mapped_states) {
-      for (auto& slots : mapped.map.vertices) {
+    // A map reads the object's points, or, with `through`, the points `through` gives from the
+    // part's own blocks (its own RigidBlocks follow the merged ones): then the part's offset moves.
+    const auto follow = [&](auto& shown) {
+      if (shown.through) {
+        shown.through_offset = shift(shown.through_offset);
+        return;
+      }
+      for (auto& slots : shown.map.vertices) {
         for (Index& v : slots) v = shift(v);
       }
-      if (mapped.rigid) repoint(*mapped.rigid);
+      if (shown.rigid) repoint(*shown.rigid);
+    };
+    for (auto mapped : part.mapped_states) {
+      follow(mapped);
       merged.mapped_states.push_back(std::move(mapped));
     }
     for (auto surface : part.visual_surfaces) {
-      for (auto& slots : surface.map.vertices) {
-        for (Index& v : slots) v = shift(v);
-      }
-      if (surface.rigid) repoint(*surface.rigid);
+      follow(surface);
       merged.visual_surfaces.push_back(std::move(surface));
     }
     if (part.mesh) {

@@ -11,7 +11,7 @@ std::vector<Vec3<double>> VisualSurface::points(std::span<const Vec3<double>> x)
   std::vector<Vec3<double>> out(map.size());
   if (through) {
     std::vector<Vec3<double>> inner(through->size());
-    through->positions(x, inner);
+    through->positions(x.subspan(static_cast<std::size_t>(through_offset)), inner);
     map.apply(inner, out);
     return out;
   }

@@ -10,7 +10,9 @@
 // - PartialFixedProjectiveConstraint holds the chosen of a rigid's six directions;
 // - a ConstantForceField on carried points pushes and turns the rigid through Jᵀ;
 // - a SpringForceField with a mapped end (a carried point, an IdentityMapping's point) acts
-//   through that end's mapping.
+//   through that end's mapping;
+// - a state mapped barycentrically onto points two rigids carry (each point mixing both) follows
+//   them, also when the rigids' object is merged after another one.
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/sim/mapped_state.h"
 
@@ -236,6 +238,42 @@ TEST(RigidInteraction, BadInputIsRefusedInOneLine) {
   EXPECT_NE(index.find("out of range [0, 1) of object1"), std::string::npos) << index;
   const std::string external = scene_error(solver + rigid + "<RestShapeSpringsForceField external_rest_shape=\"@.\"/>");
   EXPECT_NE(external.find("external_rest_shape is not supported on rigid bodies"), std::string::npos) << external;
+}
+
+TEST(RigidInteraction, AStateMappedOntoPointsOfTwoRigidsFollowsThemInAMergedObject) {
+  // A free point first (so the rigids' blocks do not start at 0 once merged), then two spinning
+  // rigids carrying a tetrahedron's corners (two each) and, below, a state mapped barycentrically
+  // onto that tetrahedron: each of its points mixes both rigids (the corners weigh and hold a weak FEM, so the corners
+  // node is folded into the rigids and its own mapped nodes follow it).
+  const std::string scene =
+      "<Node name=\"all\"><EulerImplicitSolver/><CGLinearSolver iterations=\"100\" tolerance=\"1e-20\" threshold=\"1e-20\"/>"
+      "<Node name=\"point\"><MechanicalObject name=\"point\" position=\"9 9 9\"/><UniformMass totalMass=\"1\"/></Node>"
+      "<Node name=\"bodies\"><MechanicalObject name=\"frames\" template=\"Rigid3d\" position=\"0 0 0 0 0 0 1  1 0 0 0 0 0 1\" "
+      "velocity=\"0 0 0 0 0 2  0 1 0 1 0 0\"/><UniformMass totalMass=\"1\"/>"
+      "<Node name=\"corners\"><MeshTopology name=\"tet\" position=\"0 0 0  0 1 0  1 0 0  1 0 1\" tetrahedra=\"0 1 2 3\"/>"
+      "<MechanicalObject name=\"corners\"/><UniformMass totalMass=\"0.4\"/><TetrahedronFEMForceField youngModulus=\"10\" poissonRatio=\"0.3\"/><RigidMapping globalToLocalCoords=\"1\" rigidIndexPerPoint=\"0 0 1 1\"/>"
+      "<Node name=\"inside\"><MechanicalObject name=\"inside\" position=\"0.25 0.25 0.25  0.5 0.2 0.3\"/>"
+      "<BarycentricMapping/></Node></Node></Node></Node>";
+  LoadedScene loaded = build_scene_text(scene, "dt=\"0.01\" gravity=\"0 0 0\"");
+  for (int s = 0; s < 20; ++s) loaded.simulation.step();
+  std::vector<Vec3<double>> corners, inside;
+  for (const auto& state : state_snapshots(loaded.simulation.objects.at(0))) {
+    if (state.name == "corners") corners = state.position;
+    if (state.name == "inside") inside = state.position;
+  }
+  ASSERT_EQ(corners.size(), 4u);
+  ASSERT_EQ(inside.size(), 2u);
+  EXPECT_GT((corners[2] - Vec3<double>(1, 0, 0)).norm(), 0.1) << "the second rigid moved its corners";
+  // The barycentric weights of the rest points, (1 - a - b - c, a, b, c) in the tetrahedron's frame.
+  const Vec3<double> rest[2] = {Vec3<double>(0.25, 0.25, 0.25), Vec3<double>(0.5, 0.2, 0.3)};
+  const Vec3<double> p0(0, 0, 0), p1(0, 1, 0), p2(1, 0, 0), p3(1, 0, 1);
+  Mat3<double> edges;
+  edges << p1 - p0, p2 - p0, p3 - p0;
+  for (int i = 0; i < 2; ++i) {
+    const Vec3<double> f = edges.inverse() * (rest[i] - p0);
+    const Vec3<double> expected = (1 - f.sum()) * corners[0] + f[0] * corners[1] + f[1] * corners[2] + f[2] * corners[3];
+    EXPECT_LT((inside[static_cast<std::size_t>(i)] - expected).norm(), 1e-12) << i;
+  }
 }
 
 }  // namespace

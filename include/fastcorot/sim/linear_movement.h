@@ -8,9 +8,9 @@
 //   (relativeMovements, the default) or m, its velocity to (M_b - M_a)(1/(t_b - t_a)).
 // A rigid's movement is 6 numbers: the centre's (as a point's) and Euler angles, whose orientation
 // becomes q0 ⊗ slerp2(q(E_a), q(E_b), α) (SOFA's createQuaterFromEuler, slerp2; absolute: without
-// q0); its angular velocity is the angles' rate. x0 (and q0) are the positions at the first end of
-// a step, as SOFA records them at its first projectPosition. Before t_0 and from t_last on, the
-// points are free, as in SOFA.
+// q0); its angular velocity is the angles' rate. x0 (and q0) are the positions at the first apply,
+// which the scene builder makes at time 0 as SOFA's init does (its first projectPosition). Before
+// t_0 and from t_last on, the points are free, as in SOFA.
 #pragma once
 
 #include "fastcorot/core/types.h"
@@ -30,7 +30,8 @@ struct LinearMovement {
   std::vector<Vec3<Real>> key_movements;  // per key: the point's (or centre's) movement
   std::vector<Vec3<Real>> key_angles;     // per key, rigid bodies only: Euler angles (radians)
   bool relative = true;
-  // x0 and q0, recorded at the first apply().
+  // x0 and q0, recorded at the first apply() (at init: the scene's positions, so a run rebuilt
+  // from the scene, as a resumed checkpoint is, has the same).
   std::vector<Vec3<Real>> start;
   std::vector<Eigen::Quaternion<Real>> start_orientation;
   bool started = false;

@@ -32,8 +32,10 @@ struct MappedState {
   std::string mapping;  // "BarycentricMapping (tetrahedra)", ... for messages and docs
   PointMapping<double> map;
   std::optional<RigidPoints<double>> rigid;  // under a RigidMapping (map is then unused)
-  // Below a SubsetMultiMapping: map reads the points `through` gives (VisualSurface::through).
+  // Below a SubsetMultiMapping, or below points that several rigids carry: map reads the points
+  // `through` gives (VisualSurface::through, through_offset).
   std::shared_ptr<const MechanicalMapping<double>> through;
+  Index through_offset = 0;
   std::size_t size() const { return rigid ? rigid->size() : map.size(); }
 };
 

@@ -27,9 +27,11 @@ struct VisualSurface {
   PointMapping<double> map;
   // Set for a visual model under a RigidMapping: its points follow rigid bodies (map is unused).
   std::optional<RigidPoints<double>> rigid;
-  // Set for a visual model below a SubsetMultiMapping: map reads the points `through` gives (the
-  // multi-mapped state's), not the object's.
+  // Set for a visual model below a SubsetMultiMapping, or below points that several rigids carry:
+  // map reads the points `through` gives (from the object's blocks starting at through_offset,
+  // the part's first block once objects are merged), not the object's.
   std::shared_ptr<const MechanicalMapping<double>> through;
+  Index through_offset = 0;
 
   // The surface's points for the object's positions x.
   std::vector<Vec3<double>> points(std::span<const Vec3<double>> x) const;
