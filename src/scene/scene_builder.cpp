@@ -235,26 +235,31 @@ class Builder {
     }
     const MappedState mapped_state = object.mapped_states.back();
     scene_detail::check_mapped_points_inside(mapped_state, where);
-    MechanicalState<double> placed;
-    placed.position.resize(mapped_state.size());
-    placed.velocity.resize(mapped_state.size());
-    if (mapped_state.rigid) {
-      mapped_state.rigid->positions(object.system.state.position, placed.position);
-      mapped_state.rigid->velocities(object.system.state.position, object.system.state.velocity, placed.velocity);
-    } else {
-      mapped_state.map.apply(object.system.state.position, placed.position);
-      mapped_state.map.apply(object.system.state.velocity, placed.velocity);
-    }
-    std::vector<GraphNode*> nodes{&node}, mapped;
-    for (auto& child : node.children) collect(*child, nodes, mapped, false);
-    SimulatedObject<double> mapped_object = build_part(*states.front(), nodes, mapped, &placed);
-    // Springs of the mapped nodes join points of the mapped state (object1 and object2 its own).
-    scene_detail::add_interaction_springs(data_, nodes, {states.front()}, {0}, {mapped_object.system.size()}, mapped_object);
+    SimulatedObject<double> mapped_object =
+        build_mapped_part(node, *states.front(), *mechanical_mapping(mapped_state.map, mapped_state.rigid), object);
     if (mapped_state.rigid) {
       scene_detail::fold_rigid_mapped_object(mapped_object, *mapped_state.rigid, object, where);
     } else {
       scene_detail::fold_mapped_object(mapped_object, mapped_state.map, object, where);
     }
+  }
+
+  // The object of mapped node `node` (its state `state` and the nodes below it), placed where
+  // `mapping` puts it from `parent`'s positions and velocities (as SOFA's mapping sets them at
+  // init), with the springs of its nodes (object1 and object2 its own points); not yet folded.
+  SimulatedObject<double> build_mapped_part(GraphNode& node, Component& state, const MechanicalMapping<double>& mapping,
+                                            const SimulatedObject<double>& parent) {
+    const auto& from = parent.system.state;
+    MechanicalState<double> placed;
+    placed.position.resize(mapping.size());
+    placed.velocity.resize(mapping.size());
+    mapping.positions(from.position, placed.position);
+    mapping.velocities(from.position, from.velocity, placed.velocity);
+    std::vector<GraphNode*> nodes{&node}, mapped;
+    for (auto& child : node.children) collect(*child, nodes, mapped, false);
+    SimulatedObject<double> object = build_part(state, nodes, mapped, &placed);
+    scene_detail::add_interaction_springs(data_, nodes, {&state}, {0}, {object.system.size()}, object);
+    return object;
   }
 
   // A SubsetMultiMapping's node, once the solver's objects are merged: its state is built on the
@@ -273,16 +278,8 @@ class Builder {
     }
     const auto inputs = scene_detail::read_subset_multi_mapping(data_, node, *multi, states, offsets, sizes, object);
     const auto mapping = inputs.mapping();
-    MechanicalState<double> placed;
-    placed.position.resize(mapping->size());
-    placed.velocity.resize(mapping->size());
-    mapping->positions(object.system.state.position, placed.position);
-    mapping->velocities(object.system.state.position, object.system.state.velocity, placed.velocity);
-    std::vector<GraphNode*> nodes{&node}, mapped;
-    for (auto& child : node.children) collect(*child, nodes, mapped, false);
     Component& state = *node_states.front();
-    SimulatedObject<double> child = build_part(state, nodes, mapped, &placed);
-    scene_detail::add_interaction_springs(data_, nodes, {&state}, {0}, {child.system.size()}, child);
+    SimulatedObject<double> child = build_mapped_part(node, state, *mapping, object);
     MappedState shown{node.path, state.sofa_name(), "SubsetMultiMapping", {}, {}, {}};
     if (auto linear = inputs.linear()) {
       shown.map = *linear;

@@ -174,10 +174,8 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
         // end's own mapping (a StackedMapping under a MappedForceField).
         std::vector<std::unique_ptr<MechanicalMapping<double>>> parts;
         for (const SpringSide& side : {first, second}) {
-          if (side.mapped && side.mapped->rigid) {
-            parts.push_back(std::make_unique<RigidPointMapping<double>>(*side.mapped->rigid));
-          } else if (side.mapped) {
-            parts.push_back(std::make_unique<LinearMapping<double>>(side.mapped->map));
+          if (side.mapped) {
+            parts.push_back(mechanical_mapping(side.mapped->map, side.mapped->rigid));
           } else {
             std::vector<Index> picked;
             for (Index i = 0; i < points(side); ++i) picked.push_back(block_of(side, i));

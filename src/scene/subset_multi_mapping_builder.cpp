@@ -35,13 +35,7 @@ std::optional<RigidPoints<double>> SubsetMultiMappingInputs::carried() const {
 
 std::unique_ptr<MechanicalMapping<double>> SubsetMultiMappingInputs::mapping() const {
   std::vector<std::unique_ptr<MechanicalMapping<double>>> parts;
-  for (const Input& input : inputs) {
-    if (input.rigid) {
-      parts.push_back(std::make_unique<RigidPointMapping<double>>(*input.rigid));
-    } else {
-      parts.push_back(std::make_unique<LinearMapping<double>>(input.map));
-    }
-  }
+  for (const Input& input : inputs) parts.push_back(mechanical_mapping(input.map, input.rigid));
   return std::make_unique<SubsetMultiMapping<double>>(std::move(parts), pairs);
 }
 

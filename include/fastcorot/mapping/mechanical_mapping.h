@@ -15,6 +15,7 @@
 #include "fastcorot/mapping/rigid_points.h"
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
@@ -114,5 +115,13 @@ class StackedMapping final : public MechanicalMapping<Real> {
   std::vector<std::size_t> first_;  // each part's first child point
   std::size_t size_ = 0;
 };
+
+// The mechanics' view of points that follow a system: carried by its rigids when `rigid` is set,
+// else the linear `map` (how mapped states, spring ends and multi-mapping inputs are held).
+template <class Real>
+std::unique_ptr<MechanicalMapping<Real>> mechanical_mapping(const PointMapping<Real>& map, const std::optional<RigidPoints<Real>>& rigid) {
+  if (rigid) return std::make_unique<RigidPointMapping<Real>>(*rigid);
+  return std::make_unique<LinearMapping<Real>>(map);
+}
 
 }  // namespace fastcorot
