@@ -17,6 +17,8 @@ std::vector<ComponentSpec> visual_components();
 std::vector<ComponentSpec> mechanics_components();
 // Projective constraints.
 std::vector<ComponentSpec> constraint_components();
+// Constraint-based animation: FreeMotionAnimationLoop, constraint solvers, corrections, Lagrangian constraints.
+std::vector<ComponentSpec> lagrangian_components();
 // Engines: generated meshes and regions of interest.
 std::vector<ComponentSpec> engine_components();
 // ODE solvers, linear solvers, preconditioners and the linear systems SOFA links them to.

@@ -18,7 +18,7 @@ const std::vector<ComponentSpec>& table() {
     std::vector<ComponentSpec> all;
     for (auto family : {scene_detail::topology_components, scene_detail::visual_components,
                         scene_detail::mechanics_components, scene_detail::element_fem_components,
-                        scene_detail::constraint_components, scene_detail::engine_components, scene_detail::solver_components}) {
+                        scene_detail::constraint_components, scene_detail::lagrangian_components, scene_detail::engine_components, scene_detail::solver_components}) {
       for (auto& spec : family()) all.push_back(std::move(spec));
     }
     return all;
@@ -134,16 +134,16 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
   static const std::array<std::pair<std::string_view, std::string_view>, 14> kRefused = {{
-      {"FreeMotionAnimationLoop", "constraint-based animation (Lagrangian constraints) is not simulated"},
-      {"GenericConstraintSolver", "Lagrangian constraint solvers are not simulated"},
-      {"BlockGaussSeidelConstraintSolver", "Lagrangian constraint solvers are not simulated"},
-      {"LCPConstraintSolver", "Lagrangian constraint solvers are not simulated"},
-      {"UncoupledConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
-      {"LinearSolverConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
-      {"PrecomputedConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
-      {"GenericConstraintCorrection", "constraint corrections (Lagrangian constraints) are not simulated"},
-      {"BilateralLagrangianConstraint", "Lagrangian constraints are not simulated"},
-      {"FixedLagrangianConstraint", "Lagrangian constraints are not simulated"},
+      {"LCPConstraintSolver", "LCPConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
+      {"NNCGConstraintSolver", "NNCGConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
+      {"ImprovedJacobiConstraintSolver", "ImprovedJacobiConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
+      {"PreconditionedConjugateResidual", "the PreconditionedConjugateResidual constraint solver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
+      {"PrecomputedConstraintCorrection", "PrecomputedConstraintCorrection is not simulated yet (LinearSolverConstraintCorrection is)"},
+      {"SlidingLagrangianConstraint", "SlidingLagrangianConstraint is not simulated yet"},
+      {"StopperLagrangianConstraint", "StopperLagrangianConstraint is not simulated yet"},
+      {"UniformLagrangianConstraint", "UniformLagrangianConstraint is not simulated yet"},
+      {"UnilateralLagrangianConstraint", "UnilateralLagrangianConstraint is not simulated yet"},
+      {"AugmentedLagrangianConstraint", "AugmentedLagrangianConstraint is not simulated yet"},
       {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},
       {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
       {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},

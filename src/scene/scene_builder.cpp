@@ -10,6 +10,7 @@
 #include "element_fem_builders.h"
 #include "hexahedron_builders.h"
 #include "hexahedron_mass_builder.h"
+#include "lagrangian_builder.h"
 #include "mass_builders.h"
 #include "projective_constraints.h"
 #include "scene_data.h"
@@ -23,6 +24,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace fastcorot {
@@ -103,6 +105,7 @@ class Builder {
       }
     }
     visit(data_.root(), false);
+    build_constraints();
     // SOFA's init ends with the projective constraints' projectPosition and projectVelocity at time
     // 0 (Simulation.cpp, initNode): a LinearMovement records x0 there and starts its movement.
     for (auto& object : simulation_.objects) object.system.apply_placements(0.0);
@@ -147,6 +150,28 @@ class Builder {
                       " has no ODE solver above it: it is not simulated (as in SOFA)");
     }
     for (auto& child : node.children) visit(*child, under_solver);
+  }
+
+  // FreeMotionAnimationLoop and the Lagrangian components, on the objects built.
+  void build_constraints() {
+    const scene_detail::LocateState locate = [&](const Component& state) -> std::optional<scene_detail::StateLocation> {
+      for (const auto& [object, part] : parts_) {
+        if (object != state.object) continue;
+        const auto& ranges = simulation_.objects[part.object].states;
+        bool rigid = false;
+        for (const StateRange& range : ranges) rigid = rigid || (range.offset == part.offset && range.rigid);
+        return scene_detail::StateLocation{part.object, part.offset, part.size, rigid, nullptr};
+      }
+      for (std::size_t o = 0; o < simulation_.objects.size(); ++o) {
+        for (const MappedState& mapped : simulation_.objects[o].mapped_states) {
+          if (mapped.node == state.node->path && mapped.name == state.sofa_name()) {
+            return scene_detail::StateLocation{o, 0, static_cast<Index>(mapped.size()), false, &mapped};
+          }
+        }
+      }
+      return std::nullopt;
+    };
+    scene_detail::build_free_motion_loop(data_, info_, simulation_, solver_nodes_, locate);
   }
 
   static void rank_objects(const SceneNode& node, std::map<const SceneObject*, std::size_t>& rank) {
@@ -505,6 +530,7 @@ class Builder {
     object.ode_solver = std::move(solvers.ode);
     object.linear_solver = std::move(solvers.linear);
     simulation_.objects.push_back(std::move(object));
+    solver_nodes_.push_back(&solver_node);
     states_.push_back(states.front()->object);
     state_counts_.push_back(states.size());
     for (std::size_t s = 0; s < states.size(); ++s) {
@@ -722,6 +748,7 @@ class Builder {
   SceneData data_;
   Simulation<double> simulation_;
   std::vector<const SceneObject*> states_;  // the (first) MechanicalObject of each simulated object
+  std::vector<const GraphNode*> solver_nodes_;  // the node of each simulated object's ODE solver
   std::vector<std::size_t> state_counts_;   // how many MechanicalObjects each simulated object holds
   std::vector<std::pair<const SceneObject*, LoadedScene::StatePart>> parts_;  // every state, rank to be filled
   std::map<const Component*, std::shared_ptr<TetMesh>> meshes_;

@@ -70,6 +70,20 @@ StepReport ImplicitEulerSolver<Real>::step(MechanicalSystem<Real>& system, Linea
 }
 
 template <class Real>
+std::optional<IntegrationFactors<Real>> ImplicitEulerSolver<Real>::integration_factors(Real dt) const {
+  const Real h = dt;
+  const Real tr = parameters_.trapezoidal ? Real(0.5) : Real(1);
+  const Real rs = parameters_.rayleigh_stiffness;
+  const Real rm = parameters_.rayleigh_mass;
+  IntegrationFactors<Real> factors;
+  factors.position = h;
+  factors.velocity = 1;
+  factors.matrix = parameters_.first_order ? MatrixFactors<Real>{Real(1), Real(0), -h * tr}
+                                           : MatrixFactors<Real>{1 + tr * h * rm, -tr * h, -tr * h * (tr * h + rs)};
+  return factors;
+}
+
+template <class Real>
 StaticSolver<Real>::StaticSolver(NewtonParameters parameters) : newton_(parameters) {
   if (newton_.max_iterations < 1) {
     throw make_error("NewtonRaphsonSolver: maxNbIterationsNewton = ", newton_.max_iterations, ": must be at least 1");

@@ -69,21 +69,32 @@ std::optional<std::string> find_divergence(const MechanicalState<Real>& state, R
                vector_text(x[worst]), ")", limit);
 }
 
+// An object's free motion (its whole step under the default animation loop): the ODE solver's step,
+// then (`rebase`) its rigids' rotations folded into their orientations. Under the constraint stage
+// the rotations stay in the angular blocks until the stage has read the start orientations.
 template <class Real>
-StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number, double clock, Real bound,
-                       Real factor, Real scene_size) {
+StepReport free_motion(SimulatedObject<Real>& object, Real dt, long step_number, double clock, bool rebase = true) {
   StepReport report;
-  const Real time = static_cast<Real>(step_number) * dt;
   try {
     object.system.update_mass();
     object.system.begin_step(clock);
     report = object.ode_solver->step(object.system, *object.linear_solver, dt);
   } catch (const Error& error) {
+    const Real time = static_cast<Real>(step_number) * dt;
     throw Error(
         brief("diverged at step ", step_number, " (t = ", time, ") in ", object.path, ": ") +
         error.what());
   }
-  if (object.system.rigids) object.system.rigids->rebase(object.system.state.position);
+  if (rebase && object.system.rigids) object.system.rigids->rebase(object.system.state.position);
+  return report;
+}
+
+// The end of an object's step: SOFA's projectPosition and projectVelocity, the divergence test and
+// the force fields' end of step.
+template <class Real>
+void finish_step(SimulatedObject<Real>& object, Real dt, long step_number, double clock, Real bound, Real factor,
+                 Real scene_size) {
+  const Real time = static_cast<Real>(step_number) * dt;
   object.system.apply_placements(clock);
   for (Index i : object.system.zero_velocity) object.system.state.velocity[static_cast<std::size_t>(i)].setZero();
   if (auto problem = find_divergence(object.system.state, dt, bound, factor, scene_size)) {
@@ -91,7 +102,6 @@ StepReport step_object(SimulatedObject<Real>& object, Real dt, long step_number,
         brief("diverged at step ", step_number, " (t = ", time, "): ", object.path, " ", *problem));
   }
   for (auto& field : object.system.force_fields) field->end_step(object.system.state.position);
-  return report;
 }
 
 }  // namespace
@@ -156,26 +166,57 @@ StepReport Simulation<Real>::step() {
   for (auto& object : objects) {
     if (object.system.threads() != per_object) object.system.set_threads(per_object);
   }
-  auto work = [&](std::size_t first) {
-    for (std::size_t o = first; o < objects.size(); o += workers) {
-      try {
-        reports[o] = step_object(objects[o], dt, step_number, clock_, bound, divergence_factor, size);
-      } catch (...) {
-        failures[o] = std::current_exception();
+  // Runs `task` on every object, spread over the workers; a failure is kept for its object.
+  const auto for_each_object = [&](auto&& task) {
+    auto work = [&](std::size_t first) {
+      for (std::size_t o = first; o < objects.size(); o += workers) {
+        try {
+          task(o);
+        } catch (...) {
+          failures[o] = std::current_exception();
+        }
       }
+    };
+    if (workers <= 1) {
+      work(0);
+    } else {
+      std::vector<std::jthread> pool;
+      for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
+      work(0);
     }
   };
-  if (workers <= 1) {
-    work(0);
-  } else {
-    std::vector<std::jthread> pool;
-    for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(work, w);
-    work(0);
-  }
   // Report the first failure in scene order, whichever thread met it.
-  for (const auto& failure : failures) {
-    if (failure) std::rethrow_exception(failure);
+  const auto rethrow_first = [&] {
+    for (const auto& failure : failures) {
+      if (failure) std::rethrow_exception(failure);
+    }
+  };
+  if (!constraints) {
+    for_each_object([&](std::size_t o) {
+      reports[o] = free_motion(objects[o], dt, step_number, clock_);
+      finish_step(objects[o], dt, step_number, clock_, bound, divergence_factor, size);
+    });
+  } else {
+    // SOFA's FreeMotionAnimationLoop: every object's free motion, then the constraints solved on
+    // the free positions and the objects corrected, then each object's end of step.
+    std::vector<MechanicalState<Real>> start(objects.size());
+    for_each_object([&](std::size_t o) {
+      start[o].position = objects[o].system.state.position;
+      start[o].velocity = objects[o].system.state.velocity;
+      reports[o] = free_motion(objects[o], dt, step_number, clock_, false);
+    });
+    rethrow_first();
+    try {
+      constraint_report_ = constraints->correct(objects, start, dt, clock_);
+    } catch (const Error& error) {
+      throw Error(brief("at step ", step_number, " (t = ", clock_, "): ") + error.what());
+    }
+    for_each_object([&](std::size_t o) {
+      if (objects[o].system.rigids) objects[o].system.rigids->rebase(objects[o].system.state.position);
+      finish_step(objects[o], dt, step_number, clock_, bound, divergence_factor, size);
+    });
   }
+  rethrow_first();
   StepReport total;
   for (const auto& report : reports) {
     total.linear_solves += report.linear_solves;

@@ -28,6 +28,16 @@ void SparseFactorisation<Real>::solve(const Real* b, Real* x, Index size) const 
   solution = ldlt_.solve(rhs);
 }
 
+template <class Real>
+Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> SparseFactorisation<Real>::compliance(const Matrix& columns) const {
+  Matrix z = ldlt_.permutationP() * columns;
+  ldlt_.matrixL().solveInPlace(z);
+  z.prune(Real(0));
+  const Matrix scaled = ldlt_.vectorD().cwiseInverse().asDiagonal() * z;
+  const Matrix product = Matrix(z.transpose()) * scaled;
+  return Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>(product);
+}
+
 template class SparseFactorisation<float>;
 template class SparseFactorisation<double>;
 

@@ -4,6 +4,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/sim/mechanical_system.h"
+#include "fastcorot/sim/sparse_factorisation.h"
 
 #include <cstdint>
 #include <span>
@@ -25,6 +26,16 @@ class LinearSolver {
   // Solves A x = rhs with A = factors applied to `system`; x is overwritten.
   virtual LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
                                   std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) = 0;
+
+  // Solves A x = rhs for another right-hand side with the matrix of the last solve() (constraint
+  // corrections ask for several per step); by default a new solve().
+  virtual LinearSolveReport solve_again(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
+                                        std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) {
+    return solve(system, factors, rhs, x);
+  }
+  // The factorisation of the last solve() for direct solvers (null for the others): constraint
+  // corrections compute H A⁻¹ Hᵀ with sparse triangular solves on it.
+  virtual const SparseFactorisation<Real>* factorisation() const { return nullptr; }
 
   // What the solver carries from one solve to the next that changes later results, as integers
   // (empty when nothing): checkpoints save it so that a resumed run continues bitwise. Work

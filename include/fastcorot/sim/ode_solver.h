@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace fastcorot {
@@ -20,12 +21,30 @@ struct StepReport {
   int linear_iterations = 0;  // summed over the solves
 };
 
+// How a solver's last step turns a velocity change into motion, for constraint corrections (SOFA's
+// getPositionIntegrationFactor and getVelocityIntegrationFactor): an impulse p changes the
+// velocities by A⁻¹ p and the positions by `position` A⁻¹ p, A the matrix m M + b B + k K of
+// `matrix`'s factors as the step posed it.
+template <class Real>
+struct IntegrationFactors {
+  Real position = 0;
+  Real velocity = 1;
+  MatrixFactors<Real> matrix;
+};
+
 template <class Real>
 class OdeSolver {
  public:
   virtual ~OdeSolver() = default;
   // Advances `system` by dt in place.
   virtual StepReport step(MechanicalSystem<Real>& system, LinearSolver<Real>& solver, Real dt) = 0;
+
+  // The factors of the last step (before the first: those a step of dt would use); nullopt for a
+  // solver whose steps constraint corrections cannot follow (they refuse it).
+  virtual std::optional<IntegrationFactors<Real>> integration_factors(Real dt) const {
+    static_cast<void>(dt);
+    return std::nullopt;
+  }
 
   // What the solver carries from one step to the next that changes later results, as integers
   // (see LinearSolver::carried_state). Neither solver here carries any: their work vectors are
@@ -55,6 +74,9 @@ class ImplicitEulerSolver final : public OdeSolver<Real> {
   // - tr h (tr h + rs) K; A dv = b; v += dv; x += h v. (first_order: b = P f,
   // A = M - tr h K, v = dv.)
   StepReport step(MechanicalSystem<Real>& system, LinearSolver<Real>& solver, Real dt) override;
+
+  // position h, velocity 1 (SOFA's EulerImplicitSolver), matrix as above.
+  std::optional<IntegrationFactors<Real>> integration_factors(Real dt) const override;
 
  private:
   Parameters parameters_;

@@ -6,6 +6,7 @@
 // the vertex.
 #pragma once
 
+#include "fastcorot/sim/constraint_stage.h"
 #include "fastcorot/sim/linear_solver.h"
 #include "fastcorot/sim/mapped_state.h"
 #include "fastcorot/sim/mechanical_system.h"
@@ -78,6 +79,9 @@ class Simulation {
   // geometrically, so the test catches them a few steps before they overflow, with finite values
   // to report. 0 (or infinity) turns the test off; non-finite values are always divergence.
   Real divergence_factor = Real(1e6);
+  // SOFA's FreeMotionAnimationLoop (null: its DefaultAnimationLoop): after every object's free
+  // motion, the Lagrangian constraints are solved and the objects corrected (sim/constraint_stage.h).
+  std::shared_ptr<ConstraintStage<Real>> constraints;
 
   // Advances every object by dt: first the scripted topological changes due at the current time,
   // then the integration. Throws fastcorot::Error "diverged at step N (t = T): OBJECT vertex V
@@ -91,6 +95,8 @@ class Simulation {
   void replay_topology_changes(long steps);
 
   long steps_done() const { return steps_done_; }
+  // What the constraint stage did in the last step (all zero without one).
+  const ConstraintReport& constraint_report() const { return constraint_report_; }
   Real time() const { return static_cast<Real>(steps_done_) * dt; }
   // Sets the step counter (and so the time): for resuming from a checkpoint. Throws for steps < 0.
   void set_steps_done(long steps);
@@ -103,6 +109,7 @@ class Simulation {
   void apply_topology_changes(long step_number, double clock);
 
   long steps_done_ = 0;
+  ConstraintReport constraint_report_;
   // SOFA's context time: dt added once per step, rounding included (0.01 ten times is
   // 0.09999999999999999). Scripted topological changes compare their times with it, as SOFA's
   // TopologicalChangeProcessor does, so that they fire at the very step they fire in SOFA.

@@ -25,6 +25,11 @@ class SparseFactorisation {
   // x = A^-1 b for the last factorised A; b and x hold `size` values each (they may not overlap).
   void solve(const Real* b, Real* x, Index size) const;
 
+  // Cᵀ A⁻¹ C for the last factorised A and sparse columns C (A's size × r), dense r × r: with A
+  // = Pᵀ L D Lᵀ P, Z = L⁻¹ P C by sparse triangular solves (only the elimination-tree paths the
+  // columns reach), then Zᵀ D⁻¹ Z. What constraint corrections need for H A⁻¹ Hᵀ (C = Hᵀ).
+  Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> compliance(const Matrix& columns) const;
+
  private:
   Eigen::SimplicialLDLT<Matrix> ldlt_;
   std::vector<typename Matrix::StorageIndex> analysed_outer_, analysed_inner_;

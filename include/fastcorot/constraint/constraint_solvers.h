@@ -1,0 +1,80 @@
+// Constraint solvers (SOFA's Lagrangian constraint solvers): iterate on a ConstraintProblem until
+// its blocks' updates change the violations by less than the tolerance. Defaults and stopping rules
+// are SOFA's (GenericConstraintSolver.cpp): 1000 iterations, tolerance 1e-3 scaled by the row count
+// unless scaleTolerance is off or allVerified on. Design: docs/constraints.md.
+#pragma once
+
+#include "fastcorot/constraint/constraint_problem.h"
+
+#include <string>
+
+namespace fastcorot {
+
+template <class Real>
+struct ConstraintSolverParameters {
+  int max_iterations = 1000;
+  Real tolerance = Real(1e-3);
+  Real sor = 1;                 // successive over-relaxation
+  Real regularization = 0;      // added to W's diagonal when above machine epsilon
+  bool scale_tolerance = true;  // tolerance × rows
+  bool all_verified = false;    // stop only when every block's error is below the tolerance
+};
+
+// What one solve did.
+struct ConstraintSolveReport {
+  int iterations = 0;
+  double error = 0;      // the last iteration's summed block errors (SOFA's currentError)
+  double tolerance = 0;  // the tolerance it was compared with (scaled)
+  bool converged = true;
+};
+
+template <class Real>
+class ConstraintSolver {
+ public:
+  virtual ~ConstraintSolver() = default;
+  // Solves `problem` in place (problem.f holds λ on return; W is not changed except for the
+  // regularisation the solver adds).
+  virtual ConstraintSolveReport solve(ConstraintProblem<Real>& problem) = 0;
+  virtual const char* name() const = 0;
+  const ConstraintSolverParameters<Real>& parameters() const { return parameters_; }
+
+ protected:
+  explicit ConstraintSolver(ConstraintSolverParameters<Real> parameters);
+  // The tolerance the summed error is compared with (SOFA: tolerance × rows when scaled).
+  Real effective_tolerance(int rows) const;
+  // One Gauss–Seidel sweep over the blocks in row order (SOFA's gaussSeidel_increment): for each
+  // block, d = δ_free + W λ on its rows, its resolution, and its error (|W_jj Δλ_j| for one row, Σ_l
+  // |W_bb Δλ|_l for a block, rescaled by a block's own tolerance). Returns the summed error; sets
+  // `verified` false when a row's error exceeds `tolerance`.
+  Real sweep(ConstraintProblem<Real>& problem, Real tolerance, bool& verified) const;
+  // Each block's init (warm starts), then regularisation.
+  void init_blocks(ConstraintProblem<Real>& problem) const;
+
+  ConstraintSolverParameters<Real> parameters_;
+};
+
+// SOFA's BlockGaussSeidelConstraintSolver (and the default of GenericConstraintSolver): projected
+// block Gauss–Seidel on the built W, warm-started by the resolutions that keep their λ.
+template <class Real>
+class BlockGaussSeidelSolver : public ConstraintSolver<Real> {
+ public:
+  explicit BlockGaussSeidelSolver(ConstraintSolverParameters<Real> parameters) : ConstraintSolver<Real>(parameters) {}
+  ConstraintSolveReport solve(ConstraintProblem<Real>& problem) override;
+  const char* name() const override { return "BlockGaussSeidelConstraintSolver"; }
+
+ protected:
+  bool warm_start_ = true;
+};
+
+// SOFA's UnbuiltGaussSeidelConstraintSolver: the same sweep with λ starting from zero every step
+// (SOFA computes W λ through the corrections instead of W; with the corrections here the two agree).
+template <class Real>
+class UnbuiltGaussSeidelSolver final : public BlockGaussSeidelSolver<Real> {
+ public:
+  explicit UnbuiltGaussSeidelSolver(ConstraintSolverParameters<Real> parameters) : BlockGaussSeidelSolver<Real>(parameters) {
+    this->warm_start_ = false;
+  }
+  const char* name() const override { return "UnbuiltGaussSeidelConstraintSolver"; }
+};
+
+}  // namespace fastcorot

@@ -1,0 +1,39 @@
+// ConstraintStage<Real>: what SOFA's FreeMotionAnimationLoop adds to a time step. Each object first
+// takes its free motion (its ODE solver's step, unconstrained); then the stage builds the
+// Lagrangian constraints' problem on those free positions, solves it and corrects the positions and
+// velocities of the objects it involves. The stage itself lives in the constraint layer
+// (include/fastcorot/constraint/, design: docs/constraints.md); Simulation only calls it.
+#pragma once
+
+#include "fastcorot/sim/mechanical_state.h"
+
+#include <span>
+
+namespace fastcorot {
+
+template <class Real>
+struct SimulatedObject;
+
+// What the constraint part of one step did, for summaries and --json.
+struct ConstraintReport {
+  int rows = 0;              // constraint rows (the size of the problem)
+  int iterations = 0;        // of the constraint solver
+  double error = 0;          // its final error, in its own measure
+  double tolerance = 0;      // what it had to reach (scaled by the row count where SOFA scales it)
+  bool converged = true;
+  double compliance_seconds = 0;  // building W = H A⁻¹ Hᵀ
+  double solve_seconds = 0;       // the constraint solver
+};
+
+template <class Real>
+class ConstraintStage {
+ public:
+  virtual ~ConstraintStage() = default;
+  // After every object's free motion: `objects` hold the free positions and velocities, `start`
+  // what each held when the step began (the same order). Corrects them in place. `time` is the
+  // step's start time. Throws fastcorot::Error for what cannot be solved (naming it).
+  virtual ConstraintReport correct(std::span<SimulatedObject<Real>> objects, std::span<const MechanicalState<Real>> start,
+                                   Real dt, double time) = 0;
+};
+
+}  // namespace fastcorot

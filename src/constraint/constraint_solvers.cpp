@@ -1,0 +1,129 @@
+#include "fastcorot/constraint/constraint_solvers.h"
+
+#include "fastcorot/core/error.h"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+ConstraintSolver<Real>::ConstraintSolver(ConstraintSolverParameters<Real> parameters) : parameters_(parameters) {
+  if (parameters_.max_iterations < 1) throw make_error("maxIterations = ", parameters_.max_iterations, ": must be at least 1");
+  if (!(parameters_.tolerance >= 0) || !std::isfinite(parameters_.tolerance)) {
+    throw make_error("tolerance = ", parameters_.tolerance, ": must be a finite number >= 0");
+  }
+  if (!(parameters_.sor > 0 && parameters_.sor < 2)) throw make_error("sor = ", parameters_.sor, ": must lie in (0, 2)");
+  if (!(parameters_.regularization >= 0) || !std::isfinite(parameters_.regularization)) {
+    throw make_error("regularizationTerm = ", parameters_.regularization, ": must be a finite number >= 0");
+  }
+}
+
+template <class Real>
+Real ConstraintSolver<Real>::effective_tolerance(int rows) const {
+  Real tolerance = parameters_.tolerance;
+  if (parameters_.scale_tolerance && !parameters_.all_verified) tolerance *= static_cast<Real>(rows);
+  return tolerance;
+}
+
+template <class Real>
+void ConstraintSolver<Real>::init_blocks(ConstraintProblem<Real>& problem) const {
+  problem.check_blocks();
+  if (parameters_.regularization > std::numeric_limits<Real>::epsilon()) {
+    for (int i = 0; i < problem.size(); ++i) problem.w(i, i) += parameters_.regularization;
+  }
+  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+    problem.resolutions[b]->init(problem.first_line[b], problem.w, problem.f.data());
+  }
+}
+
+template <class Real>
+Real ConstraintSolver<Real>::sweep(ConstraintProblem<Real>& problem, Real tolerance, bool& verified) const {
+  const int n = problem.size();
+  Real* f = problem.f.data();
+  Real* d = problem.d.data();
+  const Real* dfree = problem.dfree.data();
+  const auto& w = problem.w;
+  Real error = 0;
+  Real before[8];
+  std::vector<Real> before_large;
+  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+    ConstraintResolution<Real>& resolution = *problem.resolutions[b];
+    const int j = problem.first_line[b];
+    const int nb = resolution.lines();
+    Real* old = before;
+    if (nb > 8) {
+      before_large.resize(static_cast<std::size_t>(nb));
+      old = before_large.data();
+    }
+    for (int l = 0; l < nb; ++l) {
+      old[l] = f[j + l];
+      d[j + l] = dfree[j + l];
+    }
+    for (int k = 0; k < n; ++k) {
+      for (int l = 0; l < nb; ++l) d[j + l] += w(j + l, k) * f[k];
+    }
+    resolution.resolve(j, w, d, f, dfree);
+    Real block_error = 0;
+    if (nb > 1) {
+      for (int l = 0; l < nb; ++l) {
+        Real line = 0;
+        for (int m = 0; m < nb; ++m) {
+          const Real e = w(j + l, j + m) * (f[j + m] - old[m]);
+          line += e * e;
+        }
+        line = std::sqrt(line);
+        if (line > tolerance) verified = false;
+        block_error += line;
+      }
+    } else {
+      block_error = std::fabs(w(j, j) * (f[j] - old[0]));
+      if (block_error > tolerance) verified = false;
+    }
+    if (resolution.tolerance() != 0) {
+      if (block_error > resolution.tolerance()) verified = false;
+      block_error *= tolerance / resolution.tolerance();
+    }
+    error += block_error;
+  }
+  return error;
+}
+
+template <class Real>
+ConstraintSolveReport BlockGaussSeidelSolver<Real>::solve(ConstraintProblem<Real>& problem) {
+  ConstraintSolveReport report;
+  const int n = problem.size();
+  if (n == 0) return report;
+  const auto& p = this->parameters_;
+  const Real tolerance = this->effective_tolerance(n);
+  report.tolerance = static_cast<double>(tolerance);
+  this->init_blocks(problem);
+  if (!warm_start_) problem.f.setZero();
+  DenseVector<Real> previous;
+  report.converged = false;
+  Real error = 0;
+  for (int it = 0; it < p.max_iterations; ++it) {
+    report.iterations = it + 1;
+    if (p.sor != 1) previous = problem.f;
+    bool verified = true;
+    error = this->sweep(problem, tolerance, verified);
+    if (p.sor != 1) problem.f = p.sor * problem.f + (1 - p.sor) * previous;
+    if (p.all_verified ? verified : error < tolerance) {
+      report.converged = true;
+      break;
+    }
+  }
+  report.error = static_cast<double>(error);
+  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+    problem.resolutions[b]->store(problem.first_line[b], problem.f.data());
+  }
+  return report;
+}
+
+template class ConstraintSolver<float>;
+template class ConstraintSolver<double>;
+template class BlockGaussSeidelSolver<float>;
+template class BlockGaussSeidelSolver<double>;
+
+}  // namespace fastcorot

@@ -1,0 +1,91 @@
+// Constraint-based animation: FreeMotionAnimationLoop, constraint solvers, constraint corrections
+// and Lagrangian constraints (built by lagrangian_builder.cpp; docs/constraints.md).
+#include "component_families.h"
+
+namespace fastcorot::scene_detail {
+
+namespace {
+
+std::vector<AttributeSpec> solver_attributes() {
+  return {{"maxIterations", "int", "1000", "iterations at most"},
+          {"maxIt", "int", "1000", "SOFA's alias of maxIterations"},
+          {"tolerance", "real", "0.001", "stop when the summed block errors fall below it (times the row count when scaleTolerance)"},
+          {"sor", "real", "1", "successive over-relaxation, in (0, 2)"},
+          {"regularizationTerm", "real", "0", "added to W's diagonal"},
+          {"scaleTolerance", "bool", "true", "scale the tolerance by the number of rows"},
+          {"allVerified", "bool", "false", "stop only when every block's error is below the tolerance"},
+          {"computeConstraintForces", "bool", "false", "accepted: the impulses λ are always kept (dumps, --json, Python)"},
+          {"computeGraphs", "bool", "false", "accepted (SOFA's GUI graphs)"},
+          {"multithreading", "bool", "false", "accepted (W is built on the run's threads)"},
+          {"constraintForces", "reals", "", "accepted (an output)"}};
+}
+
+std::vector<AttributeSpec> correction_link_attributes() {
+  return {{"linearSolver", "link", "", "accepted: the object's own linear solver is used"},
+          {"ODESolver", "link", "", "accepted: the object's own ODE solver is used"},
+          {"solverName", "string", "", "accepted (older name of linearSolver)"},
+          {"regularizationTerm", "real", "0", "added to W's diagonal on the rows that reach the object"},
+          {"wire_optimization", "bool", "false", "accepted (only reorders SOFA's unbuilt solve)"}};
+}
+
+}  // namespace
+
+std::vector<ComponentSpec> lagrangian_components() {
+  auto generic_solver = solver_attributes();
+  generic_solver.push_back({"resolutionMethod", "string", "ProjectedGaussSeidel",
+                            "ProjectedGaussSeidel (run as BlockGaussSeidelConstraintSolver) or UnbuiltGaussSeidel"});
+  generic_solver.push_back({"newtonIterations", "int", "100", "accepted (NNCG only)"});
+  auto generic_correction = correction_link_attributes();
+  generic_correction.push_back({"complianceFactor", "real", "1", "scales the compliance and the correction"});
+  return {
+      {"FreeMotionAnimationLoop", "animationloop",
+       "SOFA's constraint-based step: each object's free motion, then the Lagrangian constraints solved on the free positions (W = H A⁻¹ Hᵀ from the corrections) and the objects corrected; without constraints, the default loop's trajectory.",
+       {{"solveVelocityConstraintFirst", "bool", "false", "solve on velocities (x = x_start + dt v after the correction)"},
+        {"parallelODESolving", "bool", "false", "accepted: objects are integrated on the run's threads"},
+        {"parallelCollisionDetectionAndFreeMotion", "bool", "false", "accepted (same results)"},
+        {"threadSafeVisitor", "bool", "false", "accepted (no numerical effect)"},
+        {"computeBoundingBox", "bool", "true", "accepted (display)"}}},
+      {"BlockGaussSeidelConstraintSolver", "constraintsolver",
+       "Projected block Gauss–Seidel on the built compliance W, blocks warm-started by their constraints, SOFA's stopping rule.",
+       solver_attributes()},
+      {"UnbuiltGaussSeidelConstraintSolver", "constraintsolver",
+       "The same sweep with λ from zero every step (SOFA's unbuilt variant; W λ is computed from the built W, which gives the same values).",
+       solver_attributes()},
+      {"GenericConstraintSolver", "constraintsolver",
+       "Gone from SOFA master (v25.12): run as BlockGaussSeidelConstraintSolver or UnbuiltGaussSeidelConstraintSolver according to resolutionMethod, with a warning.",
+       generic_solver},
+      {"LinearSolverConstraintCorrection", "constraintcorrection",
+       "W through the object's own factorised system (sparse triangular solves on the rows of H with a direct solver, one solve per row with an iterative one); corrects x = x_free + h A⁻¹Hᵀλ, v = v_free + A⁻¹Hᵀλ.",
+       correction_link_attributes()},
+      {"GenericConstraintCorrection", "constraintcorrection",
+       "As LinearSolverConstraintCorrection (rows always reach the solver's points through the mappings here), scaled by complianceFactor.",
+       generic_correction},
+      {"UncoupledConstraintCorrection", "constraintcorrection",
+       "A fixed compliance per point (or per rigid body: 1/m and the inverse inertia), no coupling between points.",
+       {{"compliance", "reals", "", "one per point (rigid bodies: 7 numbers, 1/m then the rotation's upper triangle)"},
+        {"defaultCompliance", "real", "1e-5", "for every point when compliance is not given"},
+        {"useOdeSolverIntegrationFactors", "bool", "true", "W and the correction scaled by the ODE solver's factors (h, 1)"},
+        {"correctionPositionFactor", "real", "1", "without the ODE factors: x += factor dx"},
+        {"correctionVelocityFactor", "real", "1", "without the ODE factors: v += factor / dt dx"},
+        {"verbose", "bool", "false", "accepted"},
+        {"topology", "link", "", "accepted"}}},
+      {"FixedLagrangianConstraint", "lagrangian",
+       "Holds points at their rest positions by Lagrange multipliers: 3 rows per point, violation x_free - x_rest.",
+       {{"indices", "indices", "", "the points"}, {"fixAll", "bool", "false", "every point"}}},
+      {"BilateralLagrangianConstraint", "lagrangian",
+       "Ties point first_point[k] of object1 to second_point[k] of object2 (x2 - x1 = rest_vector[k]) by Lagrange multipliers: 3 rows per pair.",
+       {{"object1", "link", "", "the first state (a node or its MechanicalObject); default: the node's"},
+        {"object2", "link", "", "the second state"},
+        {"first_point", "indices", "", "points of object1"},
+        {"second_point", "indices", "", "points of object2"},
+        {"rest_vector", "vec3s", "", "x2 - x1 to keep, per pair (zero when missing)"},
+        {"activate", "bool", "true", "false: no rows"},
+        {"load", "real", "1", "scales each update of λ, in [0, 1]"},
+        {"keepOrientationDifference", "bool", "false", "accepted (rigid states only)"},
+        {"numericalTolerance", "real", "0.0001", "accepted"},
+        {"topology1", "link", "", "accepted"},
+        {"topology2", "link", "", "accepted"}}},
+  };
+}
+
+}  // namespace fastcorot::scene_detail

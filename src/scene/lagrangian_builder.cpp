@@ -1,0 +1,370 @@
+#include "lagrangian_builder.h"
+
+#include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/core/error.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <memory>
+
+namespace fastcorot::scene_detail {
+
+namespace {
+
+constexpr std::array<std::string_view, 3> kSolvers = {"BlockGaussSeidelConstraintSolver", "UnbuiltGaussSeidelConstraintSolver",
+                                                      "GenericConstraintSolver"};
+constexpr std::array<std::string_view, 3> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
+                                                          "UncoupledConstraintCorrection"};
+constexpr std::array<std::string_view, 2> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint"};
+
+template <std::size_t N>
+bool among(const std::array<std::string_view, N>& names, std::string_view type) {
+  return std::find(names.begin(), names.end(), type) != names.end();
+}
+
+// Every component of the graph in SOFA's visiting order: a node's components, then its children.
+void collect(GraphNode& node, std::vector<Component*>& out) {
+  for (const auto& c : node.components) {
+    if (c->spec && is_lagrangian_component(c->type())) out.push_back(c.get());
+  }
+  for (const auto& child : node.children) collect(*child, out);
+}
+
+// SOFA's solver parameters (GenericConstraintSolver's data, maxIt its alias of maxIterations).
+ConstraintSolverParameters<double> solver_parameters(SceneData& data, Component& c) {
+  ConstraintSolverParameters<double> p;
+  p.max_iterations = data.whole_number(c, c.has("maxIterations") ? "maxIterations" : "maxIt", 1000);
+  p.tolerance = data.real(c, "tolerance", 1e-3);
+  p.sor = data.real(c, "sor", 1.0);
+  p.regularization = data.real(c, "regularizationTerm", 0.0);
+  p.scale_tolerance = data.boolean(c, "scaleTolerance", true);
+  p.all_verified = data.boolean(c, "allVerified", false);
+  return p;
+}
+
+std::unique_ptr<ConstraintSolver<double>> build_solver(SceneData& data, std::vector<std::string>& info, Component& c) {
+  try {
+    const auto p = solver_parameters(data, c);
+    std::string_view type = c.type();
+    if (type == "GenericConstraintSolver") {
+      // Gone from SOFA master (v25.12); its change list maps it by resolutionMethod.
+      const std::string method = data.text(c, "resolutionMethod", "ProjectedGaussSeidel");
+      if (method == "ProjectedGaussSeidel") {
+        type = "BlockGaussSeidelConstraintSolver";
+      } else if (method == "UnbuiltGaussSeidel") {
+        type = "UnbuiltGaussSeidelConstraintSolver";
+      } else if (method == "NonsmoothNonlinearConjugateGradient") {
+        throw make_error("resolutionMethod NonsmoothNonlinearConjugateGradient (SOFA's NNCGConstraintSolver) is not simulated yet");
+      } else {
+        throw make_error("resolutionMethod = \"", method,
+                         "\": not one of ProjectedGaussSeidel, UnbuiltGaussSeidel, NonsmoothNonlinearConjugateGradient");
+      }
+      data.warn(c.where() + ": GenericConstraintSolver was replaced in SOFA v25.12; run as " + std::string(type) +
+                " (resolutionMethod " + method + "), as SOFA's change list maps it");
+    }
+    if (type == "UnbuiltGaussSeidelConstraintSolver") return std::make_unique<UnbuiltGaussSeidelSolver<double>>(p);
+    static_cast<void>(info);
+    return std::make_unique<BlockGaussSeidelSolver<double>>(p);
+  } catch (const Error& error) {
+    throw error_at(c.where(), error);
+  }
+}
+
+// The MechanicalObject a single-state component acts on: its node's.
+Component& own_state(Component& c) {
+  const auto states = c.node->of_category("state");
+  if (states.empty()) throw make_error(c.where(), ": node ", c.node->path, " has no MechanicalObject");
+  return *states.front();
+}
+
+class LoopBuilder {
+ public:
+  LoopBuilder(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
+              const std::vector<const GraphNode*>& solver_nodes, const LocateState& locate)
+      : data_(data), info_(info), simulation_(simulation), solver_nodes_(solver_nodes), locate_(locate) {}
+
+  void build(Component& loop_component, const std::vector<Component*>& components) {
+    Component* solver_component = nullptr;
+    for (Component* c : components) {
+      if (!among(kSolvers, c->type())) continue;
+      if (solver_component) {
+        info_.push_back(c->where() + ": a second constraint solver is ignored (SOFA's loop uses one: " + solver_component->where() + ")");
+        continue;
+      }
+      solver_component = c;
+    }
+    std::unique_ptr<ConstraintSolver<double>> solver;
+    if (solver_component) {
+      solver = build_solver(data_, info_, *solver_component);
+    } else {
+      data_.warn(loop_component.where() + ": no constraint solver in the scene: a BlockGaussSeidelConstraintSolver "
+                 "with SOFA's defaults is used, as SOFA adds one");
+      solver = std::make_unique<BlockGaussSeidelSolver<double>>(ConstraintSolverParameters<double>{});
+    }
+    typename FreeMotionAnimationLoop<double>::Parameters parameters;
+    parameters.solve_velocity_constraint_first = data_.boolean(loop_component, "solveVelocityConstraintFirst", false);
+    loop_ = std::make_shared<FreeMotionAnimationLoop<double>>(parameters, std::move(solver));
+    for (Component* c : components) {
+      try {
+        if (among(kCorrections, c->type())) add_correction(*c);
+        if (among(kConstraints, c->type())) add_constraint(*c);
+      } catch (const Error& error) {
+        throw error_at(c->where(), error);
+      }
+    }
+    check_corrected();
+    simulation_.constraints = loop_;
+  }
+
+ private:
+  StateLocation locate(Component& state, Component& user) {
+    const auto found = locate_(state);
+    if (!found) {
+      throw make_error(state.where(), " is not simulated (no ODE solver integrates it, or it is not a state "
+                       "the mechanics follow): ", user.type(), " cannot act on it");
+    }
+    return *found;
+  }
+
+  ConstraintPoints<double> points_of(Component& state, Component& user) {
+    const StateLocation where = locate(state, user);
+    ConstraintPoints<double> points;
+    points.object = where.object;
+    const auto& object = simulation_.objects[where.object];
+    if (where.mapped) {
+      if (where.mapped->through) {
+        throw make_error(state.where(), " is below a SubsetMultiMapping or follows several rigid bodies: "
+                         "Lagrangian constraints on it are not supported");
+      }
+      points.mapping = std::shared_ptr<MechanicalMapping<double>>(mechanical_mapping(where.mapped->map, where.mapped->rigid));
+      points.rest_position.resize(points.mapping->size());
+      points.mapping->positions(object.system.state.rest_position, points.rest_position);
+      return points;
+    }
+    if (where.rigid) {
+      throw make_error(state.where(), " is a Rigid3 state: ", user.type(),
+                       " on rigid bodies is not simulated yet (put it on points the rigid carries, under a RigidMapping)");
+    }
+    for (Index i = 0; i < where.size; ++i) {
+      points.blocks.push_back(where.offset + i);
+      points.rest_position.push_back(object.system.state.rest_position[static_cast<std::size_t>(where.offset + i)]);
+    }
+    return points;
+  }
+
+  void check_template(Component& c) {
+    if (is_rigid_template(data_.text(c, "template", "Vec3d"))) {
+      throw make_error(c.type(), " on Rigid3 states is not simulated yet (put it on points the rigid carries)");
+    }
+  }
+
+  void add_constraint(Component& c) {
+    check_template(c);
+    if (c.type() == "FixedLagrangianConstraint") {
+      Component& state = own_state(c);
+      ConstraintPoints<double> points = points_of(state, c);
+      std::vector<Index> indices;
+      if (data_.boolean(c, "fixAll", false)) {
+        for (std::size_t i = 0; i < points.size(); ++i) indices.push_back(static_cast<Index>(i));
+      } else if (c.has("indices")) {
+        indices = data_.indices(c, "indices");
+      }
+      if (indices.empty()) info_.push_back(c.where() + ": no indices: it holds nothing (as in SOFA)");
+      loop_->constraints.push_back(std::make_unique<FixedLagrangianConstraint<double>>(c.where(), std::move(points), std::move(indices)));
+      return;
+    }
+    // BilateralLagrangianConstraint: object1 and object2 default to the node's state.
+    const auto linked = [&](const char* name) -> Component& {
+      return c.has(name) ? data_.resolve_state(*c.node, c.object->attributes.at(name), c) : own_state(c);
+    };
+    Component& first = linked("object1");
+    Component& second = linked("object2");
+    typename BilateralLagrangianConstraint<double>::Parameters p;
+    p.first = c.has("first_point") ? data_.indices(c, "first_point") : std::vector<Index>{};
+    p.second = c.has("second_point") ? data_.indices(c, "second_point") : std::vector<Index>{};
+    if (p.first.size() != p.second.size()) {
+      data_.warn(c.where() + ": first_point has " + std::to_string(p.first.size()) + " indices and second_point " +
+                 std::to_string(p.second.size()) + ": only the first " + std::to_string(std::min(p.first.size(), p.second.size())) +
+                 " pairs are tied (as in SOFA)");
+    }
+    p.rest = c.has("rest_vector") ? data_.points(c, "rest_vector") : std::vector<Vec3<double>>{};
+    p.active = data_.boolean(c, "activate", true);
+    p.load = data_.real(c, "load", 1.0);
+    if (p.load < 0 || p.load > 1) {
+      data_.warn(c.where() + ": load = " + std::to_string(p.load) + " lies outside [0, 1]: clamped, as SOFA does");
+      p.load = std::clamp(p.load, 0.0, 1.0);
+    }
+    loop_->constraints.push_back(std::make_unique<BilateralLagrangianConstraint<double>>(
+        c.where(), points_of(first, c), points_of(second, c), std::move(p)));
+  }
+
+  // The linear solver component of object o's solver node, if any.
+  Component* linear_solver_of(std::size_t o) {
+    const auto solvers = solver_nodes_[o]->of_category("linearsolver");
+    return solvers.empty() ? nullptr : solvers.front();
+  }
+
+  void add_correction(Component& c) {
+    Component& state = own_state(c);
+    const StateLocation where = locate(state, c);
+    if (where.mapped) {
+      throw make_error("its MechanicalObject ", state.where(), " is mapped: a constraint correction belongs with the "
+                       "simulated state (the node of the ODE solver's object)");
+    }
+    const std::size_t o = where.object;
+    auto& object = simulation_.objects[o];
+    if (c.type() == "UncoupledConstraintCorrection") {
+      if (kind_.count(o) && kind_[o] != "uncoupled") {
+        throw make_error(object.path, " already has a ", kind_[o], ": one kind of correction per ODE solver's object");
+      }
+      kind_[o] = "uncoupled";
+      loop_->corrections.push_back(std::make_unique<UncoupledConstraintCorrection<double>>(c.where(), o, uncoupled(c, where)));
+      return;
+    }
+    // LinearSolverConstraintCorrection and GenericConstraintCorrection: through the object's solver.
+    if (kind_.count(o)) {
+      if (kind_[o] == "uncoupled") throw make_error(object.path, " already has an UncoupledConstraintCorrection: one kind of correction per ODE solver's object");
+      // Several objects under one linear solver each with a correction (SOFA issue #5501): one
+      // correction of the whole system serves them all.
+      info_.push_back(c.where() + ": " + object.path + " is already corrected through its linear solver: this correction is the same one");
+      return;
+    }
+    if (Component* linear = linear_solver_of(o)) {
+      const std::string_view type = linear->type();
+      const std::string tmpl = data_.text(*linear, "template", "GraphScattered");
+      if ((type == "CGLinearSolver" || type == "MinResLinearSolver") && tmpl.find("CompressedRowSparseMatrix") == std::string::npos) {
+        throw make_error("the linear solver ", linear->where(), " is matrix-free (SOFA's GraphScattered template), which ",
+                         c.type(), " cannot use: use a SparseLDLSolver, a CGLinearSolver with template=\"CompressedRowSparseMatrixMat3x3d\", "
+                         "or an UncoupledConstraintCorrection");
+      }
+    }
+    if (!object.ode_solver->integration_factors(simulation_.dt)) {
+      throw make_error("the ODE solver of ", object.path, " does not give SOFA's integration factors (EulerImplicitSolver does)");
+    }
+    kind_[o] = std::string(c.type());
+    const double compliance_factor = c.type() == "GenericConstraintCorrection" ? data_.real(c, "complianceFactor", 1.0) : 1.0;
+    loop_->corrections.push_back(std::make_unique<LinearSolverConstraintCorrection<double>>(
+        c.where(), o, data_.real(c, "regularizationTerm", 0.0), compliance_factor));
+  }
+
+  // SOFA's UncoupledConstraintCorrection::init for points and for rigid bodies.
+  typename UncoupledConstraintCorrection<double>::Parameters uncoupled(Component& c, const StateLocation& where) {
+    typename UncoupledConstraintCorrection<double>::Parameters p;
+    p.offset = where.offset;
+    p.use_ode_factors = data_.boolean(c, "useOdeSolverIntegrationFactors", true);
+    p.position_factor = data_.real(c, "correctionPositionFactor", 1.0);
+    p.velocity_factor = data_.real(c, "correctionVelocityFactor", 1.0);
+    const bool default_set = c.has("defaultCompliance");
+    const double fallback = data_.real(c, "defaultCompliance", 1e-5);
+    const Numbers compliance = c.has("compliance") ? data_.data(c, "compliance") : Numbers{};
+    if (!default_set && compliance.empty()) {
+      data_.warn(c.where() + ": neither defaultCompliance nor compliance is set: defaultCompliance 1e-5 is used, as in SOFA "
+                 "(set one: the compliance is not derived from the mass for points)");
+    }
+    if (default_set && fallback == 0) throw make_error("defaultCompliance = 0: the constraint solve would divide by zero");
+    for (double value : compliance) {
+      if (!std::isfinite(value)) throw make_error("compliance has a value that is not finite");
+    }
+    if (where.rigid) {
+      // 7 numbers: 1/m for the centre, then the rotation's upper triangle.
+      const double ode = p.use_ode_factors ? 1.0 : simulation_.dt * simulation_.dt;
+      Numbers seven = compliance;
+      if (seven.size() != 7) {
+        seven.clear();
+        const auto& mass = simulation_.objects[where.object].system.mass;
+        Mat3<double> inverse_inertia = Mat3<double>::Identity();
+        if (default_set) {
+          seven.push_back(fallback);
+        } else if (mass.is_block_diagonal()) {
+          const auto blocks = mass.blocks();
+          const double m = blocks[static_cast<std::size_t>(where.offset)](0, 0);
+          seven.push_back(ode / m);
+          inverse_inertia = blocks[static_cast<std::size_t>(where.offset) + 1].inverse();
+        } else {
+          throw make_error("no defaultCompliance and no UniformMass on the rigid bodies to derive the compliance from");
+        }
+        for (auto [r, k] : {std::pair{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}}) seven.push_back(ode * inverse_inertia(r, k));
+      }
+      if (seven[0] == 0 || seven[1] == 0 || seven[4] == 0 || seven[6] == 0) {
+        throw make_error("a zero compliance on a translation or on the rotation's diagonal: the constraint solve would divide by zero");
+      }
+      Mat3<double> rotation;
+      rotation << seven[1], seven[2], seven[3], seven[2], seven[4], seven[5], seven[3], seven[5], seven[6];
+      for (Index k = 0; k < where.size / 2; ++k) {
+        p.compliance.push_back(seven[0] * Mat3<double>::Identity());
+        p.compliance.push_back(rotation);
+      }
+      return p;
+    }
+    const auto n = static_cast<std::size_t>(where.size);
+    Numbers per_point = compliance;
+    double base = fallback;
+    if (per_point.size() == 1 && default_set && per_point[0] == fallback) per_point.clear();
+    if (!per_point.empty() && per_point.size() != n) {
+      if (per_point.size() > 1) {
+        data_.warn(c.where() + ": compliance has " + std::to_string(per_point.size()) + " values for " + std::to_string(n) +
+                   " points: a default compliance is used, as in SOFA");
+      }
+      if (!default_set) base = per_point[0];
+      per_point.clear();
+    }
+    for (double value : per_point) {
+      if (value == 0) throw make_error("a zero compliance: the constraint solve would divide by zero");
+    }
+    for (std::size_t i = 0; i < n; ++i) p.compliance.push_back((per_point.empty() ? base : per_point[i]) * Mat3<double>::Identity());
+    return p;
+  }
+
+  // Every object a constraint acts on has a correction (SOFA would leave W's rows empty).
+  void check_corrected() {
+    for (const auto& constraint : loop_->constraints) {
+      for (ConstraintPoints<double>* points : constraint->point_sets()) {
+        if (!kind_.count(points->object)) {
+          throw make_error(constraint->where(), ": it acts on ", simulation_.objects[points->object].path,
+                           ", which has no constraint correction (add a LinearSolverConstraintCorrection, "
+                           "GenericConstraintCorrection or UncoupledConstraintCorrection in its solver's node)");
+        }
+      }
+    }
+  }
+
+  SceneData& data_;
+  std::vector<std::string>& info_;
+  Simulation<double>& simulation_;
+  const std::vector<const GraphNode*>& solver_nodes_;
+  const LocateState& locate_;
+  std::shared_ptr<FreeMotionAnimationLoop<double>> loop_;
+  std::map<std::size_t, std::string> kind_;  // the kind of correction of each corrected object
+};
+
+}  // namespace
+
+bool is_lagrangian_component(std::string_view type) {
+  return type == "FreeMotionAnimationLoop" || among(kSolvers, type) || among(kCorrections, type) || among(kConstraints, type);
+}
+
+void build_free_motion_loop(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
+                            const std::vector<const GraphNode*>& solver_nodes, const LocateState& locate) {
+  std::vector<Component*> components;
+  collect(data.root(), components);
+  Component* loop = nullptr;
+  for (Component* c : components) {
+    if (c->type() != "FreeMotionAnimationLoop") continue;
+    if (c->node != &data.root()) throw make_error(c->where(), ": the animation loop must be in the root node (SOFA uses the root's)");
+    loop = c;
+  }
+  if (!loop) {
+    for (Component* c : components) {
+      info.push_back(c->where() + ": not used: the scene has no FreeMotionAnimationLoop (SOFA's default loop does not "
+                     "solve Lagrangian constraints)");
+    }
+    return;
+  }
+  LoopBuilder(data, info, simulation, solver_nodes, locate).build(*loop, components);
+}
+
+}  // namespace fastcorot::scene_detail

@@ -1,0 +1,198 @@
+// Constraint solvers on small problems with known solutions: bilateral blocks reach λ = -W⁻¹ δ_free
+// (Eigen's LU as the reference), unilateral rows reach the complementarity solution (worked out by
+// enumeration of the active sets), SOFA's stopping rule (tolerance × rows) and warm start, against a
+// straightforward Gauss–Seidel written here from SOFA's description.
+#include "fastcorot/constraint/constraint_solvers.h"
+#include "fastcorot/core/error.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+namespace fastcorot {
+namespace {
+
+// A random symmetric positive definite n × n matrix (well conditioned: diagonally dominant).
+DenseMatrix<double> spd(int n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  Eigen::MatrixXd a(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) a(i, j) = uniform(random);
+  }
+  Eigen::MatrixXd w = a * a.transpose() * 0.2 + 2.0 * Eigen::MatrixXd::Identity(n, n);
+  return w;
+}
+
+DenseVector<double> random_vector(int n, unsigned seed) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  DenseVector<double> v(n);
+  for (int i = 0; i < n; ++i) v[i] = uniform(random);
+  return v;
+}
+
+// `blocks` bilateral 3-row blocks on W, δ_free; warm starts kept in `previous`.
+ConstraintProblem<double> bilateral_problem(const DenseMatrix<double>& w, const DenseVector<double>& dfree,
+                                            std::vector<Vec3<double>>& previous) {
+  ConstraintProblem<double> problem;
+  problem.clear(static_cast<int>(dfree.size()));
+  problem.w = w;
+  problem.dfree = dfree;
+  previous.resize(static_cast<std::size_t>(dfree.size() / 3), Vec3<double>::Zero());
+  for (auto& p : previous) problem.add_block(std::make_unique<BilateralResolution3<double>>(&p));
+  return problem;
+}
+
+TEST(BlockGaussSeidelSolver, BilateralBlocksReachTheLinearSolution) {
+  const int n = 9;
+  const DenseMatrix<double> w = spd(n, 1);
+  const DenseVector<double> dfree = random_vector(n, 2);
+  std::vector<Vec3<double>> previous;
+  ConstraintProblem<double> problem = bilateral_problem(w, dfree, previous);
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 1e-14;
+  p.max_iterations = 10000;
+  BlockGaussSeidelSolver<double> solver(p);
+  const ConstraintSolveReport report = solver.solve(problem);
+  EXPECT_TRUE(report.converged);
+  const Eigen::VectorXd expected = -Eigen::MatrixXd(w).lu().solve(Eigen::VectorXd(dfree));
+  EXPECT_LT((Eigen::VectorXd(problem.f) - expected).norm(), 1e-11 * expected.norm());
+  // Stored as the next step's warm start: the same problem again converges in one sweep.
+  ConstraintProblem<double> again = bilateral_problem(w, dfree, previous);
+  EXPECT_EQ(solver.solve(again).iterations, 1);
+  EXPECT_LT((Eigen::VectorXd(again.f) - expected).norm(), 1e-11 * expected.norm());
+}
+
+// A straightforward projected block Gauss–Seidel as SOFA describes it (bilateral 3-blocks and
+// the summed block error), for the iteration count and the values.
+struct Reference {
+  Eigen::VectorXd f;
+  int iterations = 0;
+};
+Reference reference_gauss_seidel(const Eigen::MatrixXd& w, const Eigen::VectorXd& dfree, double tolerance, int max_iterations) {
+  const int n = static_cast<int>(dfree.size());
+  Reference r{Eigen::VectorXd::Zero(n), 0};
+  for (int it = 0; it < max_iterations; ++it) {
+    r.iterations = it + 1;
+    double error = 0;
+    for (int j = 0; j < n; j += 3) {
+      const Eigen::Vector3d old = r.f.segment<3>(j);
+      const Eigen::Vector3d d = dfree.segment<3>(j) + w.middleRows(j, 3) * r.f;
+      r.f.segment<3>(j) -= w.block<3, 3>(j, j).inverse() * d;
+      // SOFA's block error: for each row l, the length of (W_lm Δλ_m)_m.
+      const Eigen::Matrix3d terms = w.block<3, 3>(j, j) * (r.f.segment<3>(j) - old).asDiagonal();
+      error += terms.rowwise().norm().sum();
+    }
+    if (error < tolerance * n) break;
+  }
+  return r;
+}
+
+TEST(BlockGaussSeidelSolver, StopsBySofasRuleScaledByTheRowCount) {
+  const int n = 12;
+  const DenseMatrix<double> w = spd(n, 3) + 3.0 * spd(n, 5);  // more coupling: more iterations
+  const DenseVector<double> dfree = random_vector(n, 4);
+  for (double tolerance : {1e-2, 1e-4, 1e-7}) {
+    std::vector<Vec3<double>> previous;
+    ConstraintProblem<double> problem = bilateral_problem(w, dfree, previous);
+    ConstraintSolverParameters<double> p;
+    p.tolerance = tolerance;
+    BlockGaussSeidelSolver<double> solver(p);
+    const ConstraintSolveReport report = solver.solve(problem);
+    const Reference expected = reference_gauss_seidel(w, dfree, tolerance, 1000);
+    EXPECT_EQ(report.iterations, expected.iterations) << tolerance;
+    EXPECT_DOUBLE_EQ(report.tolerance, tolerance * n);
+    EXPECT_LT((Eigen::VectorXd(problem.f) - expected.f).norm(), 1e-12) << tolerance;
+  }
+}
+
+TEST(BlockGaussSeidelSolver, ReportsAnUnconvergedSolve) {
+  const int n = 12;
+  const DenseMatrix<double> w = spd(n, 3) + 3.0 * spd(n, 5);
+  std::vector<Vec3<double>> previous;
+  ConstraintProblem<double> problem = bilateral_problem(w, random_vector(n, 4), previous);
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 1e-12;
+  p.max_iterations = 2;
+  const ConstraintSolveReport report = BlockGaussSeidelSolver<double>(p).solve(problem);
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(report.iterations, 2);
+  EXPECT_GT(report.error, report.tolerance);
+}
+
+TEST(BlockGaussSeidelSolver, UnilateralRowsReachTheComplementaritySolution) {
+  // Three coupled rows: λ >= 0, d = δ + W λ >= 0, λ·d = 0. The solution is found by trying every
+  // active set (rows with λ > 0) and keeping the one that satisfies all three conditions.
+  DenseMatrix<double> w(3, 3);
+  w << 2.0, 0.5, 0.2, 0.5, 1.5, 0.3, 0.2, 0.3, 1.0;
+  DenseVector<double> dfree(3);
+  dfree << -1.0, 0.4, -0.3;
+  Eigen::Vector3d expected = Eigen::Vector3d::Zero();
+  bool found = false;
+  for (int set = 0; set < 8 && !found; ++set) {
+    std::vector<int> active;
+    for (int i = 0; i < 3; ++i) {
+      if (set & (1 << i)) active.push_back(i);
+    }
+    Eigen::Vector3d f = Eigen::Vector3d::Zero();
+    if (!active.empty()) {
+      Eigen::MatrixXd a(active.size(), active.size());
+      Eigen::VectorXd b(active.size());
+      for (std::size_t r = 0; r < active.size(); ++r) {
+        b[static_cast<Eigen::Index>(r)] = -dfree[active[r]];
+        for (std::size_t c = 0; c < active.size(); ++c) a(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = w(active[r], active[c]);
+      }
+      const Eigen::VectorXd x = a.lu().solve(b);
+      for (std::size_t r = 0; r < active.size(); ++r) f[active[r]] = x[static_cast<Eigen::Index>(r)];
+    }
+    const Eigen::Vector3d d = Eigen::Vector3d(dfree) + Eigen::Matrix3d(w) * f;
+    found = (f.array() >= -1e-15).all() && (d.array() >= -1e-12).all();
+    if (found) expected = f;
+  }
+  ASSERT_TRUE(found);
+  ConstraintProblem<double> problem;
+  problem.clear(3);
+  problem.w = w;
+  problem.dfree = dfree;
+  for (int i = 0; i < 3; ++i) problem.add_block(std::make_unique<UnilateralResolution<double>>());
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 1e-15;
+  BlockGaussSeidelSolver<double>(p).solve(problem);
+  EXPECT_LT((Eigen::Vector3d(problem.f) - expected).norm(), 1e-12);
+  EXPECT_EQ(problem.f[1], 0.0) << "the row pushed apart stays free";
+}
+
+TEST(UnbuiltGaussSeidelSolver, StartsFromZeroEveryStep) {
+  const int n = 6;
+  const DenseMatrix<double> w = spd(n, 7) + spd(n, 8);
+  const DenseVector<double> dfree = random_vector(n, 9);
+  std::vector<Vec3<double>> previous;
+  ConstraintProblem<double> problem = bilateral_problem(w, dfree, previous);
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 1e-10;
+  UnbuiltGaussSeidelSolver<double> solver(p);
+  const int first = solver.solve(problem).iterations;
+  ConstraintProblem<double> again = bilateral_problem(w, dfree, previous);
+  EXPECT_EQ(solver.solve(again).iterations, first) << "no warm start";
+  EXPECT_GT(first, 1);
+}
+
+TEST(ConstraintSolver, RefusesBadParameters) {
+  ConstraintSolverParameters<double> p;
+  p.max_iterations = 0;
+  EXPECT_THROW(BlockGaussSeidelSolver<double>{p}, Error);
+  p = {};
+  p.tolerance = std::nan("");
+  EXPECT_THROW(BlockGaussSeidelSolver<double>{p}, Error);
+  p = {};
+  p.sor = 2.5;
+  EXPECT_THROW(BlockGaussSeidelSolver<double>{p}, Error);
+}
+
+}  // namespace
+}  // namespace fastcorot

@@ -1,0 +1,223 @@
+// FreeMotionAnimationLoop scenes through the scene builder: a FixedLagrangianConstraint gives the
+// projective constraint's trajectory (the KKT solution equals the projected system when W is exact
+// and the solve converges); a scene without constraints runs as under the default loop, to the bit;
+// a BilateralLagrangianConstraint keeps its points together to the solver's tolerance (points of
+// the objects themselves, mapped points, uncoupled corrections); 1 and 2 threads agree to the bit;
+// bad input is refused in one line.
+#include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/scene/scene_builder.h"
+
+#include "../support/scene_text.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_scene_text;
+using testing::scene_error;
+
+const char* kRoot = "dt=\"0.01\" gravity=\"0 -9.81 0\"";
+
+// A beam of 6 × 2 × 2 points from x = x0 to x0 + 1, with its solvers and `extra` components.
+std::string beam(const std::string& name, double x0, const std::string& extra, const std::string& linear = "<SparseLDLSolver/>") {
+  return "<Node name=\"" + name + "\"><EulerImplicitSolver rayleighMass=\"0.1\" rayleighStiffness=\"0.1\"/>" + linear +
+         "<RegularGridTopology name=\"grid\" n=\"6 2 2\" min=\"" + std::to_string(x0) + " 0 0\" max=\"" + std::to_string(x0 + 1) +
+         " 0.2 0.2\"/><MechanicalObject name=\"dofs\"/><TetrahedronFEMForceField youngModulus=\"5e4\" poissonRatio=\"0.3\"/>"
+         "<UniformMass totalMass=\"1\"/>" + extra + "</Node>";
+}
+
+const std::string kLeftEnd = "<BoxROI name=\"box\" box=\"-0.01 -0.01 -0.01 0.01 0.21 0.21\"/>";
+
+double max_difference(const std::vector<Vec3<double>>& a, const std::vector<Vec3<double>>& b) {
+  double worst = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, (a[i] - b[i]).norm());
+  return worst;
+}
+
+TEST(LagrangianScene, FixedLagrangianConstraintGivesTheProjectiveTrajectory) {
+  LoadedScene projective = build_scene_text(beam("beam", 0, kLeftEnd + "<FixedProjectiveConstraint indices=\"@box.indices\"/>"), kRoot);
+  LoadedScene lagrangian = build_scene_text(
+      "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"5000\" tolerance=\"1e-15\"/>" +
+          beam("beam", 0, kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>"),
+      kRoot);
+  ASSERT_TRUE(lagrangian.simulation.constraints);
+  const auto& a = projective.simulation.objects[0].system.state;
+  const auto& b = lagrangian.simulation.objects[0].system.state;
+  double sag = 0;
+  for (int step = 1; step <= 200; ++step) {
+    projective.simulation.step();
+    lagrangian.simulation.step();
+    ASSERT_LT(max_difference(a.position, b.position), 1e-10) << "step " << step;
+    ASSERT_LT(max_difference(a.velocity, b.velocity), 1e-8) << "step " << step;
+    sag = std::max(sag, -a.position[5].y());
+  }
+  EXPECT_GT(sag, 1e-3) << "the beam bends under its weight";
+  EXPECT_EQ(lagrangian.simulation.constraint_report().rows, 12);  // 4 points held, 3 rows each
+  EXPECT_TRUE(lagrangian.simulation.constraint_report().converged);
+}
+
+TEST(LagrangianScene, WithoutConstraintsTheLoopGivesTheDefaultTrajectoryToTheBit) {
+  const std::string body = beam("beam", 0, kLeftEnd + "<FixedProjectiveConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>");
+  LoadedScene plain = build_scene_text(body, kRoot);
+  LoadedScene loop = build_scene_text("<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver/>" + body, kRoot);
+  for (int step = 0; step < 50; ++step) {
+    plain.simulation.step();
+    loop.simulation.step();
+  }
+  EXPECT_EQ(plain.simulation.objects[0].system.state.position, loop.simulation.objects[0].system.state.position);
+  EXPECT_EQ(plain.simulation.objects[0].system.state.velocity, loop.simulation.objects[0].system.state.velocity);
+  EXPECT_EQ(loop.simulation.constraint_report().rows, 0);
+}
+
+// Beam A, fixed at x = 0, and beam B from x = 1 to 2 held to A's end only by a bilateral constraint
+// on the four points where they meet.
+std::string tied_beams(const std::string& b_correction, const std::string& solver, const std::string& b_interface = "") {
+  return "<FreeMotionAnimationLoop/>" + solver +
+         beam("A", 0, kLeftEnd + "<FixedProjectiveConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>") +
+         beam("B", 1, b_correction + b_interface) +
+         "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"" + std::string(b_interface.empty() ? "@B/dofs" : "@B/interface/points") +
+         "\" first_point=\"5 11 17 23\" second_point=\"0 " + (b_interface.empty() ? "6 12 18" : "1 2 3") + "\"/>";
+}
+
+// `limit`: how far below y = 0 B's far end may hang (free fall over the run would take it 4.9 m
+// down in 1 s).
+void expect_tied(LoadedScene& scene, int steps, double tolerance, bool mapped = false, double limit = 1.0) {
+  const auto& a = scene.simulation.objects[0].system.state.position;
+  const auto& b = scene.simulation.objects[1].system.state.position;
+  const Index first[4] = {5, 11, 17, 23}, second[4] = {0, 6, 12, 18};
+  for (int step = 1; step <= steps; ++step) {
+    scene.simulation.step();
+    for (int k = 0; k < 4; ++k) {
+      const double gap = (b[static_cast<std::size_t>(second[k])] - a[static_cast<std::size_t>(first[k])]).norm();
+      ASSERT_LT(gap, tolerance) << "step " << step << " pair " << k << (mapped ? " (mapped)" : "");
+    }
+  }
+  EXPECT_LT(b[5].y(), -0.01) << "B hangs from A's end and sags";
+  EXPECT_GT(b[5].y(), -limit) << "B is held";
+}
+
+TEST(LagrangianScene, BilateralConstraintKeepsTwoBeamsTogether) {
+  LoadedScene scene = build_scene_text(
+      tied_beams("<LinearSolverConstraintCorrection/>", "<BlockGaussSeidelConstraintSolver maxIterations=\"1000\" tolerance=\"1e-12\"/>"), kRoot);
+  expect_tied(scene, 150, 1e-9);
+  EXPECT_EQ(scene.simulation.constraint_report().rows, 12);
+}
+
+TEST(LagrangianScene, BilateralConstraintOnMappedPoints) {
+  // B's end points reached through a BarycentricMapping of a mapped node with its own points.
+  const std::string interface =
+      "<Node name=\"interface\"><MechanicalObject name=\"points\" position=\"1 0 0  1 0.2 0  1 0 0.2  1 0.2 0.2\"/>"
+      "<BarycentricMapping/></Node>";
+  LoadedScene scene = build_scene_text(
+      tied_beams("<LinearSolverConstraintCorrection/>", "<BlockGaussSeidelConstraintSolver maxIterations=\"1000\" tolerance=\"1e-12\"/>",
+                 interface),
+      kRoot);
+  // Pairs: A 5 ↔ mapped 0 (B's point 0); A 11 ↔ mapped 1 (B's 6, y = 0.2); A 17 ↔ mapped 2 (B's 12, z = 0.2); A 23 ↔ mapped 3.
+  expect_tied(scene, 100, 1e-8, true);
+}
+
+TEST(LagrangianScene, UncoupledCorrectionsTieBeamsToTheSolversTolerance) {
+  // NearestPointROI.scn's settings: compliance 1, no ODE factors, the unbuilt solver.
+  const std::string uncoupled = "<UncoupledConstraintCorrection defaultCompliance=\"1\" useOdeSolverIntegrationFactors=\"0\"/>";
+  std::string body = "<FreeMotionAnimationLoop/><UnbuiltGaussSeidelConstraintSolver tolerance=\"1e-10\" maxIterations=\"1000\"/>" +
+                     beam("A", 0, kLeftEnd + "<FixedProjectiveConstraint indices=\"@box.indices\"/>" + uncoupled) + beam("B", 1, uncoupled) +
+                     "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"@B/dofs\" first_point=\"5 11 17 23\" second_point=\"0 6 12 18\"/>";
+  LoadedScene scene = build_scene_text(body, kRoot);
+  // The tied points move together; the rest of each beam feels the constraint only through its
+  // elasticity in later steps (a diagonal compliance), so B swings lower than under LinearSolver.
+  expect_tied(scene, 100, 1e-8, false, 2.0);
+}
+
+TEST(LagrangianScene, OneAndTwoThreadsGiveTheSameBits) {
+  const std::string body =
+      tied_beams("<LinearSolverConstraintCorrection/>", "<BlockGaussSeidelConstraintSolver maxIterations=\"50\" tolerance=\"1e-6\"/>");
+  LoadedScene one = build_scene_text(body, kRoot);
+  LoadedScene two = build_scene_text(body, kRoot);
+  two.simulation.threads = 2;
+  for (int step = 0; step < 40; ++step) {
+    one.simulation.step();
+    two.simulation.step();
+  }
+  for (std::size_t o = 0; o < 2; ++o) {
+    EXPECT_EQ(one.simulation.objects[o].system.state.position, two.simulation.objects[o].system.state.position);
+    EXPECT_EQ(one.simulation.objects[o].system.state.velocity, two.simulation.objects[o].system.state.velocity);
+  }
+}
+
+TEST(LagrangianScene, AnUnconvergedSolveIsReported) {
+  LoadedScene scene = build_scene_text(
+      tied_beams("<LinearSolverConstraintCorrection/>", "<BlockGaussSeidelConstraintSolver maxIterations=\"1\" tolerance=\"1e-14\"/>"), kRoot);
+  scene.simulation.step();
+  const ConstraintReport& report = scene.simulation.constraint_report();
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(report.iterations, 1);
+  EXPECT_GT(report.error, report.tolerance);
+}
+
+TEST(LagrangianScene, GenericConstraintSolverRunsAsItsReplacementWithAWarning) {
+  const std::string fixed = beam("beam", 0, kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>");
+  LoadedScene generic = build_scene_text("<FreeMotionAnimationLoop/><GenericConstraintSolver maxIt=\"40\" tolerance=\"1e-9\"/>" + fixed, kRoot);
+  LoadedScene block =
+      build_scene_text("<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"40\" tolerance=\"1e-9\"/>" + fixed, kRoot);
+  bool warned = false;
+  for (const auto& line : generic.warnings) warned = warned || line.find("BlockGaussSeidelConstraintSolver") != std::string::npos;
+  EXPECT_TRUE(warned);
+  for (int step = 0; step < 20; ++step) {
+    generic.simulation.step();
+    block.simulation.step();
+  }
+  EXPECT_EQ(generic.simulation.objects[0].system.state.position, block.simulation.objects[0].system.state.position);
+}
+
+TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
+  const std::string fixed = kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/>";
+  // A matrix-free linear solver under LinearSolverConstraintCorrection (SOFA's GraphScattered).
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + beam("beam", 0, fixed + "<LinearSolverConstraintCorrection/>", "<CGLinearSolver/>"))
+                .find("matrix-free"),
+            std::string::npos);
+  // An assembled CG template is accepted.
+  EXPECT_EQ(scene_error("<FreeMotionAnimationLoop/>" + beam("beam", 0, fixed + "<LinearSolverConstraintCorrection/>",
+                                                            "<CGLinearSolver template=\"CompressedRowSparseMatrixMat3x3d\"/>")),
+            "");
+  // No correction on the object a constraint acts on.
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + beam("beam", 0, fixed)).find("no constraint correction"), std::string::npos);
+  // A constraint on a state no solver integrates.
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + beam("A", 0, "<LinearSolverConstraintCorrection/>") +
+                        "<Node name=\"loose\"><MechanicalObject name=\"p\" position=\"0 0 0\"/></Node>"
+                        "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"@loose/p\" first_point=\"0\" second_point=\"0\"/>")
+                .find("is not simulated"),
+            std::string::npos);
+  // An index out of range, a non-finite rest vector.
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" +
+                        beam("beam", 0, "<FixedLagrangianConstraint indices=\"24\"/><LinearSolverConstraintCorrection/>"))
+                .find("out of range"),
+            std::string::npos);
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + beam("A", 0, "<LinearSolverConstraintCorrection/>") +
+                        "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"@A/dofs\" first_point=\"0\" second_point=\"1\" "
+                        "rest_vector=\"nan 0 0\"/>")
+                .find("rest_vector"),
+            std::string::npos);
+  // Mixed kinds of correction on one object.
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" +
+                        beam("beam", 0, fixed + "<LinearSolverConstraintCorrection/><UncoupledConstraintCorrection defaultCompliance=\"1\"/>"))
+                .find("one kind of correction"),
+            std::string::npos);
+  // A solver not simulated yet, named.
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/><LCPConstraintSolver/>" + beam("beam", 0, fixed + "<LinearSolverConstraintCorrection/>"))
+                .find("LCPConstraintSolver"),
+            std::string::npos);
+}
+
+TEST(LagrangianScene, WithoutTheLoopLagrangianComponentsAreReportedUnused) {
+  LoadedScene scene = build_scene_text(beam("beam", 0, kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>"), kRoot);
+  EXPECT_FALSE(scene.simulation.constraints);
+  bool said = false;
+  for (const auto& line : scene.info) said = said || line.find("no FreeMotionAnimationLoop") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
+}  // namespace
+}  // namespace fastcorot
