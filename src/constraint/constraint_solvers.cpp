@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -121,9 +122,73 @@ ConstraintSolveReport BlockGaussSeidelSolver<Real>::solve(ConstraintProblem<Real
   return report;
 }
 
+template <class Real>
+ConstraintSolveReport PreconditionedConjugateResidualSolver<Real>::solve(ConstraintProblem<Real>& problem) {
+  ConstraintSolveReport report;
+  const int n = problem.size();
+  if (n == 0) return report;
+  problem.check_blocks();
+  const auto& p = this->parameters_;
+  if (p.regularization > std::numeric_limits<Real>::epsilon()) {
+    for (int i = 0; i < n; ++i) problem.w(i, i) += p.regularization;
+  }
+  const auto& w = problem.w;
+  DenseVector<Real> scale(n);
+  for (int j = 0; j < n; ++j) {
+    if (!(w(j, j) > 0)) throw make_error("PreconditionedConjugateResidual: W's diagonal entry ", j, " is not positive");
+    scale[j] = Real(1) / std::sqrt(w(j, j));
+  }
+  const DenseMatrix<Real> mw = scale.asDiagonal() * w * scale.asDiagonal();
+  DenseVector<Real> r = -problem.dfree.cwiseProduct(scale);
+  problem.f.setZero();
+  DenseVector<Real> direction = r;
+  DenseVector<Real> w_direction = mw * direction;
+  DenseVector<Real> w_r = mw * r;
+  Real rwr = r.dot(w_r);
+  const Real tolerance = this->effective_tolerance(n);
+  report.tolerance = static_cast<double>(tolerance);
+  report.converged = false;
+  const int iterations = std::min(p.max_iterations, n);
+  Real error = 0;
+  for (int i = 0; i < iterations; ++i) {
+    report.iterations = i + 1;
+    const Real alpha = rwr / w_direction.dot(w_direction);
+    problem.f += alpha * direction;
+    r -= alpha * w_direction;
+    w_r = mw * r;
+    const Real old = rwr;
+    rwr = r.dot(w_r);
+    const Real beta = rwr / old;
+    direction = r + beta * direction;
+    error = 0;
+    bool verified = true;
+    for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+      Real block = 0;
+      for (int l = 0; l < problem.resolutions[b]->lines(); ++l) {
+        block += r[i] * r[i];  // SOFA's measure, as written (see the header)
+        verified = verified && block < tolerance * tolerance;
+      }
+      error += std::sqrt(block);
+    }
+    if (p.all_verified ? verified : (error < tolerance && i > 0)) {
+      report.converged = true;
+      break;
+    }
+    w_direction = w_r + beta * w_direction;
+  }
+  problem.f = problem.f.cwiseProduct(scale);
+  report.error = static_cast<double>(error);
+  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+    problem.resolutions[b]->store(problem.first_line[b], problem.f.data());
+  }
+  return report;
+}
+
 template class ConstraintSolver<float>;
 template class ConstraintSolver<double>;
 template class BlockGaussSeidelSolver<float>;
 template class BlockGaussSeidelSolver<double>;
+template class PreconditionedConjugateResidualSolver<float>;
+template class PreconditionedConjugateResidualSolver<double>;
 
 }  // namespace fastcorot

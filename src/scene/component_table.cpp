@@ -26,7 +26,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 63> kIgnored = {
+constexpr std::array<std::string_view, 62> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -37,7 +37,7 @@ constexpr std::array<std::string_view, 63> kIgnored = {
     "TriangleSetGeometryAlgorithms", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
     "PositionalLight", "BackgroundSetting", "Camera", "OglLabel", "ConstraintAttachButtonSetting",
     "AttachBodyButtonSetting", "Visual3DText", "OglShader", "OglShadowShader", "VisualMesh", "WriteState", "MeshExporter",
-    "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyContainer", "EdgeSetTopologyModifier",
+    "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyModifier",
     "EdgeSetGeometryAlgorithms", "ValuesFromPositions", "NaturalOrderingMethod",
     "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod", "TaskSchedulerSettings",
     "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase",
@@ -133,11 +133,10 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
-  static const std::array<std::pair<std::string_view, std::string_view>, 14> kRefused = {{
+  static const std::array<std::pair<std::string_view, std::string_view>, 13> kRefused = {{
       {"LCPConstraintSolver", "LCPConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
       {"NNCGConstraintSolver", "NNCGConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
       {"ImprovedJacobiConstraintSolver", "ImprovedJacobiConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
-      {"PreconditionedConjugateResidual", "the PreconditionedConjugateResidual constraint solver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
       {"PrecomputedConstraintCorrection", "PrecomputedConstraintCorrection is not simulated yet (LinearSolverConstraintCorrection is)"},
       {"SlidingLagrangianConstraint", "SlidingLagrangianConstraint is not simulated yet"},
       {"StopperLagrangianConstraint", "StopperLagrangianConstraint is not simulated yet"},

@@ -114,7 +114,31 @@ std::vector<ComponentSpec> engine_components() {
         {"triangleIndices<N>", "indices", "", "triangles of sub-mesh N"},
         {"quadIndices<N>", "indices", "", "quads of sub-mesh N"},
         {"tetrahedronIndices<N>", "indices", "", "tetrahedra of sub-mesh N"},
-        {"hexahedronIndices<N>", "indices", "", "hexahedra of sub-mesh N"}}}
+        {"hexahedronIndices<N>", "indices", "", "hexahedra of sub-mesh N"}}},
+      {"NearestPointROI", "engine",
+       "For each point of object2 (or of inputIndices2), the nearest point of object1 (or of inputIndices1; the first "
+       "of equals), kept when closer than radius: outputs indices1, indices2, edges (2k, 2k + 1 by object2's index, as "
+       "SOFA), indexPairs (0 i1 1 i2 per pair, for a SubsetMultiMapping) and distances.",
+       {{"object1", "link", "", "the first MechanicalObject"},
+        {"object2", "link", "", "the second MechanicalObject"},
+        {"inputIndices1", "indices", "", "candidates of object1 (default: all)"},
+        {"inputIndices2", "indices", "", "points of object2 to pair (default: all)"},
+        {"radius", "real", "1", "largest distance of a pair (> 0)"},
+        {"useRestPosition", "bool", "true", "compare rest positions (else positions at init)"},
+        {"indices1", "indices", "", "output"},
+        {"indices2", "indices", "", "output"},
+        {"edges", "indices", "", "output"},
+        {"indexPairs", "indices", "", "output"},
+        {"distances", "reals", "", "output"},
+        {"drawPairs", "bool", "false", "accepted (display)"}}},
+      {"IndexValueMapper", "engine",
+       "outputValues = inputValues with `value` at each of `indices` (the list grows to the largest index, gaps "
+       "filled with defaultValue): per-element values such as youngModulus, layer by layer.",
+       {{"inputValues", "reals", "", "the values to start from"},
+        {"indices", "indices", "", "where `value` goes"},
+        {"value", "real", "0", "the value"},
+        {"defaultValue", "real", "1", "for the gaps when the list grows"},
+        {"outputValues", "reals", "", "the result (an output)"}}}
   };
 }
 

@@ -206,7 +206,7 @@ std::vector<ComponentSpec> mechanics_components() {
         {"printMass", "bool", "false", "accepted (a log option)"}}},
       {"ConstantForceField", "forcefield", "Constant forces on points (indices empty = every point).",
        {{"indices", "indices", "", "points receiving a force"},
-        {"forces", "vec3s", "", "one force per index (wins)"},
+        {"forces", "vec3s", "", "one force per index, or one for every index (wins)"},
         {"force", "vec3", "", "the same force on every index"},
         {"totalForce", "vec3", "", "divided equally among the indices"},
         {"indexFromEnd", "bool", "false", "index i means point n-1-i"}}}

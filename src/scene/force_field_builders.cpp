@@ -189,6 +189,8 @@ ConstantForce<double> build_constant_force(SceneData& data, std::vector<std::str
   const auto count = constant.indices.size();
   if (c.has("forces")) {
     constant.forces = data.points(c, "forces");
+    // One force for several points: every point gets it (SOFA's computeForceFromSingleForce).
+    if (constant.forces.size() == 1) constant.forces.assign(count, constant.forces.front());
     if (constant.forces.size() != count) {
       throw make_error(c.where(), ": forces has ", constant.forces.size(), " entries for ", count, " indices");
     }

@@ -15,8 +15,8 @@ namespace fastcorot::scene_detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 3> kSolvers = {"BlockGaussSeidelConstraintSolver", "UnbuiltGaussSeidelConstraintSolver",
-                                                      "GenericConstraintSolver"};
+constexpr std::array<std::string_view, 4> kSolvers = {"BlockGaussSeidelConstraintSolver", "UnbuiltGaussSeidelConstraintSolver",
+                                                      "GenericConstraintSolver", "PreconditionedConjugateResidual"};
 constexpr std::array<std::string_view, 3> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
                                                           "UncoupledConstraintCorrection"};
 constexpr std::array<std::string_view, 2> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint"};
@@ -67,6 +67,7 @@ std::unique_ptr<ConstraintSolver<double>> build_solver(SceneData& data, std::vec
                 " (resolutionMethod " + method + "), as SOFA's change list maps it");
     }
     if (type == "UnbuiltGaussSeidelConstraintSolver") return std::make_unique<UnbuiltGaussSeidelSolver<double>>(p);
+    if (type == "PreconditionedConjugateResidual") return std::make_unique<PreconditionedConjugateResidualSolver<double>>(p);
     static_cast<void>(info);
     return std::make_unique<BlockGaussSeidelSolver<double>>(p);
   } catch (const Error& error) {
@@ -261,7 +262,7 @@ class LoopBuilder {
     const bool default_set = c.has("defaultCompliance");
     const double fallback = data_.real(c, "defaultCompliance", 1e-5);
     const Numbers compliance = c.has("compliance") ? data_.data(c, "compliance") : Numbers{};
-    if (!default_set && compliance.empty()) {
+    if (!default_set && compliance.empty() && !where.rigid) {
       data_.warn(c.where() + ": neither defaultCompliance nor compliance is set: defaultCompliance 1e-5 is used, as in SOFA "
                  "(set one: the compliance is not derived from the mass for points)");
     }

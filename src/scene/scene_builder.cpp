@@ -560,13 +560,29 @@ class Builder {
   }
 
 
-  // MeshSpringForceField on its topology: a grid's or hexahedral container's lines, quads and
-  // hexahedra, else a tetrahedral mesh's edges, triangles and tetrahedra.
+  // MeshSpringForceField on its topology: an edge set's edges, a grid's or hexahedral container's
+  // lines, quads and hexahedra, else a tetrahedral mesh's edges, triangles and tetrahedra.
   void add_mesh_springs(Component& c, SimulatedObject<double>& object) {
     const auto& rest = object.system.state.rest_position;
     Component* topology = data_.topology_of(c);
     if (!topology) throw make_error(c.where(), ": no topology in its node or above");
     const std::string_view kind = topology->type();
+    if (kind == "EdgeSetTopologyContainer") {
+      SpringTopology elements;
+      const std::vector<Index> flat = data_.indices(*topology, "edges");
+      if (flat.size() % 2 != 0) throw make_error(topology->where(), ": edges needs 2 indices per edge");
+      for (std::size_t e = 0; e + 1 < flat.size(); e += 2) {
+        for (Index v : {flat[e], flat[e + 1]}) {
+          if (v < 0 || v >= object.system.size()) {
+            throw make_error(topology->where(), ": edges: point ", v, " is out of range [0, ", object.system.size(), ")");
+          }
+        }
+        elements.lines.push_back({flat[e], flat[e + 1]});
+      }
+      object.system.force_fields.push_back(scene_detail::build_mesh_springs(data_, c, std::move(elements), rest));
+      object.force_field_drawing.push_back({});
+      return;
+    }
     if (scene_detail::is_grid_topology(kind) || kind == "HexahedronSetTopologyContainer") {
       SpringTopology elements;
       elements.hexahedra = scene_detail::topology_hexahedra(data_, *topology);

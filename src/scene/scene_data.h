@@ -133,6 +133,7 @@ class SceneData {
 
  private:
   Numbers compute(Component& c, const std::string& name);
+  Numbers nearest_point_roi(Component& c, const std::string& name);
   Component& resolve(const GraphNode& from, const std::string& link, const Component& user,
                      const std::string& as_written, bool node_means_state);
   // The attribute as written: parsed numbers, or the data a link designates; nullopt when absent.

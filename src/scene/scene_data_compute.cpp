@@ -154,6 +154,58 @@ Numbers mesh2point(SceneData& data, Component& m, const std::string& name) {
 
 }  // namespace
 
+// SOFA's NearestPointROI::computeNearestPointMaps.
+Numbers SceneData::nearest_point_roi(Component& c, const std::string& name) {
+  const double radius = real(c, "radius", 1);
+  if (!(radius > 0)) throw make_error(c.where(), ": radius = ", radius, ": must be > 0");
+  const std::string which = boolean(c, "useRestPosition", true) ? "rest_position" : "position";
+  const auto points_of = [&](const char* link) {
+    if (!c.has(link)) throw make_error(c.where(), ": ", link, " is not given");
+    Component& state = resolve_state(*c.node, c.object->attributes.at(link), c);
+    std::vector<Vec3<double>> x = points(state, which);
+    if (x.empty()) x = points(state, "position");
+    return x;
+  };
+  const auto x1 = points_of("object1");
+  const auto x2 = points_of("object2");
+  const auto filter = [&](const char* attribute, std::size_t size) {
+    std::vector<Index> list = c.has(attribute) ? indices(c, attribute) : std::vector<Index>{};
+    if (list.empty()) {
+      for (std::size_t i = 0; i < size; ++i) list.push_back(static_cast<Index>(i));
+    }
+    for (Index i : list) {
+      if (i < 0 || static_cast<std::size_t>(i) >= size) throw make_error(c.where(), ": ", attribute, ": index ", i, " out of range [0, ", size, ")");
+    }
+    return list;
+  };
+  const auto candidates = filter("inputIndices1", x1.size());
+  const auto wanted = filter("inputIndices2", x2.size());
+  Numbers indices1, indices2, edges, pairs, distances;
+  if (!x1.empty() && !x2.empty()) {
+    for (Index i2 : wanted) {
+      const Vec3<double>& p2 = x2[static_cast<std::size_t>(i2)];
+      Index best = candidates.front();
+      double best_distance = (x1[static_cast<std::size_t>(best)] - p2).squaredNorm();
+      for (Index i1 : candidates) {
+        const double d = (x1[static_cast<std::size_t>(i1)] - p2).squaredNorm();
+        if (d < best_distance) best = i1, best_distance = d;
+      }
+      if (!(best_distance < radius * radius)) continue;
+      indices1.push_back(best);
+      indices2.push_back(i2);
+      edges.insert(edges.end(), {2.0 * i2, 2.0 * i2 + 1});
+      pairs.insert(pairs.end(), {0.0, static_cast<double>(best), 1.0, static_cast<double>(i2)});
+      distances.push_back(std::sqrt(best_distance));
+    }
+  }
+  if (name == "indices1") return indices1;
+  if (name == "indices2") return indices2;
+  if (name == "edges") return edges;
+  if (name == "indexPairs") return pairs;
+  if (name == "distances") return distances;
+  return {};
+}
+
 Numbers SceneData::compute(Component& c, const std::string& name) {
   const std::string_view type = c.type();
   if (type == "TriangleSetTopologyContainer" && name == "triangles") {
@@ -226,6 +278,10 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   }
   if (type == "RegularGridTopology" && name == "position") return flatten(grid_points<double>(grid(c)));
   if (type == "RegularGridTopology" && name == "n") return {2, 2, 2};
+  if (type == "RegularGridTopology" && name == "hexahedra") {
+    // SOFA's grid gives its cells as hexahedra (a HexahedronSetTopologyContainer with src="@grid").
+    return flatten_indices(topology_hexahedra(*this, c));
+  }
   if (type == "CylinderGridTopology" && name == "position") return flatten(cylinder_grid_points(cylinder_grid(c)));
   if (type == "CylinderGridTopology" && name == "n") return {2, 2, 2};
   if (type == "SphereGridTopology" && name == "position") return flatten(sphere_grid_points_of(*this, c));
@@ -405,6 +461,19 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   }
   if (type == "BoxROI" || type == "PlaneROI" || type == "PairBoxROI") return region_of_interest(c, name);
   if (type == "SubsetTopology") return subset_topology(*this, c, name);
+  if (type == "NearestPointROI") return nearest_point_roi(c, name);
+  if (type == "IndexValueMapper" && name == "outputValues") {
+    // SOFA's IndexValueMapper::doUpdate.
+    Numbers out = c.has("inputValues") ? data(c, "inputValues") : Numbers{};
+    const double value = real(c, "value", 0);
+    const double fallback = real(c, "defaultValue", 1);
+    for (Index i : c.has("indices") ? indices(c, "indices") : std::vector<Index>{}) {
+      const auto at = static_cast<std::size_t>(i);
+      if (at >= out.size()) out.resize(at + 1, fallback);
+      out[at] = value;
+    }
+    return out;
+  }
   if (type == "MeshTetraStuffing") return mesh_tetra_stuffing(*this, c, name);
   if (type == "MeshSplittingEngine") return mesh_splitting_engine(*this, c, name);
   return {};

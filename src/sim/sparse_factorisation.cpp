@@ -1,6 +1,9 @@
 #include "fastcorot/sim/sparse_factorisation.h"
 
+#include "fastcorot/core/parallel.h"
+
 #include <algorithm>
+#include <vector>
 
 namespace fastcorot {
 
@@ -29,13 +32,75 @@ void SparseFactorisation<Real>::solve(const Real* b, Real* x, Index size) const 
 }
 
 template <class Real>
-Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> SparseFactorisation<Real>::compliance(const Matrix& columns) const {
-  Matrix z = ldlt_.permutationP() * columns;
-  ldlt_.matrixL().solveInPlace(z);
-  z.prune(Real(0));
-  const Matrix scaled = ldlt_.vectorD().cwiseInverse().asDiagonal() * z;
-  const Matrix product = Matrix(z.transpose()) * scaled;
-  return Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>(product);
+Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> SparseFactorisation<Real>::compliance(const Matrix& columns, int threads) const {
+  // Eigen's LDLᵀ keeps L's strictly lower part, columns with rows in increasing order; D apart.
+  const auto& l = ldlt_.matrixL().nestedExpression();
+  const auto n = static_cast<Index>(l.rows());
+  const auto r = static_cast<Index>(columns.cols());
+  const auto* lp = l.outerIndexPtr();
+  const auto* li = l.innerIndexPtr();
+  const auto* lx = l.valuePtr();
+  const auto& d = ldlt_.vectorD();
+  const auto& order = ldlt_.permutationP().indices();  // (P b)[order[i]] = b[i]
+  // The elimination tree: a column's parent is its first row below the diagonal.
+  std::vector<Index> parent(static_cast<std::size_t>(n), -1);
+  for (Index j = 0; j < n; ++j) {
+    if (lp[j] < lp[j + 1]) parent[static_cast<std::size_t>(j)] = static_cast<Index>(li[lp[j]]);
+  }
+  // Z's columns, each on its reach (sorted rows) with its values.
+  std::vector<std::vector<Index>> reach(static_cast<std::size_t>(r));
+  std::vector<std::vector<Real>> value(static_cast<std::size_t>(r));
+  run_tasks(threads, static_cast<int>(r), [&](int c) {
+    std::vector<Real> x(static_cast<std::size_t>(n), Real(0));
+    std::vector<char> marked(static_cast<std::size_t>(n), 0);
+    auto& rows = reach[static_cast<std::size_t>(c)];
+    for (typename Matrix::InnerIterator it(columns, c); it; ++it) {
+      Index k = static_cast<Index>(order[it.row()]);
+      x[static_cast<std::size_t>(k)] += it.value();
+      while (k >= 0 && !marked[static_cast<std::size_t>(k)]) {
+        marked[static_cast<std::size_t>(k)] = 1;
+        rows.push_back(k);
+        k = parent[static_cast<std::size_t>(k)];
+      }
+    }
+    // Ascending order is a topological order of the reach (L is lower triangular).
+    std::sort(rows.begin(), rows.end());
+    for (Index j : rows) {
+      const Real xj = x[static_cast<std::size_t>(j)];
+      if (xj == 0) continue;
+      for (auto p = lp[j]; p < lp[j + 1]; ++p) x[static_cast<std::size_t>(li[p])] -= lx[p] * xj;
+    }
+    auto& values = value[static_cast<std::size_t>(c)];
+    values.reserve(rows.size());
+    for (Index j : rows) values.push_back(x[static_cast<std::size_t>(j)]);
+  });
+  // W = Zᵀ D⁻¹ Z on the rows some column reaches (Z dense there: a product Eigen blocks well).
+  std::vector<Index> where(static_cast<std::size_t>(n), -1);
+  std::vector<Index> used;
+  for (const auto& rows : reach) {
+    for (Index j : rows) {
+      if (where[static_cast<std::size_t>(j)] < 0) {
+        where[static_cast<std::size_t>(j)] = 0;
+        used.push_back(j);
+      }
+    }
+  }
+  std::sort(used.begin(), used.end());
+  for (std::size_t q = 0; q < used.size(); ++q) where[static_cast<std::size_t>(used[q])] = static_cast<Index>(q);
+  Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> z = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>::Zero(
+      static_cast<Eigen::Index>(used.size()), r);
+  Eigen::Matrix<Real, Eigen::Dynamic, 1> inverse_d(static_cast<Eigen::Index>(used.size()));
+  for (std::size_t q = 0; q < used.size(); ++q) inverse_d[static_cast<Eigen::Index>(q)] = Real(1) / d[used[q]];
+  for (Index c = 0; c < r; ++c) {
+    const auto& rows = reach[static_cast<std::size_t>(c)];
+    for (std::size_t q = 0; q < rows.size(); ++q) z(where[static_cast<std::size_t>(rows[q])], c) = value[static_cast<std::size_t>(c)][q];
+  }
+  Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> w = z.transpose() * (inverse_d.asDiagonal() * z);
+  // Symmetric to round-off; make it exactly so (the lower triangle from the upper).
+  for (Index a = 0; a < r; ++a) {
+    for (Index b = 0; b < a; ++b) w(a, b) = w(b, a);
+  }
+  return w;
 }
 
 template class SparseFactorisation<float>;

@@ -77,4 +77,16 @@ class UnbuiltGaussSeidelSolver final : public BlockGaussSeidelSolver<Real> {
   const char* name() const override { return "UnbuiltGaussSeidelConstraintSolver"; }
 };
 
+// SOFA's PreconditionedConjugateResidual: conjugate residuals on the Jacobi-scaled W (every row
+// treated as bilateral: no projection, no warm start), at most min(maxIterations, rows)
+// iterations. Its stopping measure is SOFA's as written: Σ_blocks sqrt(Σ_rows r_i²) with r_i the
+// residual's entry at the iteration index i, not at the row (kept, as it decides when SOFA stops).
+template <class Real>
+class PreconditionedConjugateResidualSolver final : public ConstraintSolver<Real> {
+ public:
+  explicit PreconditionedConjugateResidualSolver(ConstraintSolverParameters<Real> parameters) : ConstraintSolver<Real>(parameters) {}
+  ConstraintSolveReport solve(ConstraintProblem<Real>& problem) override;
+  const char* name() const override { return "PreconditionedConjugateResidual"; }
+};
+
 }  // namespace fastcorot

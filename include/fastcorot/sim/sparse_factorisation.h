@@ -26,9 +26,11 @@ class SparseFactorisation {
   void solve(const Real* b, Real* x, Index size) const;
 
   // Cᵀ A⁻¹ C for the last factorised A and sparse columns C (A's size × r), dense r × r: with A
-  // = Pᵀ L D Lᵀ P, Z = L⁻¹ P C by sparse triangular solves (only the elimination-tree paths the
-  // columns reach), then Zᵀ D⁻¹ Z. What constraint corrections need for H A⁻¹ Hᵀ (C = Hᵀ).
-  Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> compliance(const Matrix& columns) const;
+  // = Pᵀ L D Lᵀ P, Z = L⁻¹ P C by sparse triangular solves (each column touches only the
+  // elimination-tree paths from its nonzeros to the root), then Zᵀ D⁻¹ Z on those paths. What
+  // constraint corrections need for H A⁻¹ Hᵀ (C = Hᵀ). Columns on up to `threads` threads, the
+  // same bits for any count.
+  Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> compliance(const Matrix& columns, int threads = 1) const;
 
  private:
   Eigen::SimplicialLDLT<Matrix> ldlt_;
