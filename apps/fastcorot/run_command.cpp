@@ -278,10 +278,47 @@ class ObjSeries {
   std::vector<std::vector<Triangle>> boundaries_;
 };
 
+// The constraint stage's figures over a run: rows, solver iterations, the time in W and in the
+// solve, and the steps whose solve ended at its iteration limit above its tolerance (the first
+// such step is warned about as it happens; SOFA says nothing).
+struct ConstraintTally {
+  long rows = 0, iterations = 0, unconverged = 0, max_rows = 0;
+  double compliance_seconds = 0, solve_seconds = 0, worst_error = 0;
+
+  void add(const Simulation<double>& simulation, long step, std::ostream* warn) {
+    const ConstraintReport& r = simulation.constraint_report();
+    rows += r.rows;
+    max_rows = std::max<long>(max_rows, r.rows);
+    iterations += r.iterations;
+    compliance_seconds += r.compliance_seconds;
+    solve_seconds += r.solve_seconds;
+    if (r.converged) return;
+    if (unconverged++ == 0 && warn) {
+      *warn << "warning: step " << step << ": " << simulation.constraints->solver_name() << " stopped at its iteration limit ("
+            << r.iterations << ") with error " << r.error << " above its tolerance " << r.tolerance
+            << " (the summary counts such steps)\n";
+    }
+    worst_error = std::max(worst_error, r.error);
+  }
+
+  void summarise(std::ostream& out, long steps, const char* solver) const {
+    const double n = static_cast<double>(std::max<long>(steps, 1));
+    out << "constraints: " << std::setprecision(1) << static_cast<double>(rows) / n << " rows per step (at most " << max_rows
+        << "), " << solver << " " << static_cast<double>(iterations) / n << " iterations per step, W " << std::setprecision(3)
+        << compliance_seconds << " s, solve " << solve_seconds << " s";
+    if (unconverged > 0) {
+      out << "; " << unconverged << " step(s) unconverged (largest error " << std::scientific << std::setprecision(2) << worst_error
+          << std::fixed << ")";
+    }
+    out << '\n';
+  }
+};
+
 // A dumped step: `steps` the positions of each simulated object under its path (the first format,
 // kept for the files written before velocities were dumped), `states` every MechanicalObject,
-// mapped ones included, under "node path/object name" in scene order (docs/cli.md).
-void record(json& steps, nlohmann::ordered_json& states, const Simulation<double>& simulation) {
+// mapped ones included, under "node path/object name" in scene order (docs/cli.md); under
+// FreeMotionAnimationLoop, `impulses` the constraint impulses λ of the step (one per row).
+void record(json& steps, nlohmann::ordered_json& states, json& impulses, const Simulation<double>& simulation) {
   json frame = json::object();
   nlohmann::ordered_json all = nlohmann::ordered_json::object();
   for (const auto& object : simulation.objects) {
@@ -294,6 +331,10 @@ void record(json& steps, nlohmann::ordered_json& states, const Simulation<double
                           {"velocity", state.rigid ? rows_to_json(state.rigid_velocity, 6) : points_to_json(state.velocity)}};
       if (state.rigid) all[state.key()]["template"] = "Rigid3d";
     }
+  }
+  if (simulation.constraints) {
+    const auto forces = simulation.constraints->constraint_forces();
+    impulses[std::to_string(simulation.steps_done())] = std::vector<double>(forces.begin(), forces.end());
   }
   steps[std::to_string(simulation.steps_done())] = std::move(frame);
   states[std::to_string(simulation.steps_done())] = std::move(all);
@@ -358,9 +399,11 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   }
   json steps = json::object();
   nlohmann::ordered_json states = nlohmann::ordered_json::object();
+  json impulses = json::object();
   auto write_dump = [&] {
     if (options.dump_state.empty()) return;
     nlohmann::ordered_json dump = {{"dt", simulation.dt}, {"steps", steps}, {"states", states}};
+    if (simulation.constraints) dump["constraintForces"] = impulses;
     write_text(dump.dump(), options.dump_state);
   };
   // Outputs are set up on the scene as built (the pictures' camera is framed on it), also when
@@ -389,7 +432,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (vtu) vtu->adopt_earlier_frames(simulation, options.every);
     if (options.dump_steps.count(simulation.steps_done()) ||
         (dump_last && options.steps == simulation.steps_done())) {
-      record(steps, states, simulation);
+      record(steps, states, impulses, simulation);
     }
   }
   // Frames and dumps of the step just done: a distributed run first gathers the state on rank 0
@@ -402,7 +445,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
     on_every_rank([&] {
       if (!writer) return;
-      if (dump) record(steps, states, simulation);
+      if (dump) record(steps, states, impulses, simulation);
       if (vtu && frame) vtu->write(simulation, distributed->active() ? &forces : nullptr);
       if (obj && frame) obj->write(simulation);
       if (pictures && frame) pictures->write(simulation);
@@ -418,6 +461,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   long solves = 0, iterations = 0;
+  ConstraintTally constraints;
   double last_draw = -1;
   try {
     for (long step = first_step; step <= options.steps; ++step) {
@@ -429,6 +473,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       });
       solves += report.linear_solves;
       iterations += report.linear_iterations;
+      if (simulation.constraints) constraints.add(simulation, step, writer && !options.quiet ? &err : nullptr);
       const bool frame = (options.vtu || options.obj || !options.png_dir.empty()) &&
                          (step % options.every == 0 || step == options.steps);
       write_outputs(options.dump_steps.count(step) || (dump_last && step == options.steps), frame);
@@ -469,6 +514,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
     if (distributed->active()) out << ", " << process_count() << " ranks";
     out << '\n';
+    if (simulation.constraints) constraints.summarise(out, steps_run, simulation.constraints->solver_name());
   }
 }
 

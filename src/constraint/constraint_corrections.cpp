@@ -47,6 +47,7 @@ void LinearSolverConstraintCorrection<Real>::add_compliance(SimulatedObject<Real
   const Real factor = order_factor(f, order) * compliance_factor_;
   if (const SparseFactorisation<Real>* direct = object.linear_solver->factorisation()) {
     w += factor * direct->compliance(ht, object.system.threads());
+
   } else {
     // One solve per row of H that reaches the object (SOFA's addJMInvJt with an iterative solver).
     const std::size_t n = static_cast<std::size_t>(object.system.size());

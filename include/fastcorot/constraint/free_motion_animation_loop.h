@@ -32,8 +32,8 @@ class FreeMotionAnimationLoop final : public ConstraintStage<Real> {
   ConstraintReport correct(std::span<SimulatedObject<Real>> objects, std::span<const MechanicalState<Real>> start, Real dt,
                            double time) override;
 
-  // λ of the last step, one per row (SOFA's constraintForces: impulses, force × dt).
-  const DenseVector<Real>& constraint_forces() const { return forces_; }
+  std::span<const Real> constraint_forces() const override { return {forces_.data(), static_cast<std::size_t>(forces_.size())}; }
+  const char* solver_name() const override { return solver_->name(); }
   const ConstraintSolver<Real>& solver() const { return *solver_; }
   ConstraintOrder order() const {
     return parameters_.solve_velocity_constraint_first ? ConstraintOrder::velocity : ConstraintOrder::position_and_velocity;

@@ -29,11 +29,16 @@ template <class Real>
 class ConstraintStage {
  public:
   virtual ~ConstraintStage() = default;
-  // After every object's free motion: `objects` hold the free positions and velocities, `start`
-  // what each held when the step began (the same order). Corrects them in place. `time` is the
-  // step's start time. Throws fastcorot::Error for what cannot be solved (naming it).
+  // After every object's free motion: `objects` hold the free positions and velocities (a rigid's
+  // free rotation still in its angular block), `start` what each held when the step began (the
+  // same order). Corrects them in place. `time` is the step's start time. Throws
+  // fastcorot::Error for what cannot be solved (naming it).
   virtual ConstraintReport correct(std::span<SimulatedObject<Real>> objects, std::span<const MechanicalState<Real>> start,
                                    Real dt, double time) = 0;
+  // The last step's impulses λ, one per row (SOFA's constraintForces: force × dt).
+  virtual std::span<const Real> constraint_forces() const = 0;
+  // The constraint solver's name, for messages.
+  virtual const char* solver_name() const = 0;
 };
 
 }  // namespace fastcorot
