@@ -182,6 +182,30 @@ TEST(UnbuiltGaussSeidelSolver, StartsFromZeroEveryStep) {
   EXPECT_GT(first, 1);
 }
 
+TEST(PreconditionedConjugateResidualSolver, ReachesTheLinearSolutionInAtMostTheRowCount) {
+  // Conjugate residuals on an SPD system end at the solution after n iterations (round-off
+  // aside); with a zero tolerance SOFA's measure never stops it earlier.
+  const int n = 9;
+  const DenseMatrix<double> w = spd(n, 11);
+  const DenseVector<double> dfree = random_vector(n, 12);
+  std::vector<Vec3<double>> previous;
+  ConstraintProblem<double> problem = bilateral_problem(w, dfree, previous);
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 0;
+  p.max_iterations = 1000;
+  const ConstraintSolveReport report = PreconditionedConjugateResidualSolver<double>(p).solve(problem);
+  EXPECT_EQ(report.iterations, n);
+  const Eigen::VectorXd expected = -Eigen::MatrixXd(w).lu().solve(Eigen::VectorXd(dfree));
+  EXPECT_LT((Eigen::VectorXd(problem.f) - expected).norm(), 1e-10 * expected.norm());
+  // Fewer iterations than rows: an approximation, reported as unconverged.
+  ConstraintProblem<double> again = bilateral_problem(w, dfree, previous);
+  p.max_iterations = 3;
+  p.tolerance = 1e-12;
+  const ConstraintSolveReport short_report = PreconditionedConjugateResidualSolver<double>(p).solve(again);
+  EXPECT_EQ(short_report.iterations, 3);
+  EXPECT_FALSE(short_report.converged);
+}
+
 TEST(ConstraintSolver, RefusesBadParameters) {
   ConstraintSolverParameters<double> p;
   p.max_iterations = 0;
