@@ -32,6 +32,9 @@ _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
 _STATE_VIEWS = ("position", "velocity", "rest_position")
 # Outputs of a simulated TetrahedronFEMForceField (numpy copies, after the last step).
 _VON_MISES = ("vonMisesPerNode", "vonMisesPerElement")
+# Data of a simulated BilateralLagrangianConstraint that scripts change between steps.
+_BILATERAL_LIVE = ("rest_vector", "activate", "load")
+_NOT_LIVE = object()  # a constraint datum the running simulation does not hold
 _FORCE_FIELDS = ("FastTetrahedralCorotationalForceField", "TetrahedronFEMForceField")
 
 
@@ -74,6 +77,8 @@ class Object:
         object.__setattr__(self, "_data", {})
         object.__setattr__(self, "_binding", None)  # (SimulationCore, object index) once simulated
         object.__setattr__(self, "_mapped", None)  # (SimulationCore, state key): a mapped state once simulated
+        # (SimulationCore, index): a Lagrangian constraint once simulated (index None: the constraint solver)
+        object.__setattr__(self, "_lagrangian", None)
         object.__setattr__(self, "_strict", strict)  # False: unknown attributes are warnings, as SOFA's
         if check:
             self._check(list(attributes))
@@ -154,7 +159,25 @@ class Object:
         template = self._data.get("template")
         return isinstance(template, str) and template.startswith("Rigid")
 
+    def _read_lagrangian(self, name):
+        """What the running constraint stage holds for `name`, or _NOT_LIVE."""
+        core, index = self._lagrangian
+        if index is None:
+            if name == "constraintForces":
+                return core.constraint_forces()
+            report = core.constraint_report()
+            live = {"currentIterations": report["iterations"], "currentError": report["error"],
+                    "currentNumConstraints": report["rows"]}
+            return live.get(name, _NOT_LIVE)
+        if self._type == "BilateralLagrangianConstraint" and name in _BILATERAL_LIVE:
+            return core.bilateral(index)[name]
+        return _NOT_LIVE
+
     def _read(self, name):
+        if self._lagrangian is not None:
+            value = self._read_lagrangian(name)
+            if value is not _NOT_LIVE:
+                return value
         if self._binding is not None and name in _STATE_VIEWS:
             core, k, start, stop = self._binding
             if self._is_rigid():
@@ -201,6 +224,17 @@ class Object:
         raise AttributeError(f"{where} has no data '{name}'; its data: {', '.join(self.data_names())}")
 
     def _write(self, name, value):
+        if self._lagrangian is not None and self._type == "BilateralLagrangianConstraint" and name in _BILATERAL_LIVE:
+            core, index = self._lagrangian
+            self._check([name])
+            canonical = self._canonical(name, value)
+            live = from_text(self._kind(name), name, canonical, self.location) if isinstance(canonical, str) else canonical
+            try:
+                core.set_bilateral(index, **{name: np.asarray(live, dtype=float).reshape(-1, 3) if name == "rest_vector" else live})
+            except ValueError as error:
+                raise ValueError(f"{self.location}: {self._label()}: {error}") from None
+            self._data[name] = canonical
+            return
         if self._binding is not None and name in _STATE_VIEWS:
             core, k, start, stop = self._binding
             if name == "rest_position":

@@ -40,6 +40,7 @@ class Simulation:
             for obj in node._objects:
                 object.__setattr__(obj, "_binding", None)
                 object.__setattr__(obj, "_mapped", None)
+                object.__setattr__(obj, "_lagrangian", None)
         # Each MechanicalObject views its range of its simulated object's state (several objects
         # under one solver are one state, theirs one after the other).
         for rank, k, offset, size in core.state_parts:
@@ -53,6 +54,12 @@ class Simulation:
                 key = f"{node.path}/{name}"
                 if obj.type == "MechanicalObject" and obj._binding is None and isinstance(name, str) and key in mapped:
                     object.__setattr__(obj, "_mapped", (core, key))
+        # Under a FreeMotionAnimationLoop: the constraint solver reads the last step's figures, and
+        # the Lagrangian constraints read and write what scripts change between steps.
+        for index, rank in enumerate(core.constraint_objects):
+            object.__setattr__(objects[rank], "_lagrangian", (core, index))
+        if core.constraint_solver_object >= 0:
+            object.__setattr__(objects[core.constraint_solver_object], "_lagrangian", (core, None))
         # Force fields cut the object whose state is in their node or the nearest node above.
         bound = {id(objects[rank]): k for rank, k, _, _ in core.state_parts}
 

@@ -33,6 +33,8 @@ struct SimulationCore {
 
 // Adds the matrix accessors (matrices.cpp) to the SimulationCore class.
 void bind_matrices(py::class_<SimulationCore>& core);
+// Adds the constraint stage's accessors (constraints.cpp).
+void bind_constraints(py::class_<SimulationCore>& core);
 // Adds add_python_force_field (python_force_field.cpp).
 void bind_python_force_fields(py::class_<SimulationCore>& core);
 

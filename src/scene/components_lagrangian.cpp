@@ -17,7 +17,10 @@ std::vector<AttributeSpec> solver_attributes() {
           {"computeConstraintForces", "bool", "false", "accepted: the impulses λ are always kept (dumps, --json, Python)"},
           {"computeGraphs", "bool", "false", "accepted (SOFA's GUI graphs)"},
           {"multithreading", "bool", "false", "accepted (W is built on the run's threads)"},
-          {"constraintForces", "reals", "", "accepted (an output)"}};
+          {"constraintForces", "reals", "", "output: the last step's impulses λ, one per row (force × dt)"},
+          {"currentIterations", "int", "0", "output: the last solve's iterations"},
+          {"currentError", "real", "0", "output: the last solve's error"},
+          {"currentNumConstraints", "int", "0", "output: the last step's rows"}};
 }
 
 std::vector<AttributeSpec> correction_link_attributes() {

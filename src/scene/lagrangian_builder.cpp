@@ -88,7 +88,8 @@ class LoopBuilder {
               const std::vector<const GraphNode*>& solver_nodes, const LocateState& locate)
       : data_(data), info_(info), simulation_(simulation), solver_nodes_(solver_nodes), locate_(locate) {}
 
-  void build(Component& loop_component, const std::vector<Component*>& components) {
+  LagrangianParts build(Component& loop_component, const std::vector<Component*>& components) {
+    LagrangianParts parts;
     Component* solver_component = nullptr;
     for (Component* c : components) {
       if (!among(kSolvers, c->type())) continue;
@@ -101,6 +102,7 @@ class LoopBuilder {
     std::unique_ptr<ConstraintSolver<double>> solver;
     if (solver_component) {
       solver = build_solver(data_, info_, *solver_component);
+      parts.solver = solver_component->object;
     } else {
       data_.warn(loop_component.where() + ": no constraint solver in the scene: a BlockGaussSeidelConstraintSolver "
                  "with SOFA's defaults is used, as SOFA adds one");
@@ -112,13 +114,17 @@ class LoopBuilder {
     for (Component* c : components) {
       try {
         if (among(kCorrections, c->type())) add_correction(*c);
-        if (among(kConstraints, c->type())) add_constraint(*c);
+        if (among(kConstraints, c->type())) {
+          add_constraint(*c);
+          parts.constraints.push_back(c->object);
+        }
       } catch (const Error& error) {
         throw error_at(c->where(), error);
       }
     }
     check_corrected();
     simulation_.constraints = loop_;
+    return parts;
   }
 
  private:
@@ -348,8 +354,8 @@ bool is_lagrangian_component(std::string_view type) {
   return type == "FreeMotionAnimationLoop" || among(kSolvers, type) || among(kCorrections, type) || among(kConstraints, type);
 }
 
-void build_free_motion_loop(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
-                            const std::vector<const GraphNode*>& solver_nodes, const LocateState& locate) {
+LagrangianParts build_free_motion_loop(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
+                                       const std::vector<const GraphNode*>& solver_nodes, const LocateState& locate) {
   std::vector<Component*> components;
   collect(data.root(), components);
   Component* loop = nullptr;
@@ -363,9 +369,9 @@ void build_free_motion_loop(SceneData& data, std::vector<std::string>& info, Sim
       info.push_back(c->where() + ": not used: the scene has no FreeMotionAnimationLoop (SOFA's default loop does not "
                      "solve Lagrangian constraints)");
     }
-    return;
+    return {};
   }
-  LoopBuilder(data, info, simulation, solver_nodes, locate).build(*loop, components);
+  return LoopBuilder(data, info, simulation, solver_nodes, locate).build(*loop, components);
 }
 
 }  // namespace fastcorot::scene_detail

@@ -29,13 +29,19 @@ using LocateState = std::function<std::optional<StateLocation>(const Component& 
 // corrections, Lagrangian constraints).
 bool is_lagrangian_component(std::string_view type);
 
+// Which scene components the loop's parts come from (for front ends that keep the scene tree).
+struct LagrangianParts {
+  std::vector<const SceneObject*> constraints;  // in the loop's order
+  const SceneObject* solver = nullptr;          // null: SOFA's default solver, added
+};
+
 // Sets simulation.constraints when the root holds a FreeMotionAnimationLoop (with the constraint
 // solver found in the scene, else SOFA's default BlockGaussSeidelConstraintSolver with a warning),
 // with every correction and Lagrangian constraint of the scene in scene-graph order.
 // `solver_nodes[o]` is the node of object o's ODE solver. Without the loop, Lagrangian components
 // are reported in `info` (SOFA's default loop does not solve them). Throws fastcorot::Error naming
 // the component for what is wrong or not supported.
-void build_free_motion_loop(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
-                            const std::vector<const GraphNode*>& solver_nodes, const LocateState& locate);
+LagrangianParts build_free_motion_loop(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
+                                       const std::vector<const GraphNode*>& solver_nodes, const LocateState& locate);
 
 }  // namespace fastcorot::scene_detail

@@ -119,8 +119,11 @@ class Builder {
     for (const SceneObject* state : states_) state_objects.push_back(rank.at(state));
     std::vector<LoadedScene::StatePart> parts;
     for (const auto& [state, part] : parts_) parts.push_back({rank.at(state), part.object, part.offset, part.size});
-    return {std::move(simulation_), std::move(info_),         std::move(warnings_),
-            std::move(state_objects), std::move(state_counts_), std::move(parts)};
+    LoadedScene loaded{std::move(simulation_), std::move(info_),         std::move(warnings_),
+                       std::move(state_objects), std::move(state_counts_), std::move(parts)};
+    for (const SceneObject* c : lagrangian_.constraints) loaded.constraint_objects.push_back(rank.at(c));
+    if (lagrangian_.solver) loaded.constraint_solver_object = static_cast<long>(rank.at(lagrangian_.solver));
+    return loaded;
   }
 
  private:
@@ -171,7 +174,7 @@ class Builder {
       }
       return std::nullopt;
     };
-    scene_detail::build_free_motion_loop(data_, info_, simulation_, solver_nodes_, locate);
+    lagrangian_ = scene_detail::build_free_motion_loop(data_, info_, simulation_, solver_nodes_, locate);
   }
 
   static void rank_objects(const SceneNode& node, std::map<const SceneObject*, std::size_t>& rank) {
@@ -765,6 +768,7 @@ class Builder {
   Simulation<double> simulation_;
   std::vector<const SceneObject*> states_;  // the (first) MechanicalObject of each simulated object
   std::vector<const GraphNode*> solver_nodes_;  // the node of each simulated object's ODE solver
+  scene_detail::LagrangianParts lagrangian_;
   std::vector<std::size_t> state_counts_;   // how many MechanicalObjects each simulated object holds
   std::vector<std::pair<const SceneObject*, LoadedScene::StatePart>> parts_;  // every state, rank to be filled
   std::map<const Component*, std::shared_ptr<TetMesh>> meshes_;

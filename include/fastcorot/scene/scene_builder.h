@@ -43,6 +43,11 @@ struct LoadedScene {
     Index size = 0;
   };
   std::vector<StatePart> state_parts;
+  // Under a FreeMotionAnimationLoop: the rank (as above) of each Lagrangian constraint, in the
+  // order of the loop's constraints (FreeMotionAnimationLoop::constraints), and of the constraint
+  // solver (-1 when SOFA's default one was added).
+  std::vector<std::size_t> constraint_objects;
+  long constraint_solver_object = -1;
 };
 
 LoadedScene build_scene(const SceneNode& root, const SceneOptions& options = {});

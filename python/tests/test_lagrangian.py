@@ -1,0 +1,95 @@
+"""FreeMotionAnimationLoop scenes from Python, as SofaPython3 scripts write them: the constraint
+solver's constraintForces after a step (a point hanging from a fixed point by a bilateral constraint
+carries its weight as the impulse m g dt, SOFA's unit), and a controller that moves a
+BilateralLagrangianConstraint's rest_vector every step (the tied point follows it to the solver's
+tolerance)."""
+
+import numpy as np
+import pytest
+
+import Sofa
+import Sofa.Core
+import Sofa.Simulation
+
+DT = 0.01
+MASS = 2.0
+
+
+def hanging_point(root, tolerance=1e-12):
+    """Point `anchor` held by a FixedProjectiveConstraint at the origin, point `bob` (mass MASS) in
+    its own solver's node, tied to it by a BilateralLagrangianConstraint."""
+    root.dt = DT
+    root.gravity = [0, -9.81, 0]
+    root.addObject("FreeMotionAnimationLoop")
+    root.addObject("BlockGaussSeidelConstraintSolver", name="solver", tolerance=tolerance, maxIterations=100,
+                   computeConstraintForces=True)
+    anchor = root.addChild("anchor")
+    anchor.addObject("EulerImplicitSolver")
+    anchor.addObject("SparseLDLSolver")
+    anchor.addObject("MechanicalObject", name="dofs", position=[0, 0, 0])
+    anchor.addObject("UniformMass", vertexMass=1)
+    anchor.addObject("FixedProjectiveConstraint", indices=[0])
+    anchor.addObject("LinearSolverConstraintCorrection")
+    bob = root.addChild("bob")
+    bob.addObject("EulerImplicitSolver", rayleighMass=0.1)
+    bob.addObject("SparseLDLSolver")
+    bob.addObject("MechanicalObject", name="dofs", position=[0, 0, 0])
+    bob.addObject("UniformMass", vertexMass=MASS)
+    bob.addObject("LinearSolverConstraintCorrection")
+    root.addObject("BilateralLagrangianConstraint", name="tie", object1="@anchor/dofs", object2="@bob/dofs",
+                   first_point=[0], second_point=[0])
+    return root
+
+
+def test_the_impulse_holding_a_weight_is_its_weight_times_dt():
+    root = hanging_point(Sofa.Core.Node("root"))
+    Sofa.Simulation.init(root)
+    for _ in range(5):
+        Sofa.Simulation.animate(root, DT)
+    forces = np.asarray(root.solver.constraintForces.value)
+    assert forces.shape == (3,)
+    # The row pulls the bob (+I on object2): up, m g dt, whatever the Rayleigh mass damping.
+    np.testing.assert_allclose(forces, [0, MASS * 9.81 * DT, 0], atol=1e-10)
+    assert root.solver.currentNumConstraints.value == 3
+    np.testing.assert_allclose(root.bob.dofs.position.value[0], [0, 0, 0], atol=1e-12)
+
+
+def test_a_controller_moves_the_rest_vector_every_step():
+    def target(step):
+        return np.array([[0.02 * step, 0.01 * step * step, 0.0]])
+
+    class Pull(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+            self.tie = kwargs["tie"]
+            self.step = 0
+
+        def onAnimateBeginEvent(self, event):
+            self.step += 1
+            self.tie.rest_vector.value = target(self.step)
+
+    root = hanging_point(Sofa.Core.Node("root"))
+    root.addObject(Pull(name="pull", tie=root.tie))
+    Sofa.Simulation.init(root)
+    for step in range(1, 31):
+        Sofa.Simulation.animate(root, DT)
+        np.testing.assert_allclose(root.bob.dofs.position.value[0], target(step)[0], atol=1e-10)
+    np.testing.assert_allclose(root.tie.rest_vector.value, target(30))
+    # Switched off: the bob moves on freely, implicit Euler with rayleighMass 0.1 under gravity:
+    # v' = v + h (g - 0.1 v) / (1 + 0.1 h), x' = x + h v'.
+    root.tie.activate.value = False
+    x = np.array(root.bob.dofs.position.value[0])
+    v = np.array(root.bob.dofs.velocity.value[0])
+    Sofa.Simulation.animate(root, DT)
+    v_next = v + DT * (np.array([0, -9.81, 0]) - 0.1 * v) / (1 + 0.1 * DT)
+    np.testing.assert_allclose(root.bob.dofs.position.value[0], x + DT * v_next, atol=1e-12)
+    assert root.solver.currentNumConstraints.value == 0
+
+
+def test_bad_values_are_refused_naming_the_constraint():
+    root = hanging_point(Sofa.Core.Node("root"))
+    Sofa.Simulation.init(root)
+    with pytest.raises(ValueError, match="BilateralLagrangianConstraint"):
+        root.tie.load.value = 2
+    with pytest.raises(ValueError, match="rest_vector"):
+        root.tie.rest_vector.value = [[np.nan, 0, 0]]
