@@ -107,9 +107,20 @@ void bench(const BenchOptions& options, std::ostream& out) {
   std::vector<PhaseTimes> times(simulation.objects.size());
   for (std::size_t o = 0; o < times.size(); ++o) simulation.objects[o].system.set_phase_times(&times[o]);
   PhaseTimes total;
+  // Under a FreeMotionAnimationLoop: W's and the constraint solve's time, rows and iterations.
+  double compliance_seconds = 0, constraint_solve_seconds = 0;
+  long constraint_rows = 0, constraint_iterations = 0, unconverged = 0;
   const auto start = std::chrono::steady_clock::now();
   for (long step = 0; step < options.steps; ++step) {
     simulation.step();
+    if (simulation.constraints) {
+      const ConstraintReport& r = simulation.constraint_report();
+      compliance_seconds += r.compliance_seconds;
+      constraint_solve_seconds += r.solve_seconds;
+      constraint_rows += r.rows;
+      constraint_iterations += r.iterations;
+      unconverged += r.converged ? 0 : 1;
+    }
     if (!options.vtu_dir.empty()) {
       const PhaseTimer timer(&total.output);
       write_frame(options.vtu_dir, simulation);
@@ -136,7 +147,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
   forces_only = std::min(forces_only, total.add_force);
   const double refresh = total.add_force - forces_only;
   // Whatever the phases do not cover (the step loop itself, concurrent objects' overlap).
-  const double other = std::max(0.0, seconds - total.total());
+  const double other = std::max(0.0, seconds - total.total() - compliance_seconds - constraint_solve_seconds);
   const SceneSize size = measure(simulation);
   const double per_step = 1e3 / static_cast<double>(options.steps);
   const double steps_per_second = static_cast<double>(options.steps) / seconds;
@@ -159,6 +170,8 @@ void bench(const BenchOptions& options, std::ostream& out) {
                      {"solver_vectors", total.solver_vectors * per_step},
                      {"mass_constraints", total.mass_constraints * per_step},
                      {"output", total.output * per_step},
+                     {"constraint_compliance", compliance_seconds * per_step},
+                     {"constraint_solve", constraint_solve_seconds * per_step},
                      {"other", other * per_step}}},
                    {"force_field_bytes", size.force_field_bytes},
                    {"force_field_bytes_per_tetrahedron",
@@ -169,6 +182,13 @@ void bench(const BenchOptions& options, std::ostream& out) {
                    {"cpu_vector_instructions", cpu_vector_instructions()},
                    {"build_vector_instructions", build_vector_instructions()},
                    {"thread_round_trip_ns", std::isfinite(round_trip_ns) ? json(round_trip_ns) : json(nullptr)}};
+    if (simulation.constraints) {
+      result["constraints"] = {{"solver", simulation.constraints->solver_name()},
+                               {"rows_per_step", static_cast<double>(constraint_rows) / static_cast<double>(options.steps)},
+                               {"iterations_per_step", static_cast<double>(constraint_iterations) / static_cast<double>(options.steps)},
+                               {"unconverged_steps", unconverged},
+                               {"compliance_share", seconds > 0 ? compliance_seconds / seconds : 0.0}};
+    }
     out << result.dump(2) << '\n';
     return;
   }
@@ -188,7 +208,16 @@ void bench(const BenchOptions& options, std::ostream& out) {
   line("solver vectors", total.solver_vectors);
   line("mass/constraints", total.mass_constraints);
   line("output", total.output);
+  if (simulation.constraints) {
+    line("constraint W", compliance_seconds);
+    line("constraint solve", constraint_solve_seconds);
+  }
   line("other", other);
+  if (simulation.constraints) {
+    out << std::setprecision(1) << "constraints: " << static_cast<double>(constraint_rows) / static_cast<double>(options.steps)
+        << " rows and " << static_cast<double>(constraint_iterations) / static_cast<double>(options.steps) << " "
+        << simulation.constraints->solver_name() << " iterations per step, " << unconverged << " step(s) unconverged\n";
+  }
   out << std::setprecision(0) << "force field memory " << size.force_field_bytes / 1024 << " KiB ("
       << (size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0)
       << " bytes per tetrahedron); peak process memory " << peak_memory_bytes() / (1024 * 1024) << " MiB\n";

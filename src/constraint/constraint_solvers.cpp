@@ -58,12 +58,12 @@ Real ConstraintSolver<Real>::sweep(ConstraintProblem<Real>& problem, Real tolera
       before_large.resize(static_cast<std::size_t>(nb));
       old = before_large.data();
     }
+    // d = δ_free + W λ on the block's rows (each a dot product over the full row, vectorised:
+    // the same values as SOFA's loop to round-off).
+    const Eigen::Map<const DenseVector<Real>> lambda(f, n);
     for (int l = 0; l < nb; ++l) {
       old[l] = f[j + l];
-      d[j + l] = dfree[j + l];
-    }
-    for (int k = 0; k < n; ++k) {
-      for (int l = 0; l < nb; ++l) d[j + l] += w(j + l, k) * f[k];
+      d[j + l] = dfree[j + l] + w.row(j + l).dot(lambda);
     }
     resolution.resolve(j, w, d, f, dfree);
     Real block_error = 0;

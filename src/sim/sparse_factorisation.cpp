@@ -47,32 +47,50 @@ Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> SparseFactorisation<Real>::c
   for (Index j = 0; j < n; ++j) {
     if (lp[j] < lp[j + 1]) parent[static_cast<std::size_t>(j)] = static_cast<Index>(li[lp[j]]);
   }
-  // Z's columns, each on its reach (sorted rows) with its values.
-  std::vector<std::vector<Index>> reach(static_cast<std::size_t>(r));
-  std::vector<std::vector<Real>> value(static_cast<std::size_t>(r));
-  run_tasks(threads, static_cast<int>(r), [&](int c) {
-    std::vector<Real> x(static_cast<std::size_t>(n), Real(0));
+  // Z's columns in groups of kGroup (constraint rows come in threes on one point, whose reaches
+  // nearly coincide): each group solved on the union of its reaches (sorted rows), the kGroup
+  // right-hand sides side by side so that each entry of L is loaded once for all of them.
+  constexpr Index kGroup = 4;
+  const Index groups = (r + kGroup - 1) / kGroup;
+  std::vector<std::vector<Index>> reach(static_cast<std::size_t>(groups));
+  std::vector<std::vector<Real>> value(static_cast<std::size_t>(groups));  // kGroup values per reached row
+  run_tasks(threads, static_cast<int>(groups), [&](int g) {
+    std::vector<Real> x(static_cast<std::size_t>(kGroup * n), Real(0));
     std::vector<char> marked(static_cast<std::size_t>(n), 0);
-    auto& rows = reach[static_cast<std::size_t>(c)];
-    for (typename Matrix::InnerIterator it(columns, c); it; ++it) {
-      Index k = static_cast<Index>(order[it.row()]);
-      x[static_cast<std::size_t>(k)] += it.value();
-      while (k >= 0 && !marked[static_cast<std::size_t>(k)]) {
-        marked[static_cast<std::size_t>(k)] = 1;
-        rows.push_back(k);
-        k = parent[static_cast<std::size_t>(k)];
+    auto& rows = reach[static_cast<std::size_t>(g)];
+    for (Index c = g * kGroup; c < std::min(r, (g + 1) * kGroup); ++c) {
+      for (typename Matrix::InnerIterator it(columns, c); it; ++it) {
+        Index k = static_cast<Index>(order[it.row()]);
+        x[static_cast<std::size_t>(kGroup * k + (c - g * kGroup))] += it.value();
+        while (k >= 0 && !marked[static_cast<std::size_t>(k)]) {
+          marked[static_cast<std::size_t>(k)] = 1;
+          rows.push_back(k);
+          k = parent[static_cast<std::size_t>(k)];
+        }
       }
     }
     // Ascending order is a topological order of the reach (L is lower triangular).
     std::sort(rows.begin(), rows.end());
     for (Index j : rows) {
-      const Real xj = x[static_cast<std::size_t>(j)];
-      if (xj == 0) continue;
-      for (auto p = lp[j]; p < lp[j + 1]; ++p) x[static_cast<std::size_t>(li[p])] -= lx[p] * xj;
+      const Real* xj = &x[static_cast<std::size_t>(kGroup * j)];
+      Real column[kGroup];
+      bool zero = true;
+      for (Index c = 0; c < kGroup; ++c) {
+        column[c] = xj[c];
+        zero = zero && column[c] == 0;
+      }
+      if (zero) continue;
+      for (auto p = lp[j]; p < lp[j + 1]; ++p) {
+        Real* xi = &x[static_cast<std::size_t>(kGroup * li[p])];
+        const Real lij = lx[p];
+        for (Index c = 0; c < kGroup; ++c) xi[c] -= lij * column[c];
+      }
     }
-    auto& values = value[static_cast<std::size_t>(c)];
-    values.reserve(rows.size());
-    for (Index j : rows) values.push_back(x[static_cast<std::size_t>(j)]);
+    auto& values = value[static_cast<std::size_t>(g)];
+    values.reserve(kGroup * rows.size());
+    for (Index j : rows) {
+      for (Index c = 0; c < kGroup; ++c) values.push_back(x[static_cast<std::size_t>(kGroup * j + c)]);
+    }
   });
   // W = Zᵀ D⁻¹ Z on the rows some column reaches (Z dense there: a product Eigen blocks well).
   std::vector<Index> where(static_cast<std::size_t>(n), -1);
@@ -91,9 +109,14 @@ Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> SparseFactorisation<Real>::c
       static_cast<Eigen::Index>(used.size()), r);
   Eigen::Matrix<Real, Eigen::Dynamic, 1> inverse_d(static_cast<Eigen::Index>(used.size()));
   for (std::size_t q = 0; q < used.size(); ++q) inverse_d[static_cast<Eigen::Index>(q)] = Real(1) / d[used[q]];
-  for (Index c = 0; c < r; ++c) {
-    const auto& rows = reach[static_cast<std::size_t>(c)];
-    for (std::size_t q = 0; q < rows.size(); ++q) z(where[static_cast<std::size_t>(rows[q])], c) = value[static_cast<std::size_t>(c)][q];
+  for (Index g = 0; g < groups; ++g) {
+    const auto& rows = reach[static_cast<std::size_t>(g)];
+    const auto& values = value[static_cast<std::size_t>(g)];
+    for (Index c = g * kGroup; c < std::min(r, (g + 1) * kGroup); ++c) {
+      for (std::size_t q = 0; q < rows.size(); ++q) {
+        z(where[static_cast<std::size_t>(rows[q])], c) = values[kGroup * q + static_cast<std::size_t>(c - g * kGroup)];
+      }
+    }
   }
   Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> w = z.transpose() * (inverse_d.asDiagonal() * z);
   // Symmetric to round-off; make it exactly so (the lower triangle from the upper).
