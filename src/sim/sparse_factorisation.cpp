@@ -118,10 +118,20 @@ Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> SparseFactorisation<Real>::c
       }
     }
   }
-  Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> w = z.transpose() * (inverse_d.asDiagonal() * z);
-  // Symmetric to round-off; make it exactly so (the lower triangle from the upper).
-  for (Index a = 0; a < r; ++a) {
-    for (Index b = 0; b < a; ++b) w(a, b) = w(b, a);
+  Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> w = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>::Zero(r, r);
+  if ((inverse_d.array() > 0).all()) {
+    // A positive D (a positive definite A, as implicit Euler's is): W = (D^-1/2 Z)ᵀ (D^-1/2 Z), a
+    // symmetric rank update (half the product), its upper triangle copied from the lower.
+    const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> scaled = inverse_d.cwiseSqrt().asDiagonal() * z;
+    w.template selfadjointView<Eigen::Lower>().rankUpdate(scaled.transpose());
+    for (Index a = 0; a < r; ++a) {
+      for (Index b = a + 1; b < r; ++b) w(a, b) = w(b, a);
+    }
+  } else {
+    w = z.transpose() * (inverse_d.asDiagonal() * z);
+    for (Index a = 0; a < r; ++a) {
+      for (Index b = 0; b < a; ++b) w(a, b) = w(b, a);
+    }
   }
   return w;
 }
