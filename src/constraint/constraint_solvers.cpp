@@ -123,6 +123,55 @@ ConstraintSolveReport BlockGaussSeidelSolver<Real>::solve(ConstraintProblem<Real
 }
 
 template <class Real>
+ConstraintSolveReport NNCGSolver<Real>::solve(ConstraintProblem<Real>& problem) {
+  ConstraintSolveReport report;
+  const int n = problem.size();
+  if (n == 0) return report;
+  const auto& p = this->parameters_;
+  const Real tolerance = this->effective_tolerance(n);
+  report.tolerance = static_cast<double>(tolerance);
+  this->init_blocks(problem);
+  bool verified = true;
+  // The first sweep gives the first direction (its error is not measured, as in SOFA).
+  DenseVector<Real> before = problem.f;
+  this->sweep(problem, tolerance, verified);
+  DenseVector<Real> change = before - problem.f;  // SOFA's Δλ = -(λ - λ_before)
+  DenseVector<Real> direction = -change;
+  report.iterations = 1;
+  report.converged = false;
+  Real error = 0;
+  for (int it = 1; it < p.max_iterations; ++it) {
+    report.iterations = it + 1;
+    before = problem.f;
+    verified = true;
+    error = this->sweep(problem, tolerance, verified);
+    if (p.all_verified ? verified : error < tolerance) {
+      report.converged = true;
+      break;
+    }
+    const DenseVector<Real> change_new = before - problem.f;
+    const Real old_norm = change.squaredNorm();
+    const Real beta = old_norm > 0 ? change_new.squaredNorm() / old_norm : Real(0);
+    change = change_new;
+    if (beta > 1) {
+      direction.setZero();
+    } else {
+      problem.f += beta * direction;
+      direction = beta * direction - change;
+    }
+    if (change.norm() < tolerance) {
+      report.converged = true;  // λ no longer moves: SOFA stops here too
+      break;
+    }
+  }
+  report.error = static_cast<double>(error);
+  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+    problem.resolutions[b]->store(problem.first_line[b], problem.f.data());
+  }
+  return report;
+}
+
+template <class Real>
 ConstraintSolveReport PreconditionedConjugateResidualSolver<Real>::solve(ConstraintProblem<Real>& problem) {
   ConstraintSolveReport report;
   const int n = problem.size();
@@ -188,6 +237,8 @@ template class ConstraintSolver<float>;
 template class ConstraintSolver<double>;
 template class BlockGaussSeidelSolver<float>;
 template class BlockGaussSeidelSolver<double>;
+template class NNCGSolver<float>;
+template class NNCGSolver<double>;
 template class PreconditionedConjugateResidualSolver<float>;
 template class PreconditionedConjugateResidualSolver<double>;
 

@@ -36,8 +36,8 @@ std::vector<AttributeSpec> correction_link_attributes() {
 std::vector<ComponentSpec> lagrangian_components() {
   auto generic_solver = solver_attributes();
   generic_solver.push_back({"resolutionMethod", "string", "ProjectedGaussSeidel",
-                            "ProjectedGaussSeidel (run as BlockGaussSeidelConstraintSolver) or UnbuiltGaussSeidel"});
-  generic_solver.push_back({"newtonIterations", "int", "100", "accepted (NNCG only)"});
+                            "ProjectedGaussSeidel (run as BlockGaussSeidelConstraintSolver), UnbuiltGaussSeidel or NonsmoothNonlinearConjugateGradient (NNCGConstraintSolver)"});
+  generic_solver.push_back({"newtonIterations", "int", "100", "NNCG's iteration count (SOFA's change list maps it to maxIterations)"});
   auto generic_correction = correction_link_attributes();
   generic_correction.push_back({"complianceFactor", "real", "1", "scales the compliance and the correction"});
   return {
@@ -53,6 +53,9 @@ std::vector<ComponentSpec> lagrangian_components() {
        solver_attributes()},
       {"UnbuiltGaussSeidelConstraintSolver", "constraintsolver",
        "The same sweep with λ from zero every step (SOFA's unbuilt variant; W λ is computed from the built W, which gives the same values).",
+       solver_attributes()},
+      {"NNCGConstraintSolver", "constraintsolver",
+       "Nonsmooth nonlinear conjugate gradient: Gauss–Seidel sweeps with a conjugate step after each (β = |Δλ_new|² / |Δλ_old|², reset when above 1); also stops when λ no longer moves.",
        solver_attributes()},
       {"PreconditionedConjugateResidual", "constraintsolver",
        "Conjugate residuals on the Jacobi-scaled W, every row treated as bilateral, at most min(maxIterations, rows) iterations, SOFA's stopping measure.",

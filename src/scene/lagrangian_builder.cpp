@@ -15,8 +15,9 @@ namespace fastcorot::scene_detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 4> kSolvers = {"BlockGaussSeidelConstraintSolver", "UnbuiltGaussSeidelConstraintSolver",
-                                                      "GenericConstraintSolver", "PreconditionedConjugateResidual"};
+constexpr std::array<std::string_view, 5> kSolvers = {"BlockGaussSeidelConstraintSolver", "UnbuiltGaussSeidelConstraintSolver",
+                                                      "GenericConstraintSolver", "PreconditionedConjugateResidual",
+                                                      "NNCGConstraintSolver"};
 constexpr std::array<std::string_view, 3> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
                                                           "UncoupledConstraintCorrection"};
 constexpr std::array<std::string_view, 2> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint"};
@@ -38,6 +39,10 @@ void collect(GraphNode& node, std::vector<Component*>& out) {
 ConstraintSolverParameters<double> solver_parameters(SceneData& data, Component& c) {
   ConstraintSolverParameters<double> p;
   p.max_iterations = data.whole_number(c, c.has("maxIterations") ? "maxIterations" : "maxIt", 1000);
+  // GenericConstraintSolver's NNCG took its iterations from newtonIterations (SOFA's change list).
+  if (c.type() == "GenericConstraintSolver" && data.text(c, "resolutionMethod", "") == "NonsmoothNonlinearConjugateGradient") {
+    p.max_iterations = data.whole_number(c, "newtonIterations", 100);
+  }
   p.tolerance = data.real(c, "tolerance", 1e-3);
   p.sor = data.real(c, "sor", 1.0);
   p.regularization = data.real(c, "regularizationTerm", 0.0);
@@ -58,7 +63,7 @@ std::unique_ptr<ConstraintSolver<double>> build_solver(SceneData& data, std::vec
       } else if (method == "UnbuiltGaussSeidel") {
         type = "UnbuiltGaussSeidelConstraintSolver";
       } else if (method == "NonsmoothNonlinearConjugateGradient") {
-        throw make_error("resolutionMethod NonsmoothNonlinearConjugateGradient (SOFA's NNCGConstraintSolver) is not simulated yet");
+        type = "NNCGConstraintSolver";
       } else {
         throw make_error("resolutionMethod = \"", method,
                          "\": not one of ProjectedGaussSeidel, UnbuiltGaussSeidel, NonsmoothNonlinearConjugateGradient");
@@ -68,6 +73,7 @@ std::unique_ptr<ConstraintSolver<double>> build_solver(SceneData& data, std::vec
     }
     if (type == "UnbuiltGaussSeidelConstraintSolver") return std::make_unique<UnbuiltGaussSeidelSolver<double>>(p);
     if (type == "PreconditionedConjugateResidual") return std::make_unique<PreconditionedConjugateResidualSolver<double>>(p);
+    if (type == "NNCGConstraintSolver") return std::make_unique<NNCGSolver<double>>(p);
     static_cast<void>(info);
     return std::make_unique<BlockGaussSeidelSolver<double>>(p);
   } catch (const Error& error) {

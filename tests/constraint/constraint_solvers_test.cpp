@@ -182,6 +182,20 @@ TEST(UnbuiltGaussSeidelSolver, StartsFromZeroEveryStep) {
   EXPECT_GT(first, 1);
 }
 
+TEST(NNCGSolver, BilateralBlocksReachTheLinearSolution) {
+  const int n = 12;
+  const DenseMatrix<double> w = spd(n, 3) + 3.0 * spd(n, 5);
+  const DenseVector<double> dfree = random_vector(n, 4);
+  std::vector<Vec3<double>> previous;
+  ConstraintProblem<double> problem = bilateral_problem(w, dfree, previous);
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 1e-14;
+  const ConstraintSolveReport report = NNCGSolver<double>(p).solve(problem);
+  EXPECT_TRUE(report.converged);
+  const Eigen::VectorXd expected = -Eigen::MatrixXd(w).lu().solve(Eigen::VectorXd(dfree));
+  EXPECT_LT((Eigen::VectorXd(problem.f) - expected).norm(), 1e-10 * expected.norm());
+}
+
 TEST(PreconditionedConjugateResidualSolver, ReachesTheLinearSolutionInAtMostTheRowCount) {
   // Conjugate residuals on an SPD system end at the solution after n iterations (round-off
   // aside); with a zero tolerance SOFA's measure never stops it earlier.

@@ -172,6 +172,23 @@ TEST(LagrangianScene, GenericConstraintSolverRunsAsItsReplacementWithAWarning) {
   EXPECT_EQ(generic.simulation.objects[0].system.state.position, block.simulation.objects[0].system.state.position);
 }
 
+TEST(LagrangianScene, GenericConstraintSolverWithNncgTakesNewtonIterations) {
+  const std::string fixed = beam("beam", 0, kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>");
+  LoadedScene generic = build_scene_text("<FreeMotionAnimationLoop/><GenericConstraintSolver resolutionMethod=\"NonsmoothNonlinearConjugateGradient\" "
+                                         "newtonIterations=\"7\" maxIterations=\"500\" tolerance=\"1e-14\"/>" + fixed, kRoot);
+  LoadedScene nncg = build_scene_text("<FreeMotionAnimationLoop/><NNCGConstraintSolver maxIterations=\"7\" tolerance=\"1e-14\"/>" + fixed, kRoot);
+  LoadedScene projective = build_scene_text(beam("beam", 0, kLeftEnd + "<FixedProjectiveConstraint indices=\"@box.indices\"/>"), kRoot);
+  for (int step = 0; step < 20; ++step) {
+    generic.simulation.step();
+    nncg.simulation.step();
+    projective.simulation.step();
+  }
+  EXPECT_EQ(generic.simulation.constraint_report().iterations, 7);
+  EXPECT_EQ(generic.simulation.objects[0].system.state.position, nncg.simulation.objects[0].system.state.position);
+  // Seven sweeps a step on a fixed end (warm-started): the projective trajectory to a few micrometres.
+  EXPECT_LT(max_difference(nncg.simulation.objects[0].system.state.position, projective.simulation.objects[0].system.state.position), 1e-5);
+}
+
 TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
   const std::string fixed = kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/>";
   // A matrix-free linear solver under LinearSolverConstraintCorrection (SOFA's GraphScattered).

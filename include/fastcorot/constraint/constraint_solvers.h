@@ -77,6 +77,17 @@ class UnbuiltGaussSeidelSolver final : public BlockGaussSeidelSolver<Real> {
   const char* name() const override { return "UnbuiltGaussSeidelConstraintSolver"; }
 };
 
+// SOFA's NNCGConstraintSolver (nonsmooth nonlinear conjugate gradient): Gauss–Seidel sweeps, each
+// followed by a conjugate step along p with β = |Δλ_new|² / |Δλ_old|² (p reset when β > 1); also
+// stops when |Δλ| falls below the tolerance. Warm-started as BlockGaussSeidel; no over-relaxation.
+template <class Real>
+class NNCGSolver final : public ConstraintSolver<Real> {
+ public:
+  explicit NNCGSolver(ConstraintSolverParameters<Real> parameters) : ConstraintSolver<Real>(parameters) {}
+  ConstraintSolveReport solve(ConstraintProblem<Real>& problem) override;
+  const char* name() const override { return "NNCGConstraintSolver"; }
+};
+
 // SOFA's PreconditionedConjugateResidual: conjugate residuals on the Jacobi-scaled W (every row
 // treated as bilateral: no projection, no warm start), at most min(maxIterations, rows)
 // iterations. Its stopping measure is SOFA's as written: Σ_blocks sqrt(Σ_rows r_i²) with r_i the
