@@ -224,7 +224,8 @@ TEST(SceneBuilder, ComponentsFastcorotDoesNotSimulateAreRefusedSayingWhy) {
       << message;
   EXPECT_NE(error_of(kTet + "\n<HexahedronFEMForceField/>").find("HexahedronFEMForceField: its topology has no hexahedra"),
             std::string::npos);
-  EXPECT_NE(error_of(kTet + "\n<GenericConstraintSolver/>").find("Lagrangian constraint solvers are not simulated"),
+  EXPECT_NE(error_of(kTet + "\n<LCPConstraintSolver/>").find("LCPConstraintSolver: this scene needs what fastcorot does not have: "
+                                                            "LCPConstraintSolver is not simulated yet"),
             std::string::npos);
 }
 
