@@ -1,11 +1,16 @@
 #include "distributed_run.h"
 
+#include "fastcorot/core/error.h"
 #include "fastcorot/sim/petsc_runtime.h"
 
 namespace fastcorot::cli {
 
 DistributedRun::DistributedRun(Simulation<double>& simulation) {
   if (process_count() == 1) return;
+  if (simulation.constraints) {
+    throw make_error("a FreeMotionAnimationLoop scene runs in one process: its constraints couple whole objects "
+                     "(run it without mpirun)");
+  }
   fingerprints_ = scene_fingerprints(simulation);
   for (auto& object : simulation.objects) distributions_.push_back(distribute(object));
 }

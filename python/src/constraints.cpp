@@ -10,6 +10,8 @@
 
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <mutex>
 
 namespace fastcorot::python {
@@ -38,6 +40,7 @@ void bind_constraints(py::class_<SimulationCore>& core) {
       .def(
           "constraint_forces",
           [](SimulationCore& c) {
+            std::lock_guard lock(c.stepping);  // not while another thread steps
             std::vector<double> values;
             if (c.simulation().constraints) {
               const auto forces = c.simulation().constraints->constraint_forces();
@@ -52,7 +55,8 @@ void bind_constraints(py::class_<SimulationCore>& core) {
       .def(
           "constraint_report",
           [](SimulationCore& c) {
-            const ConstraintReport& r = c.simulation().constraint_report();
+            std::lock_guard lock(c.stepping);
+            const ConstraintReport r = c.simulation().constraint_report();
             py::dict d;
             d["rows"] = r.rows;
             d["iterations"] = r.iterations;
@@ -67,6 +71,7 @@ void bind_constraints(py::class_<SimulationCore>& core) {
       .def(
           "bilateral",
           [](SimulationCore& c, std::size_t index) {
+            std::lock_guard lock(c.stepping);
             auto& p = bilateral(c, index).parameters();
             py::array_t<double> rest({static_cast<py::ssize_t>(p.rest.size()), py::ssize_t{3}});
             for (std::size_t k = 0; k < p.rest.size(); ++k) {
@@ -95,8 +100,17 @@ void bind_constraints(py::class_<SimulationCore>& core) {
             }
             if (!activate.is_none()) p.active = activate.cast<bool>();
             if (!load.is_none()) {
-              const double value = load.cast<double>();
-              if (!(value >= 0 && value <= 1)) throw py::value_error(constraint.where() + ": load = " + std::to_string(value) + ": must lie in [0, 1]");
+              if (!py::isinstance<py::float_>(load) && !py::isinstance<py::int_>(load)) {
+                throw py::type_error(constraint.where() + ": load: expected a number");
+              }
+              double value = load.cast<double>();
+              if (!std::isfinite(value)) throw py::value_error(constraint.where() + ": load is not finite");
+              if (value < 0 || value > 1) {
+                // SOFA clamps it, with a warning.
+                const std::string message = constraint.where() + ": load = " + std::to_string(value) + " lies outside [0, 1]: clamped, as SOFA does";
+                if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) < 0) throw py::error_already_set();
+                value = std::clamp(value, 0.0, 1.0);
+              }
               p.load = value;
             }
           },

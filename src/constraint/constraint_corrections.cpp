@@ -14,6 +14,31 @@ Real order_factor(const IntegrationFactors<Real>& factors, ConstraintOrder order
   return order == ConstraintOrder::velocity ? factors.velocity : factors.position;
 }
 
+// The columns of Hᵀ that reach the object (rows of other objects' constraints are empty here):
+// their indices, and the columns themselves side by side.
+template <class Real>
+struct ReachingColumns {
+  std::vector<Index> index;
+  Eigen::SparseMatrix<Real> matrix;
+};
+
+template <class Real>
+ReachingColumns<Real> reaching_columns(const Eigen::SparseMatrix<Real>& ht) {
+  ReachingColumns<Real> columns;
+  std::vector<Eigen::Triplet<Real>> triplets;
+  for (Index c = 0; c < static_cast<Index>(ht.cols()); ++c) {
+    if (ht.col(c).nonZeros() == 0) continue;
+    const auto k = static_cast<Index>(columns.index.size());
+    columns.index.push_back(c);
+    for (typename Eigen::SparseMatrix<Real>::InnerIterator it(ht, c); it; ++it) {
+      triplets.emplace_back(static_cast<Index>(it.row()), k, it.value());
+    }
+  }
+  columns.matrix.resize(ht.rows(), static_cast<Index>(columns.index.size()));
+  columns.matrix.setFromTriplets(triplets.begin(), triplets.end());
+  return columns;
+}
+
 }  // namespace
 
 template <class Real>
@@ -46,8 +71,13 @@ void LinearSolverConstraintCorrection<Real>::add_compliance(SimulatedObject<Real
   const IntegrationFactors<Real> f = factors(object, dt);
   const Real factor = order_factor(f, order) * compliance_factor_;
   if (const SparseFactorisation<Real>* direct = object.linear_solver->factorisation()) {
-    w += factor * direct->compliance(ht, object.system.threads());
-
+    const ReachingColumns<Real> columns = reaching_columns(ht);
+    const auto block = direct->compliance(columns.matrix, object.system.threads());
+    for (std::size_t a = 0; a < columns.index.size(); ++a) {
+      for (std::size_t b = 0; b < columns.index.size(); ++b) {
+        w(columns.index[a], columns.index[b]) += factor * block(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+      }
+    }
   } else {
     // One solve per row of H that reaches the object (SOFA's addJMInvJt with an iterative solver).
     const std::size_t n = static_cast<std::size_t>(object.system.size());

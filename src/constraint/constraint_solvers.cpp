@@ -40,6 +40,13 @@ void ConstraintSolver<Real>::init_blocks(ConstraintProblem<Real>& problem) const
 }
 
 template <class Real>
+void ConstraintSolver<Real>::store_blocks(ConstraintProblem<Real>& problem) const {
+  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+    problem.resolutions[b]->store(problem.first_line[b], problem.f.data());
+  }
+}
+
+template <class Real>
 Real ConstraintSolver<Real>::sweep(ConstraintProblem<Real>& problem, Real tolerance, bool& verified) const {
   const int n = problem.size();
   Real* f = problem.f.data();
@@ -116,9 +123,7 @@ ConstraintSolveReport BlockGaussSeidelSolver<Real>::solve(ConstraintProblem<Real
     }
   }
   report.error = static_cast<double>(error);
-  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
-    problem.resolutions[b]->store(problem.first_line[b], problem.f.data());
-  }
+  this->store_blocks(problem);
   return report;
 }
 
@@ -165,9 +170,7 @@ ConstraintSolveReport NNCGSolver<Real>::solve(ConstraintProblem<Real>& problem) 
     }
   }
   report.error = static_cast<double>(error);
-  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
-    problem.resolutions[b]->store(problem.first_line[b], problem.f.data());
-  }
+  this->store_blocks(problem);
   return report;
 }
 
@@ -200,8 +203,15 @@ ConstraintSolveReport PreconditionedConjugateResidualSolver<Real>::solve(Constra
   const int iterations = std::min(p.max_iterations, n);
   Real error = 0;
   for (int i = 0; i < iterations; ++i) {
+    // A zero residual (or direction) is the solution already: stop before dividing by zero.
+    const Real direction_norm = w_direction.dot(w_direction);
+    if (rwr == 0 || direction_norm == 0) {
+      report.converged = true;
+      error = 0;
+      break;
+    }
     report.iterations = i + 1;
-    const Real alpha = rwr / w_direction.dot(w_direction);
+    const Real alpha = rwr / direction_norm;
     problem.f += alpha * direction;
     r -= alpha * w_direction;
     w_r = mw * r;
@@ -227,9 +237,7 @@ ConstraintSolveReport PreconditionedConjugateResidualSolver<Real>::solve(Constra
   }
   problem.f = problem.f.cwiseProduct(scale);
   report.error = static_cast<double>(error);
-  for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
-    problem.resolutions[b]->store(problem.first_line[b], problem.f.data());
-  }
+  this->store_blocks(problem);
   return report;
 }
 

@@ -50,6 +50,16 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
                                                         std::span<const MechanicalState<Real>> start, Real dt, double) {
   ConstraintReport report;
   const ConstraintOrder order = this->order();
+  if (order != ConstraintOrder::velocity) {
+    // SOFA's free motion ends with x_free = x + dt v_free on every state (the same bits as the
+    // ODE's own update, except where it damps the velocity after it: vdamping).
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      if (!objects[o].ode_solver->integration_factors(dt)) continue;  // a static or explicit solve keeps its own
+      auto& x = objects[o].system.state.position;
+      const auto& v = objects[o].system.state.velocity;
+      for (std::size_t i = 0; i < x.size(); ++i) x[i] = start[o].position[i] + dt * v[i];
+    }
+  }
   for (auto& constraint : constraints) {
     for (ConstraintPoints<Real>* points : constraint->point_sets()) {
       points->prepare(start[points->object], objects[points->object].system.state, dt);
@@ -60,6 +70,7 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
   const int n = rows.size();
   report.rows = n;
   forces_.setZero(n);
+  if (n == 0) problem_.clear(0);
   if (n > 0) {
     problem_.clear(n);
     for (const auto& constraint : constraints) {

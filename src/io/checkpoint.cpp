@@ -258,6 +258,12 @@ void write_checkpoint(const std::filesystem::path& path, const Simulation<double
     throw make_error(path.string(), ": not written: ", prints.size(), " fingerprints for ", simulation.objects.size(),
                      " objects");
   }
+  if (simulation.constraints) {
+    // The constraints' warm starts (the last impulses) and what scripts changed in them are not
+    // saved: a resumed run would not continue bitwise.
+    throw make_error(path.string(), ": not written: the scene's Lagrangian constraints (FreeMotionAnimationLoop) carry "
+                     "their last impulses from step to step, which checkpoints do not save");
+  }
   for (const auto& object : simulation.objects) {
     for (const auto& field : object.system.force_fields) {
       if (const std::string unsaved = field->unsaved_state(); !unsaved.empty()) {

@@ -235,7 +235,13 @@ class LoopBuilder {
         throw make_error(object.path, " already has a ", kind_[o], ": one kind of correction per ODE solver's object");
       }
       kind_[o] = "uncoupled";
-      loop_->corrections.push_back(std::make_unique<UncoupledConstraintCorrection<double>>(c.where(), o, uncoupled(c, where)));
+      if (data_.boolean(c, "useOdeSolverIntegrationFactors", true) && !object.ode_solver->integration_factors(simulation_.dt)) {
+        throw make_error("the ODE solver of ", object.path, " does not give SOFA's integration factors (EulerImplicitSolver "
+                         "does): set useOdeSolverIntegrationFactors=\"0\"");
+      }
+      auto parameters = uncoupled(c, where);
+      covered_[o].push_back({parameters.offset, parameters.offset + static_cast<Index>(parameters.compliance.size())});
+      loop_->corrections.push_back(std::make_unique<UncoupledConstraintCorrection<double>>(c.where(), o, std::move(parameters)));
       return;
     }
     // LinearSolverConstraintCorrection and GenericConstraintCorrection: through the object's solver.
@@ -286,6 +292,10 @@ class LoopBuilder {
       // 7 numbers: 1/m for the centre, then the rotation's upper triangle.
       const double ode = p.use_ode_factors ? 1.0 : simulation_.dt * simulation_.dt;
       Numbers seven = compliance;
+      if (!seven.empty() && seven.size() != 7) {
+        data_.warn(c.where() + ": compliance has " + std::to_string(seven.size()) +
+                   " values: a rigid body's is 7 (1/m, then the rotation's upper triangle); derived from the mass instead, as SOFA does");
+      }
       if (seven.size() != 7) {
         seven.clear();
         const auto& mass = simulation_.objects[where.object].system.mass;
@@ -332,14 +342,45 @@ class LoopBuilder {
     return p;
   }
 
-  // Every object a constraint acts on has a correction (SOFA would leave W's rows empty).
+  // Every object a constraint acts on has a correction, and under uncoupled corrections every
+  // block its points reach is one a correction covers (several MechanicalObjects under one solver
+  // each have their own): else W's rows would be empty and the constraint silently ignored.
   void check_corrected() {
+    std::vector<std::pair<Index, Mat3<double>>> blocks;
     for (const auto& constraint : loop_->constraints) {
       for (ConstraintPoints<double>* points : constraint->point_sets()) {
-        if (!kind_.count(points->object)) {
-          throw make_error(constraint->where(), ": it acts on ", simulation_.objects[points->object].path,
+        const std::size_t o = points->object;
+        const std::string& path = simulation_.objects[o].path;
+        if (!kind_.count(o)) {
+          throw make_error(constraint->where(), ": it acts on ", path,
                            ", which has no constraint correction (add a LinearSolverConstraintCorrection, "
                            "GenericConstraintCorrection or UncoupledConstraintCorrection in its solver's node)");
+        }
+        if (kind_[o] != "uncoupled") continue;
+        const auto covered = [&](Index block) {
+          for (const auto& [first, end] : covered_[o]) {
+            if (block >= first && block < end) return true;
+          }
+          return false;
+        };
+        if (points->mapping) {
+          // J's blocks need the mapping's linearisation (a rigid mapping's rotated points).
+          std::vector<Vec3<double>> at(points->size());
+          points->mapping->apply(simulation_.objects[o].system.state.position, at);
+        }
+        for (std::size_t i = 0; i < points->size(); ++i) {
+          blocks.clear();
+          if (points->mapping) {
+            points->mapping->row_blocks(i, blocks);
+          } else {
+            blocks.push_back({points->blocks[i], Mat3<double>::Identity()});
+          }
+          for (const auto& [block, weight] : blocks) {
+            if (!covered(block)) {
+              throw make_error(constraint->where(), ": it acts on a MechanicalObject of ", path,
+                               " that has no UncoupledConstraintCorrection (each MechanicalObject under the solver needs its own)");
+            }
+          }
         }
       }
     }
@@ -352,6 +393,7 @@ class LoopBuilder {
   const LocateState& locate_;
   std::shared_ptr<FreeMotionAnimationLoop<double>> loop_;
   std::map<std::size_t, std::string> kind_;  // the kind of correction of each corrected object
+  std::map<std::size_t, std::vector<std::pair<Index, Index>>> covered_;  // blocks [first, end) with an uncoupled correction
 };
 
 }  // namespace

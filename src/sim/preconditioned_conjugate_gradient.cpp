@@ -156,7 +156,7 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   }
   const int threads = system.threads();
   double* vector_time = system.timer_slot(&PhaseTimes::solver_vectors);
-  if (parameters_.preconditioner != Preconditioner::none && solves_ % parameters_.update_step == 0) {
+  if (parameters_.preconditioner != Preconditioner::none && !reuse_preconditioner_ && solves_ % parameters_.update_step == 0) {
     const PhaseTimer timer(vector_time);
     build_preconditioner(system, factors);
   }
@@ -281,6 +281,28 @@ LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve(const Mecha
   }
   std::copy(x.begin(), x.end(), previous_.begin());
   report.relative_residual = b_norm > 0 ? std::sqrt(std::max(rho, Real(0)) / b_norm) : Real(0);
+  return report;
+}
+
+template <class Real>
+LinearSolveReport PreconditionedConjugateGradientSolver<Real>::solve_again(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
+                                        std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) {
+  const std::int64_t solves = solves_;
+  const std::vector<Vec3<Real>> previous = previous_;
+  std::fill(previous_.begin(), previous_.end(), Vec3<Real>::Zero());
+  reuse_preconditioner_ = true;
+  LinearSolveReport report;
+  try {
+    report = solve(system, factors, rhs, x);
+  } catch (...) {
+    reuse_preconditioner_ = false;
+    solves_ = solves;
+    previous_ = previous;
+    throw;
+  }
+  reuse_preconditioner_ = false;
+  solves_ = solves;
+  previous_ = previous;
   return report;
 }
 

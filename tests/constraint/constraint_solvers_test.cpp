@@ -220,6 +220,25 @@ TEST(PreconditionedConjugateResidualSolver, ReachesTheLinearSolutionInAtMostTheR
   EXPECT_FALSE(short_report.converged);
 }
 
+TEST(PreconditionedConjugateResidualSolver, StopsAtAZeroResidualWithoutDividingByZero) {
+  // W the identity: the first iteration lands on the solution (residual exactly zero).
+  const DenseMatrix<double> w = DenseMatrix<double>::Identity(3, 3);
+  DenseVector<double> dfree(3);
+  dfree << 0.5, -0.25, 2.0;
+  std::vector<Vec3<double>> previous;
+  ConstraintProblem<double> problem = bilateral_problem(w, dfree, previous);
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 0;
+  const ConstraintSolveReport report = PreconditionedConjugateResidualSolver<double>(p).solve(problem);
+  EXPECT_TRUE(problem.f.allFinite());
+  EXPECT_EQ(Eigen::VectorXd(problem.f), Eigen::VectorXd(-dfree));
+  EXPECT_TRUE(report.converged);
+  // Nothing to do at all.
+  ConstraintProblem<double> zero = bilateral_problem(w, DenseVector<double>::Zero(3), previous);
+  PreconditionedConjugateResidualSolver<double>(p).solve(zero);
+  EXPECT_EQ(Eigen::VectorXd(zero.f), Eigen::VectorXd::Zero(3));
+}
+
 TEST(ConstraintSolver, RefusesBadParameters) {
   ConstraintSolverParameters<double> p;
   p.max_iterations = 0;

@@ -5,12 +5,14 @@
 // the objects themselves, mapped points, uncoupled corrections); 1 and 2 threads agree to the bit;
 // bad input is refused in one line.
 #include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/io/checkpoint.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include "../support/scene_text.h"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 namespace fastcorot {
@@ -189,6 +191,44 @@ TEST(LagrangianScene, GenericConstraintSolverWithNncgTakesNewtonIterations) {
   EXPECT_LT(max_difference(nncg.simulation.objects[0].system.state.position, projective.simulation.objects[0].system.state.position), 1e-5);
 }
 
+TEST(LagrangianScene, FreePositionsFollowTheDampedVelocityAsInSofa) {
+  // SOFA's free motion ends with x_free = x + dt v_free: with vdamping the velocity is damped after
+  // the ODE's position update, and the loop's positions follow the damped velocity.
+  LoadedScene scene = build_scene_text(
+      "<FreeMotionAnimationLoop/><Node name=\"p\"><EulerImplicitSolver vdamping=\"5\"/><SparseLDLSolver/>"
+      "<MechanicalObject name=\"dofs\" position=\"0 0 0\" velocity=\"1 2 0\"/><UniformMass vertexMass=\"1\"/>"
+      "<LinearSolverConstraintCorrection/></Node>",
+      kRoot);
+  const auto& state = scene.simulation.objects[0].system.state;
+  for (int step = 0; step < 5; ++step) {
+    const Vec3<double> x = state.position[0];
+    scene.simulation.step();
+    EXPECT_EQ(state.position[0], Vec3<double>(x + 0.01 * state.velocity[0])) << step;
+  }
+}
+
+TEST(LagrangianScene, PreconditionedCgCorrectionsLeaveItsWarmStartAlone) {
+  // LinearSolverConstraintCorrection through a PCG (iterative): its extra solves for W and the
+  // correction leave the next free motion's guess and count as they were, so two tied beams
+  // under PCG agree with the same beams under a direct solver to the solvers' tolerance.
+  const std::string pcg = "<PCGLinearSolver iterations=\"500\" tolerance=\"1e-20\" preconditioner=\"@p\"/><SparseLDLSolver name=\"p\"/>";
+  const auto tied = [&](const std::string& linear) {
+    return "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"1000\" tolerance=\"1e-12\"/>" +
+           beam("A", 0, kLeftEnd + "<FixedProjectiveConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>", linear) +
+           beam("B", 1, "<LinearSolverConstraintCorrection/>", linear) +
+           "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"@B/dofs\" first_point=\"5 11 17 23\" second_point=\"0 6 12 18\"/>";
+  };
+  LoadedScene iterative = build_scene_text(tied(pcg), kRoot);
+  LoadedScene direct = build_scene_text(tied("<SparseLDLSolver/>"), kRoot);
+  for (int step = 0; step < 30; ++step) {
+    iterative.simulation.step();
+    direct.simulation.step();
+  }
+  for (std::size_t o = 0; o < 2; ++o) {
+    EXPECT_LT(max_difference(iterative.simulation.objects[o].system.state.position, direct.simulation.objects[o].system.state.position), 1e-8);
+  }
+}
+
 TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
   const std::string fixed = kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/>";
   // A matrix-free linear solver under LinearSolverConstraintCorrection (SOFA's GraphScattered).
@@ -222,10 +262,34 @@ TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
                         beam("beam", 0, fixed + "<LinearSolverConstraintCorrection/><UncoupledConstraintCorrection defaultCompliance=\"1\"/>"))
                 .find("one kind of correction"),
             std::string::npos);
+  // Two MechanicalObjects under one solver, only the second with an UncoupledConstraintCorrection:
+  // a constraint on the first would have no compliance.
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/><Node name=\"both\"><EulerImplicitSolver/><CGLinearSolver/>"
+                        "<Node name=\"a\"><MechanicalObject name=\"p\" position=\"0 0 0\"/><UniformMass vertexMass=\"1\"/></Node>"
+                        "<Node name=\"b\"><MechanicalObject name=\"p\" position=\"1 0 0\"/><UniformMass vertexMass=\"1\"/>"
+                        "<UncoupledConstraintCorrection defaultCompliance=\"1\"/></Node></Node>"
+                        "<BilateralLagrangianConstraint object1=\"@both/a/p\" object2=\"@both/b/p\" first_point=\"0\" second_point=\"0\"/>")
+                .find("needs its own"),
+            std::string::npos);
   // A solver not simulated yet, named.
   EXPECT_NE(scene_error("<FreeMotionAnimationLoop/><LCPConstraintSolver/>" + beam("beam", 0, fixed + "<LinearSolverConstraintCorrection/>"))
                 .find("LCPConstraintSolver"),
             std::string::npos);
+}
+
+TEST(LagrangianScene, CheckpointsAreRefusedWithTheReason) {
+  LoadedScene scene = build_scene_text(
+      "<FreeMotionAnimationLoop/>" + beam("beam", 0, kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>"),
+      kRoot);
+  scene.simulation.step();
+  const auto path = std::filesystem::temp_directory_path() / "fastcorot_lagrangian_checkpoint.bin";
+  try {
+    write_checkpoint(path, scene.simulation, "test.scn");
+    FAIL() << "written";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("Lagrangian constraints"), std::string::npos) << error.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 TEST(LagrangianScene, WithoutTheLoopLagrangianComponentsAreReportedUnused) {

@@ -49,6 +49,8 @@ class ConstraintSolver {
   Real sweep(ConstraintProblem<Real>& problem, Real tolerance, bool& verified) const;
   // Each block's init (warm starts), then regularisation.
   void init_blocks(ConstraintProblem<Real>& problem) const;
+  // Each block's store (what the next step starts from), after the solve.
+  void store_blocks(ConstraintProblem<Real>& problem) const;
 
   ConstraintSolverParameters<Real> parameters_;
 };

@@ -2,8 +2,10 @@
 // (FreeMotionAnimationLoop.cpp, GenericConstraintSolver.cpp): the constraints' rows H at the step's
 // start, their violations on the free motion, W = Σ corrections' compliance, the constraint
 // solver, then each object corrected by its corrections. Objects that no row reaches keep their
-// free motion, so a scene without constraints runs as under the default loop. Design:
-// docs/constraints.md.
+// free motion (with SOFA's x_free = x + dt v_free), so a scene without constraints runs as under
+// the default loop (except that a velocity damping then acts on the positions one step later, as
+// in SOFA). In velocity order every object ends at x = x_start + dt v, SOFA's rule for all states.
+// Design: docs/constraints.md.
 #pragma once
 
 #include "fastcorot/constraint/constraint_corrections.h"

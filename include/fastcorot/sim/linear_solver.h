@@ -28,10 +28,14 @@ class LinearSolver {
                                   std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) = 0;
 
   // Solves A x = rhs for another right-hand side with the matrix of the last solve() (constraint
-  // corrections ask for several per step); by default a new solve().
+  // corrections ask for several per step), leaving what the solver carries to its next solve()
+  // as it was (warm starts, counters); by default a new solve() between saving and restoring it.
   virtual LinearSolveReport solve_again(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
                                         std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) {
-    return solve(system, factors, rhs, x);
+    const std::vector<std::int64_t> carried = carried_state();
+    const LinearSolveReport report = solve(system, factors, rhs, x);
+    restore_carried_state(carried);
+    return report;
   }
   // The factorisation of the last solve() for direct solvers (null for the others): constraint
   // corrections compute H A⁻¹ Hᵀ with sparse triangular solves on it.

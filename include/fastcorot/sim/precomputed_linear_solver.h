@@ -21,6 +21,14 @@ class PrecomputedLinearSolver final : public LinearSolver<Real> {
   LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
                           std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
 
+  // A solve changes nothing it carries: solve_again is a plain solve with A0.
+  LinearSolveReport solve_again(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
+                                std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override {
+    return solve(system, factors, rhs, x);
+  }
+  // A0's factorisation, once the first solve made it (W through it: constraint corrections).
+  const SparseFactorisation<Real>* factorisation() const override { return initial_.size() > 0 ? &factorisation_ : nullptr; }
+
   // A0 (empty before the first solve): a resumed run factorises it again.
   const Eigen::SparseMatrix<Real>& initial_matrix() const { return initial_; }
   std::vector<std::int64_t> carried_state() const override;

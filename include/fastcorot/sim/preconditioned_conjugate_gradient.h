@@ -59,6 +59,10 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
   // identity.
   LinearSolveReport solve(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
                           std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
+  // With the preconditioner of the last solve, from a zero guess; the solve count and the
+  // previous solution (the next solve's guess) are left as they were.
+  LinearSolveReport solve_again(const MechanicalSystem<Real>& system, const MatrixFactors<Real>& factors,
+                                std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) override;
 
   const Parameters& parameters() const { return parameters_; }
   // The inverse blocks P applies (zero before the first solve).
@@ -85,6 +89,7 @@ class PreconditionedConjugateGradientSolver final : public LinearSolver<Real> {
 
   Parameters parameters_;
   std::int64_t solves_ = 0;
+  bool reuse_preconditioner_ = false;  // solve_again
   std::vector<Vec3<Real>> previous_;  // the last solution: the next solve's start
   std::vector<Mat3<Real>> inverse_;   // P, one block per point (Jacobi, block-Jacobi)
   SparseFactorisation<Real> factorisation_;  // P = A^-1 (sparse_ldlt)
