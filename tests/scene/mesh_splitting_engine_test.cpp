@@ -3,6 +3,7 @@
 // 2a278d891f): the first sub-mesh that lists a point (directly or by an element) takes it, the rest
 // go to the last; each sub-mesh keeps the input order.
 #include "scene/scene_data.h"
+#include "support/scene_data_text.h"
 
 #include "fastcorot/core/error.h"
 
@@ -15,27 +16,15 @@
 namespace fastcorot::scene_detail {
 namespace {
 
-class Split {
+// A mesh of four tetrahedra and the engine `split` (named "split") on it.
+class Split : public testing::SceneDataText {
  public:
-  explicit Split(const std::string& split) {
-    scene_ = parse_scene_text("<Node name=\"root\"><TetrahedronSetTopologyContainer name=\"mesh\" "
-                              "position=\"0 0 0  1 0 0  0 1 0  0 0 1  2 0 0  2 1 1  3 3 3  2 1 0\" "
-                              "tetrahedra=\"0 1 2 3  1 4 5 2  0 2 3 6  1 4 5 7\"/>" + split + "</Node>",
-                              "split.scn");
-    data_ = std::make_unique<SceneData>(scene_, info_, &warnings_);
-  }
-  Numbers operator()(const std::string& name) {
-    for (auto& component : data_->root().components) {
-      if (component->name() == "split") return data_->data(*component, name);
-    }
-    throw make_error("no split");
-  }
-  const std::vector<std::string>& warnings() const { return warnings_; }
-
- private:
-  SceneNode scene_;
-  std::vector<std::string> info_, warnings_;
-  std::unique_ptr<SceneData> data_;
+  explicit Split(const std::string& split)
+      : SceneDataText("<TetrahedronSetTopologyContainer name=\"mesh\" "
+                      "position=\"0 0 0  1 0 0  0 1 0  0 0 1  2 0 0  2 1 1  3 3 3  2 1 0\" "
+                      "tetrahedra=\"0 1 2 3  1 4 5 2  0 2 3 6  1 4 5 7\"/>" + split,
+                      "split.scn") {}
+  Numbers operator()(const std::string& name) { return SceneDataText::operator()("split", name); }
 };
 
 TEST(MeshSplittingEngine, TheFirstSubMeshToListAPointTakesItAndTheRestGoesLast) {

@@ -3,6 +3,7 @@
 // hand-derived one of tests/topology/mesh_tetra_stuffing_test.cpp (one lattice point inside: its
 // 24 tetrahedra over 15 points).
 #include "scene/scene_data.h"
+#include "support/scene_data_text.h"
 
 #include "fastcorot/core/error.h"
 
@@ -20,26 +21,14 @@ const char* kCube =
     "inputPoints=\"0 0 0  1 0 0  0 1 0  1 1 0  0 0 1  1 0 1  0 1 1  1 1 1\" "
     "inputTriangles=\"0 2 3  0 3 1  4 5 7  4 7 6  0 1 5  0 5 4  2 6 7  2 7 3  0 4 6  0 6 2  1 3 7  1 7 5\"";
 
-class Stuffing {
+// The engine and a container linked to its outputs.
+class Stuffing : public testing::SceneDataText {
  public:
-  explicit Stuffing(const std::string& attributes) {
-    scene_ = parse_scene_text("<Node name=\"root\"><MeshTetraStuffing name=\"stuffing\" " + attributes +
-                                  "/><TetrahedronSetTopologyContainer name=\"volume\" points=\"@stuffing.outputPoints\" "
-                                  "tetrahedra=\"@stuffing.outputTetras\"/></Node>",
-                              "stuffing.scn");
-    data_ = std::make_unique<SceneData>(scene_, info_, &warnings_);
-  }
-  Numbers operator()(const std::string& component, const std::string& name) {
-    for (auto& c : data_->root().components) {
-      if (c->name() == component) return data_->data(*c, name);
-    }
-    throw make_error("no ", component);
-  }
-
- private:
-  SceneNode scene_;
-  std::vector<std::string> info_, warnings_;
-  std::unique_ptr<SceneData> data_;
+  explicit Stuffing(const std::string& attributes)
+      : SceneDataText("<MeshTetraStuffing name=\"stuffing\" " + attributes +
+                          "/><TetrahedronSetTopologyContainer name=\"volume\" points=\"@stuffing.outputPoints\" "
+                          "tetrahedra=\"@stuffing.outputTetras\"/>",
+                      "stuffing.scn") {}
 };
 
 TEST(MeshTetraStuffingEngine, OutputsTheStuffedMeshToLinks) {

@@ -8,33 +8,17 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/scene/scene_builder.h"
 
+#include "../support/scene_data_text.h"
 #include "../support/scene_text.h"
 
 #include <gtest/gtest.h>
 
-#include <memory>
 #include <string>
 
 namespace fastcorot::scene_detail {
 namespace {
 
-class Data {
- public:
-  explicit Data(const std::string& body) : scene_(parse_scene_text("<Node name=\"root\">" + body + "</Node>", "pairs.scn")) {
-    data_ = std::make_unique<SceneData>(scene_, info_, &warnings_);
-  }
-  Numbers operator()(const std::string& component, const std::string& name) {
-    for (auto& c : data_->root().components) {
-      if (c->name() == component) return data_->data(*c, name);
-    }
-    throw make_error("no ", component);
-  }
-
- private:
-  SceneNode scene_;
-  std::vector<std::string> info_, warnings_;
-  std::unique_ptr<SceneData> data_;
-};
+using Data = testing::SceneDataText;
 
 TEST(NearestPointRoi, PairsEachSecondPointWithItsFirstNearestWithinTheRadius) {
   // object1: 0 (0,0,0), 1 (1,0,0), 2 (2,0,0). object2: 0 near 1, 1 midway between 0 and 1 (the
