@@ -4,6 +4,7 @@ namespace fastcorot {
 
 template <class Real>
 void ConstraintPoints<Real>::prepare(const MechanicalState<Real>& start, const MechanicalState<Real>& free, Real h) {
+  if (unsimulated) return;
   const std::size_t n = size();
   position.resize(n);
   free_position.resize(n);
@@ -25,6 +26,7 @@ void ConstraintPoints<Real>::prepare(const MechanicalState<Real>& start, const M
 
 template <class Real>
 void ConstraintRows<Real>::add(int row, const ConstraintPoints<Real>& points, std::size_t i, const Vec3<Real>& c) {
+  if (points.unsimulated) return;
   auto& entries = entries_[points.object];
   if (!points.mapping) {
     entries.push_back({row, points.blocks[i], c});

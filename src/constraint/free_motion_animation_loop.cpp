@@ -62,6 +62,7 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
   }
   for (auto& constraint : constraints) {
     for (ConstraintPoints<Real>* points : constraint->point_sets()) {
+      if (points->unsimulated) continue;
       points->prepare(start[points->object], objects[points->object].system.state, dt);
     }
   }

@@ -133,13 +133,12 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
-  static const std::array<std::pair<std::string_view, std::string_view>, 12> kRefused = {{
+  static const std::array<std::pair<std::string_view, std::string_view>, 11> kRefused = {{
       {"LCPConstraintSolver", "LCPConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
       {"ImprovedJacobiConstraintSolver", "ImprovedJacobiConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
       {"PrecomputedConstraintCorrection", "PrecomputedConstraintCorrection is not simulated yet (LinearSolverConstraintCorrection is)"},
-      {"SlidingLagrangianConstraint", "SlidingLagrangianConstraint is not simulated yet"},
-      {"StopperLagrangianConstraint", "StopperLagrangianConstraint is not simulated yet"},
-      {"UniformLagrangianConstraint", "UniformLagrangianConstraint is not simulated yet"},
+      {"StopperLagrangianConstraint", "StopperLagrangianConstraint exists only on Vec1 states in SOFA, and fastcorot has no Vec1 states"},
+      {"UniformLagrangianConstraint", "UniformLagrangianConstraint exists only on Vec1 states in SOFA, and fastcorot has no Vec1 states"},
       {"UnilateralLagrangianConstraint", "UnilateralLagrangianConstraint is not simulated yet"},
       {"AugmentedLagrangianConstraint", "AugmentedLagrangianConstraint is not simulated yet"},
       {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},

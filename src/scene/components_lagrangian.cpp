@@ -94,6 +94,14 @@ std::vector<ComponentSpec> lagrangian_components() {
         {"numericalTolerance", "real", "0.0001", "accepted"},
         {"topology1", "link", "", "accepted"},
         {"topology2", "link", "", "accepted"}}},
+      {"SlidingLagrangianConstraint", "lagrangian",
+       "Point sliding_point of object1 slides without friction on the segment axis_1–axis_2 of object2: two bilateral rows across the axis and one unilateral row at each end (3 bilateral rows when the ends coincide); object1 or object2 may be a MechanicalObject no solver integrates (it stays put).",
+       {{"object1", "link", "", "the state of the sliding point (a node or its MechanicalObject); default: the node's"},
+        {"object2", "link", "", "the state of the segment's ends"},
+        {"sliding_point", "int", "0", "the point of object1"},
+        {"axis_1", "int", "0", "one end of the segment, in object2"},
+        {"axis_2", "int", "0", "the other end, in object2"},
+        {"force", "vec3", "", "output in SOFA (Σ row direction × λ): accepted, not kept"}}},
   };
 }
 

@@ -1,6 +1,7 @@
 #include "lagrangian_builder.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/constraint/sliding_lagrangian_constraint.h"
 #include "fastcorot/core/error.h"
 
 #include <Eigen/LU>
@@ -20,7 +21,8 @@ constexpr std::array<std::string_view, 5> kSolvers = {"BlockGaussSeidelConstrain
                                                       "NNCGConstraintSolver"};
 constexpr std::array<std::string_view, 3> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
                                                           "UncoupledConstraintCorrection"};
-constexpr std::array<std::string_view, 2> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint"};
+constexpr std::array<std::string_view, 3> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint",
+                                                          "SlidingLagrangianConstraint"};
 
 template <std::size_t N>
 bool among(const std::array<std::string_view, N>& names, std::string_view type) {
@@ -175,8 +177,61 @@ class LoopBuilder {
     }
   }
 
+  // object1 / object2 of a pair constraint: the linked state, else the node's.
+  Component& linked_state(Component& c, const char* name) {
+    return c.has(name) ? data_.resolve_state(*c.node, c.object->attributes.at(name), c) : own_state(c);
+  }
+
+  // A Vec3 MechanicalObject with no ODE solver at or above its node: SOFA integrates nothing there
+  // and its rows reach no correction, so its points stay where the scene puts them.
+  std::optional<ConstraintPoints<double>> unsimulated_points(Component& state, Component& user) {
+    for (const GraphNode* node = state.node; node; node = node->parent) {
+      if (!node->of_category("odesolver").empty()) return std::nullopt;
+    }
+    if (is_rigid_template(data_.text(state, "template", "Vec3d"))) return std::nullopt;
+    ConstraintPoints<double> points;
+    points.unsimulated = true;
+    points.position = transformed(data_.points(state, "position"), data_.placement(state, "scale3d"),
+                                  data_.placement(state, "rotation"), data_.placement(state, "translation"));
+    if (points.position.empty()) throw make_error(state.where(), ": no position: ", user.type(), " has no point to act on");
+    points.free_position = points.position;
+    points.free_velocity.assign(points.position.size(), Vec3<double>::Zero());
+    points.rest_position = points.position;
+    info_.push_back(user.where() + ": " + state.where() + " is not simulated (no ODE solver): its points stay put, as in SOFA");
+    return points;
+  }
+
+  // SlidingLagrangianConstraint: object1's sliding_point on the segment axis_1–axis_2 of object2.
+  void add_sliding(Component& c) {
+    ConstraintPoints<double> sets[2];
+    const char* links[2] = {"object1", "object2"};
+    for (int k = 0; k < 2; ++k) {
+      Component& state = linked_state(c, links[k]);
+      if (locate_(state)) {
+        sets[k] = points_of(state, c);
+      } else if (auto still = unsimulated_points(state, c)) {
+        sets[k] = std::move(*still);
+      } else {
+        sets[k] = points_of(state, c);  // throws, saying why
+      }
+    }
+    if (sets[0].unsimulated && sets[1].unsimulated) {
+      throw make_error("object1 and object2 are both unsimulated: nothing can move to satisfy it");
+    }
+    typename SlidingLagrangianConstraint<double>::Parameters p;
+    p.sliding_point = data_.whole_number(c, "sliding_point", 0);
+    p.axis_1 = data_.whole_number(c, "axis_1", 0);
+    p.axis_2 = data_.whole_number(c, "axis_2", 0);
+    loop_->constraints.push_back(
+        std::make_unique<SlidingLagrangianConstraint<double>>(c.where(), std::move(sets[0]), std::move(sets[1]), p));
+  }
+
   void add_constraint(Component& c) {
     check_template(c);
+    if (c.type() == "SlidingLagrangianConstraint") {
+      add_sliding(c);
+      return;
+    }
     if (c.type() == "FixedLagrangianConstraint") {
       Component& state = own_state(c);
       ConstraintPoints<double> points = points_of(state, c);
@@ -349,6 +404,7 @@ class LoopBuilder {
     std::vector<std::pair<Index, Mat3<double>>> blocks;
     for (const auto& constraint : loop_->constraints) {
       for (ConstraintPoints<double>* points : constraint->point_sets()) {
+        if (points->unsimulated) continue;
         const std::size_t o = points->object;
         const std::string& path = simulation_.objects[o].path;
         if (!kind_.count(o)) {

@@ -25,12 +25,16 @@ struct ConstraintPoints {
   std::vector<Index> blocks;
   std::shared_ptr<MechanicalMapping<Real>> mapping;
   std::vector<Vec3<Real>> rest_position;  // the MechanicalObject's rest positions, one per point
+  // A MechanicalObject no ODE solver integrates (as in SOFA, nothing moves its points and rows on
+  // it reach no correction): its points stay at `position` (= free_position, set when built, free
+  // velocities zero); H gets no entries on it; `object` and `blocks` are unused.
+  bool unsimulated = false;
 
   // Filled each step by prepare(): where the points were when the step began, and where the free
   // motion takes them. Mapped points move as SOFA moves them: x + h J v_free, J at the step's start.
   std::vector<Vec3<Real>> position, free_position, free_velocity;
 
-  std::size_t size() const { return mapping ? mapping->size() : blocks.size(); }
+  std::size_t size() const { return unsimulated ? position.size() : mapping ? mapping->size() : blocks.size(); }
   // From the object's start (x, v) and free (x_f, v_f) states, h the step.
   void prepare(const MechanicalState<Real>& start, const MechanicalState<Real>& free, Real h);
 };
@@ -48,7 +52,7 @@ class ConstraintRows {
     return first;
   }
   // H(row, point i of `points`) += cᵀ: on the point's block, or through its mapping (Jᵀ c on each
-  // parent block the point reads).
+  // parent block the point reads); nothing on unsimulated points.
   void add(int row, const ConstraintPoints<Real>& points, std::size_t i, const Vec3<Real>& c);
   // Whether object o has any entry.
   bool touches(std::size_t o) const { return !entries_[o].empty(); }

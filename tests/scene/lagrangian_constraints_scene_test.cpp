@@ -1,0 +1,145 @@
+// SlidingLagrangianConstraint and the Rigid3 Fixed and Bilateral Lagrangian constraints through the
+// scene builder. Sliding: a bead on a rail stays on it to the solver's tolerance and moves along it
+// as a point mass sliding without friction (the implicit Euler closed form: with the rows across
+// the rail, s_n = s_0 + h² g_a n (n + 1) / 2); the stop at the rail's end holds; a rigid cube slides
+// on a point it carries a segment through. Bad input is refused naming the component.
+#include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/scene/scene_builder.h"
+
+#include "../support/scene_text.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_scene_text;
+using testing::scene_error;
+
+const std::string kLoop = "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"1000\" tolerance=\"1e-14\"/>";
+
+// A bead (one point of mass 1) at x on a rail from (0, 0, 0) to (4, 0, 0) that no solver moves.
+std::string bead_on_rail(double x) {
+  return kLoop +
+         "<Node name=\"rail\"><MechanicalObject name=\"ends\" position=\"0 0 0  4 0 0\"/></Node>"
+         "<Node name=\"bead\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+         "<MechanicalObject name=\"point\" position=\"" + std::to_string(x) + " 0 0\"/><UniformMass totalMass=\"1\"/>"
+         "<LinearSolverConstraintCorrection/></Node>"
+         "<SlidingLagrangianConstraint object1=\"@bead/point\" object2=\"@rail/ends\" sliding_point=\"0\" axis_1=\"0\" axis_2=\"1\"/>";
+}
+
+TEST(SlidingLagrangianConstraintScene, BeadSlidesFreelyAlongItsRail) {
+  // Gravity has 2 m/s² along the rail: the bead slides toward x = 4 and must not fall.
+  const double h = 0.01, ga = 2, x0 = 0.5;
+  LoadedScene scene = build_scene_text(bead_on_rail(x0), "dt=\"0.01\" gravity=\"2 -9.81 0.5\"");
+  ASSERT_TRUE(scene.simulation.constraints);
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  for (int n = 1; n <= 100; ++n) {
+    scene.simulation.step();
+    ASSERT_LT(std::hypot(x[0].y(), x[0].z()), 1e-12) << "step " << n << ": off the rail";
+    const double closed_form = x0 + h * h * ga * n * (n + 1) / 2;
+    ASSERT_NEAR(x[0].x(), closed_form, 1e-12) << "step " << n;
+  }
+  EXPECT_NEAR(x[0].x(), x0 + 0.5 * ga * 1.0, 0.03) << "½ g t² after 1 s, to the implicit scheme's O(h) drift";
+  EXPECT_EQ(scene.simulation.constraint_report().rows, 4);
+  EXPECT_TRUE(scene.simulation.constraint_report().converged);
+  bool said = false;
+  for (const auto& line : scene.info) said = said || line.find("is not simulated (no ODE solver)") != std::string::npos;
+  EXPECT_TRUE(said) << "the rail is reported as not simulated";
+}
+
+TEST(SlidingLagrangianConstraintScene, BeadSlidesFreelyAlongAnInclinedRail) {
+  // A rail from (0, 0, 0) to (-2, -1, 0.5) under gravity (0, -9.81, 0): g_a = g·a along it.
+  const std::string body = kLoop +
+                           "<Node name=\"rail\"><MechanicalObject name=\"ends\" position=\"0 0 0  -2 -1 0.5\"/></Node>"
+                           "<Node name=\"bead\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+                           "<MechanicalObject name=\"point\" position=\"-0.2 -0.1 0.05\"/><UniformMass totalMass=\"1\"/>"
+                           "<LinearSolverConstraintCorrection/></Node>"
+                           "<SlidingLagrangianConstraint object1=\"@bead/point\" object2=\"@rail/ends\" sliding_point=\"0\" axis_1=\"0\" axis_2=\"1\"/>";
+  LoadedScene scene = build_scene_text(body, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const Vec3<double> a = Vec3<double>(-2, -1, 0.5).normalized();
+  const double h = 0.01, ga = Vec3<double>(0, -9.81, 0).dot(a), s0 = Vec3<double>(-0.2, -0.1, 0.05).dot(a);
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  for (int n = 1; n <= 60; ++n) {
+    scene.simulation.step();
+    const double s = x[0].dot(a);
+    ASSERT_LT((x[0] - s * a).norm(), 1e-12) << "step " << n << ": off the rail";
+    ASSERT_NEAR(s, s0 + h * h * ga * n * (n + 1) / 2, 1e-12) << "step " << n;
+  }
+  EXPECT_GT(x[0].dot(a) - s0, 0.5) << "it slid down";
+}
+
+TEST(SlidingLagrangianConstraintScene, StopAtTheRailsEndHolds) {
+  // Gravity pulls the bead toward x = 0 (reached after 0.71 s); it stays there.
+  LoadedScene scene = build_scene_text(bead_on_rail(0.5), "dt=\"0.01\" gravity=\"-2 -9.81 0\"");
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  const auto& v = scene.simulation.objects[0].system.state.velocity;
+  for (int n = 1; n <= 200; ++n) {
+    scene.simulation.step();
+    ASSERT_GT(x[0].x(), -1e-12) << "step " << n << ": past the end";
+    ASSERT_LT(std::abs(x[0].y()), 1e-12) << "step " << n;
+  }
+  EXPECT_LT(std::abs(x[0].x()), 1e-12) << "at rest on the end";
+  EXPECT_LT(v[0].norm(), 1e-9);
+}
+
+TEST(SlidingLagrangianConstraintScene, RigidCubeSlidesOnAPointThroughItsSegment) {
+  // SOFA's example (SlidingLagrangianConstraint.scn, without its meshes and collision): a rigid cube
+  // carries the segment (1, 1.25, ±1); a point that no solver moves, at (1, 1.25, -0.2), must stay on it.
+  LoadedScene scene = build_scene_text(
+      kLoop +
+          "<Node name=\"slider\"><MechanicalObject name=\"points\" position=\"1 1.25 -0.2  1 1.25 0.2\"/></Node>"
+          "<Node name=\"cube\"><EulerImplicitSolver rayleighStiffness=\"0.1\" rayleighMass=\"0.1\"/>"
+          "<CGLinearSolver iterations=\"25\" tolerance=\"1e-9\" threshold=\"1e-9\"/>"
+          "<MechanicalObject name=\"frame\" template=\"Rigid3d\"/><UniformMass totalMass=\"10\"/><UncoupledConstraintCorrection/>"
+          "<Node name=\"constraints\"><MechanicalObject name=\"points\" position=\"1 1.25 1  1 1.25 -1  0 0 0\"/><RigidMapping/></Node>"
+          "</Node>"
+          "<SlidingLagrangianConstraint object1=\"@slider/points\" object2=\"@cube/constraints/points\" sliding_point=\"0\" "
+          "axis_1=\"0\" axis_2=\"1\"/>",
+      "dt=\"0.001\" gravity=\"0 -9.81 0\"");
+  const auto& system = scene.simulation.objects[0].system;
+  const Vec3<double> slider(1, 1.25, -0.2);
+  for (int n = 1; n <= 300; ++n) {
+    scene.simulation.step();
+    const RigidCoord<double> frame = system.rigids->coord(system.state.position, 0);
+    const Vec3<double> a = frame.project_point({1, 1.25, 1}), b = frame.project_point({1, 1.25, -1});
+    const Vec3<double> axis = (b - a).normalized();
+    const Vec3<double> off = (slider - a) - axis * (slider - a).dot(axis);
+    ASSERT_LT(off.norm(), 1e-6) << "step " << n;
+  }
+  // Hung by one point, the cube swings down: its centre leaves its start.
+  EXPECT_GT(system.state.position[0].norm(), 1e-4);
+}
+
+TEST(SlidingLagrangianConstraintScene, BadInputIsRefusedNamingTheComponent) {
+  const std::string bead = "<Node name=\"bead\"><EulerImplicitSolver/><SparseLDLSolver/><MechanicalObject name=\"point\" position=\"0 0 0\"/>"
+                           "<UniformMass totalMass=\"1\"/><LinearSolverConstraintCorrection/></Node>";
+  const std::string rail = "<Node name=\"rail\"><MechanicalObject name=\"ends\" position=\"0 0 0  4 0 0\"/></Node>";
+  const std::string error = scene_error("<FreeMotionAnimationLoop/>" + rail + bead +
+                                        "<SlidingLagrangianConstraint object1=\"@bead/point\" object2=\"@rail/ends\" axis_2=\"2\"/>");
+  EXPECT_NE(error.find("SlidingLagrangianConstraint"), std::string::npos) << error;
+  EXPECT_NE(error.find("axis_2 = 2 is out of range"), std::string::npos) << error;
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + rail + bead +
+                        "<SlidingLagrangianConstraint object1=\"@bead/point\" object2=\"@nowhere/ends\" axis_2=\"1\"/>"),
+            "");
+  const std::string both = scene_error("<FreeMotionAnimationLoop/>" + rail + bead +
+                                       "<SlidingLagrangianConstraint object1=\"@rail/ends\" object2=\"@rail/ends\" axis_2=\"1\"/>");
+  EXPECT_NE(both.find("both unsimulated"), std::string::npos) << both;
+  const std::string rigid = scene_error(
+      "<FreeMotionAnimationLoop/>" + bead +
+      "<Node name=\"r\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject name=\"f\" template=\"Rigid3d\"/><UniformMass totalMass=\"1\"/>"
+      "<UncoupledConstraintCorrection/></Node>"
+      "<SlidingLagrangianConstraint template=\"Rigid3d\" object1=\"@r/f\" object2=\"@r/f\" axis_2=\"0\"/>");
+  EXPECT_NE(rigid.find("SlidingLagrangianConstraint"), std::string::npos) << rigid;
+  EXPECT_NE(rigid.find("Rigid3"), std::string::npos) << rigid;
+  // Stopper and Uniform exist only on Vec1 in SOFA.
+  const std::string stopper = scene_error("<StopperLagrangianConstraint/>");
+  EXPECT_NE(stopper.find("only on Vec1"), std::string::npos) << stopper;
+  EXPECT_NE(scene_error("<UniformLagrangianConstraint/>").find("only on Vec1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace fastcorot
