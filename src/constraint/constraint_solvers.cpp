@@ -2,8 +2,11 @@
 
 #include "fastcorot/core/error.h"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <vector>
 
@@ -241,6 +244,84 @@ ConstraintSolveReport PreconditionedConjugateResidualSolver<Real>::solve(Constra
   return report;
 }
 
+template <class Real>
+ImprovedJacobiSolver<Real>::ImprovedJacobiSolver(ConstraintSolverParameters<Real> parameters, Options options)
+    : ConstraintSolver<Real>(parameters), options_(options) {
+  if (!(options_.spectral_factor > 0) || !std::isfinite(options_.spectral_factor)) {
+    throw make_error("spectralCorrectionFactor = ", options_.spectral_factor, ": must be a finite number > 0");
+  }
+  if (!(options_.conjugate_residue_speed >= 0) || !std::isfinite(options_.conjugate_residue_speed)) {
+    throw make_error("conjugateResidueSpeedFactor = ", options_.conjugate_residue_speed, ": must be a finite number >= 0");
+  }
+}
+
+template <class Real>
+ConstraintSolveReport ImprovedJacobiSolver<Real>::solve(ConstraintProblem<Real>& problem) {
+  ConstraintSolveReport report;
+  const int n = problem.size();
+  if (n == 0) return report;
+  const auto& p = this->parameters_;
+  const Real tolerance = this->effective_tolerance(n);
+  report.tolerance = static_cast<double>(tolerance);
+  problem.f.setZero();
+  this->init_blocks(problem);  // a warm start puts λ in f, measured against δ_free alone at first
+  const auto& w = problem.w;
+  DenseVector<Real>& f = problem.f;
+  DenseVector<Real>& d = problem.d;
+  d = problem.dfree;
+  DenseVector<Real> last = DenseVector<Real>::Zero(n);
+  DenseVector<Real> change = DenseVector<Real>::Zero(n);
+  DenseVector<Real> scaled(n);
+  Real rho = 1;
+  if (options_.spectral_correction) {
+    // SOFA's measure: the largest squared modulus of W's eigenvalues (std::norm of each).
+    const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> dense = w;
+    Real radius = 0;
+    for (const auto& value : Eigen::EigenSolver<Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>>(dense, false).eigenvalues()) {
+      radius = std::max(radius, std::norm(value));
+    }
+    rho = options_.spectral_factor * std::min(Real(1), Real(0.9) * 2 / radius);
+  }
+  report.converged = false;
+  Real error = 0;
+  for (int it = 0; it < p.max_iterations; ++it) {
+    report.iterations = it + 1;
+    // SOFA's momentum weight: i / maxIterations in single precision, then its power.
+    const Real fraction = static_cast<Real>(static_cast<float>(it) / static_cast<float>(p.max_iterations));
+    const Real beta = options_.conjugate_residue
+                          ? std::min(Real(1), static_cast<Real>(std::pow(fraction, options_.conjugate_residue_speed)))
+                          : Real(0);
+    d.noalias() += w * change;
+    scaled = rho * d;
+    bool verified = true;
+    error = 0;
+    for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
+      const int j = problem.first_line[b];
+      const int nb = problem.resolutions[b]->lines();
+      problem.resolutions[b]->resolve(j, w, scaled.data(), f.data(), problem.dfree.data());
+      for (int l = j; l < j + nb; ++l) {
+        f[l] += beta * change[l];
+        change[l] = f[l] - last[l];
+        last[l] = f[l];
+      }
+      // The block's error with the changes known so far (later blocks' from the last iteration).
+      Real block = 0;
+      for (int l = j; l < j + nb; ++l) {
+        block += w.row(l).cwiseProduct(change.transpose()).squaredNorm();
+        verified = verified && block < tolerance * tolerance;
+      }
+      error += std::sqrt(block);
+    }
+    if (p.all_verified ? verified : (error < tolerance && it > 0)) {
+      report.converged = true;
+      break;
+    }
+  }
+  report.error = static_cast<double>(error);
+  this->store_blocks(problem);
+  return report;
+}
+
 template class ConstraintSolver<float>;
 template class ConstraintSolver<double>;
 template class BlockGaussSeidelSolver<float>;
@@ -249,5 +330,7 @@ template class NNCGSolver<float>;
 template class NNCGSolver<double>;
 template class PreconditionedConjugateResidualSolver<float>;
 template class PreconditionedConjugateResidualSolver<double>;
+template class ImprovedJacobiSolver<float>;
+template class ImprovedJacobiSolver<double>;
 
 }  // namespace fastcorot

@@ -133,9 +133,7 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
-  static const std::array<std::pair<std::string_view, std::string_view>, 11> kRefused = {{
-      {"LCPConstraintSolver", "LCPConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
-      {"ImprovedJacobiConstraintSolver", "ImprovedJacobiConstraintSolver is not simulated yet (BlockGaussSeidelConstraintSolver is)"},
+  static constexpr std::pair<std::string_view, std::string_view> kRefused[] = {
       {"PrecomputedConstraintCorrection", "PrecomputedConstraintCorrection is not simulated yet (LinearSolverConstraintCorrection is)"},
       {"StopperLagrangianConstraint", "StopperLagrangianConstraint exists only on Vec1 states in SOFA, and fastcorot has no Vec1 states"},
       {"UniformLagrangianConstraint", "UniformLagrangianConstraint exists only on Vec1 states in SOFA, and fastcorot has no Vec1 states"},
@@ -145,7 +143,7 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
       {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
       {"StandardTetrahedralFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
-  }};
+  };
   return kRefused;
 }
 

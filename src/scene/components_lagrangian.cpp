@@ -38,6 +38,11 @@ std::vector<ComponentSpec> lagrangian_components() {
   generic_solver.push_back({"resolutionMethod", "string", "ProjectedGaussSeidel",
                             "ProjectedGaussSeidel (run as BlockGaussSeidelConstraintSolver), UnbuiltGaussSeidel or NonsmoothNonlinearConjugateGradient (NNCGConstraintSolver)"});
   generic_solver.push_back({"newtonIterations", "int", "100", "NNCG's iteration count (SOFA's change list maps it to maxIterations)"});
+  auto jacobi = solver_attributes();
+  jacobi.push_back({"useSpectralCorrection", "bool", "false", "scale the violations by spectralCorrectionFactor × min(1, 1.8 / r), r SOFA's spectral measure of W"});
+  jacobi.push_back({"spectralCorrectionFactor", "real", "1", "see useSpectralCorrection"});
+  jacobi.push_back({"useConjugateResidue", "bool", "false", "after each iteration λ += β Δλ_previous, β = min(1, (i / maxIterations)^conjugateResidueSpeedFactor)"});
+  jacobi.push_back({"conjugateResidueSpeedFactor", "real", "10", "see useConjugateResidue"});
   auto generic_correction = correction_link_attributes();
   generic_correction.push_back({"complianceFactor", "real", "1", "scales the compliance and the correction"});
   return {
@@ -60,6 +65,26 @@ std::vector<ComponentSpec> lagrangian_components() {
       {"PreconditionedConjugateResidual", "constraintsolver",
        "Conjugate residuals on the Jacobi-scaled W, every row treated as bilateral, at most min(maxIterations, rows) iterations, SOFA's stopping measure.",
        solver_attributes()},
+      {"ImprovedJacobiConstraintSolver", "constraintsolver",
+       "Projected block Jacobi: every block resolved against the previous iteration's violations, λ from zero (or the constraint's warm start), optional spectral scaling and momentum; never stops after its first iteration.",
+       jacobi},
+      {"LCPConstraintSolver", "constraintsolver",
+       "Projected Gauss–Seidel that solves every three rows as a frictional contact (normal, two tangents; Coulomb's disk with one mu) or, with mu = 0, every row as a frictionless contact; ignores the constraints' own resolutions, as SOFA; λ from zero.",
+       {{"maxIt", "int", "1000", "iterations at most"},
+        {"tolerance", "real", "0.001", "stop when the summed changes of the violations fall below it × (contacts + 1) (mu > 0) or below it (mu = 0)"},
+        {"mu", "real", "0.6", "friction coefficient of every contact; 0: frictionless, one row per contact"},
+        {"minW", "real", "0", "contacts whose normal compliance is at most this carry no force (0: off)"},
+        {"maxF", "real", "0", "contacts whose normal λ reaches this are dropped (0: off)"},
+        {"regularizationTerm", "real", "0", "added to W's diagonal"},
+        {"initial_guess", "bool", "true", "accepted: only contacts keep their λ between steps in SOFA (none yet here), so λ starts from zero"},
+        {"build_lcp", "bool", "true", "accepted: false (SOFA's unbuilt variant) solves the same problem on the built W"},
+        {"computeConstraintForces", "bool", "false", "accepted: the impulses λ are always kept"},
+        {"displayDebug", "bool", "false", "accepted"},
+        {"group", "indices", "0", "accepted"},
+        {"constraintForces", "reals", "", "output: the last step's impulses λ, one per row (force × dt)"},
+        {"currentIterations", "int", "0", "output: the last solve's iterations"},
+        {"currentError", "real", "0", "output: the last solve's error"},
+        {"currentNumConstraints", "int", "0", "output: the last step's rows"}}},
       {"GenericConstraintSolver", "constraintsolver",
        "Gone from SOFA master (v25.12): run as BlockGaussSeidelConstraintSolver or UnbuiltGaussSeidelConstraintSolver according to resolutionMethod, with a warning.",
        generic_solver},

@@ -2,6 +2,7 @@
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/constraint/sliding_lagrangian_constraint.h"
+#include "fastcorot/constraint/lcp_constraint_solver.h"
 #include "fastcorot/core/error.h"
 
 #include <Eigen/LU>
@@ -16,9 +17,10 @@ namespace fastcorot::scene_detail {
 
 namespace {
 
-constexpr std::array<std::string_view, 5> kSolvers = {"BlockGaussSeidelConstraintSolver", "UnbuiltGaussSeidelConstraintSolver",
+constexpr std::array<std::string_view, 7> kSolvers = {"BlockGaussSeidelConstraintSolver", "UnbuiltGaussSeidelConstraintSolver",
                                                       "GenericConstraintSolver", "PreconditionedConjugateResidual",
-                                                      "NNCGConstraintSolver"};
+                                                      "NNCGConstraintSolver", "ImprovedJacobiConstraintSolver",
+                                                      "LCPConstraintSolver"};
 constexpr std::array<std::string_view, 3> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
                                                           "UncoupledConstraintCorrection"};
 constexpr std::array<std::string_view, 3> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint",
@@ -53,6 +55,19 @@ ConstraintSolverParameters<double> solver_parameters(SceneData& data, Component&
   return p;
 }
 
+// SOFA's LCPConstraintSolver: its own data (tolerance, maxIt, mu, minW, maxF, regularizationTerm).
+std::unique_ptr<ConstraintSolver<double>> build_lcp_solver(SceneData& data, std::vector<std::string>& info, Component& c,
+                                                           ConstraintSolverParameters<double> p) {
+  typename LCPConstraintSolver<double>::Options o;
+  o.mu = data.real(c, "mu", 0.6);
+  o.min_w = data.real(c, "minW", 0.0);
+  o.max_f = data.real(c, "maxF", 0.0);
+  if (!data.boolean(c, "build_lcp", true)) {
+    info.push_back(c.where() + ": build_lcp=\"0\" (SOFA's unbuilt variant) solves the same problem on the built W here");
+  }
+  return std::make_unique<LCPConstraintSolver<double>>(p, o);
+}
+
 std::unique_ptr<ConstraintSolver<double>> build_solver(SceneData& data, std::vector<std::string>& info, Component& c) {
   try {
     const auto p = solver_parameters(data, c);
@@ -76,6 +91,15 @@ std::unique_ptr<ConstraintSolver<double>> build_solver(SceneData& data, std::vec
     if (type == "UnbuiltGaussSeidelConstraintSolver") return std::make_unique<UnbuiltGaussSeidelSolver<double>>(p);
     if (type == "PreconditionedConjugateResidual") return std::make_unique<PreconditionedConjugateResidualSolver<double>>(p);
     if (type == "NNCGConstraintSolver") return std::make_unique<NNCGSolver<double>>(p);
+    if (type == "ImprovedJacobiConstraintSolver") {
+      typename ImprovedJacobiSolver<double>::Options o;
+      o.spectral_correction = data.boolean(c, "useSpectralCorrection", false);
+      o.spectral_factor = data.real(c, "spectralCorrectionFactor", 1.0);
+      o.conjugate_residue = data.boolean(c, "useConjugateResidue", false);
+      o.conjugate_residue_speed = data.real(c, "conjugateResidueSpeedFactor", 10.0);
+      return std::make_unique<ImprovedJacobiSolver<double>>(p, o);
+    }
+    if (type == "LCPConstraintSolver") return build_lcp_solver(data, info, c, p);
     static_cast<void>(info);
     return std::make_unique<BlockGaussSeidelSolver<double>>(p);
   } catch (const Error& error) {
@@ -131,6 +155,11 @@ class LoopBuilder {
       }
     }
     check_corrected();
+    if (solver_component && solver_component->type() == "LCPConstraintSolver" && !parts.constraints.empty()) {
+      data_.warn(solver_component->where() + ": LCPConstraintSolver solves every row as a contact (three rows each: normal and two "
+                 "tangents with mu = " + data_.text(*solver_component, "mu", "0.6") + "; one row each with mu = 0), as SOFA does: "
+                 "the Lagrangian constraints here are not held bilaterally (a BlockGaussSeidelConstraintSolver solves them)");
+    }
     simulation_.constraints = loop_;
     return parts;
   }

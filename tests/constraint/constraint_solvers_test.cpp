@@ -4,6 +4,7 @@
 // straightforward Gauss–Seidel written here from SOFA's description.
 #include "fastcorot/constraint/constraint_solvers.h"
 #include "fastcorot/core/error.h"
+#include "support/constraint_problems.h"
 
 #include <gtest/gtest.h>
 
@@ -11,42 +12,13 @@
 
 #include <cmath>
 #include <memory>
-#include <random>
 
 namespace fastcorot {
 namespace {
 
-// A random symmetric positive definite n × n matrix (well conditioned: diagonally dominant).
-DenseMatrix<double> spd(int n, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> uniform(-1, 1);
-  Eigen::MatrixXd a(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) a(i, j) = uniform(random);
-  }
-  Eigen::MatrixXd w = a * a.transpose() * 0.2 + 2.0 * Eigen::MatrixXd::Identity(n, n);
-  return w;
-}
-
-DenseVector<double> random_vector(int n, unsigned seed) {
-  std::mt19937 random(seed);
-  std::uniform_real_distribution<double> uniform(-1, 1);
-  DenseVector<double> v(n);
-  for (int i = 0; i < n; ++i) v[i] = uniform(random);
-  return v;
-}
-
-// `blocks` bilateral 3-row blocks on W, δ_free; warm starts kept in `previous`.
-ConstraintProblem<double> bilateral_problem(const DenseMatrix<double>& w, const DenseVector<double>& dfree,
-                                            std::vector<Vec3<double>>& previous) {
-  ConstraintProblem<double> problem;
-  problem.clear(static_cast<int>(dfree.size()));
-  problem.w = w;
-  problem.dfree = dfree;
-  previous.resize(static_cast<std::size_t>(dfree.size() / 3), Vec3<double>::Zero());
-  for (auto& p : previous) problem.add_block(std::make_unique<BilateralResolution3<double>>(&p));
-  return problem;
-}
+using testing::bilateral_problem;
+using testing::random_vector;
+using testing::spd;
 
 TEST(BlockGaussSeidelSolver, BilateralBlocksReachTheLinearSolution) {
   const int n = 9;
@@ -126,35 +98,14 @@ TEST(BlockGaussSeidelSolver, ReportsAnUnconvergedSolve) {
 }
 
 TEST(BlockGaussSeidelSolver, UnilateralRowsReachTheComplementaritySolution) {
-  // Three coupled rows: λ >= 0, d = δ + W λ >= 0, λ·d = 0. The solution is found by trying every
-  // active set (rows with λ > 0) and keeping the one that satisfies all three conditions.
+  // Three coupled rows: λ >= 0, d = δ + W λ >= 0, λ·d = 0 (the reference enumerates active sets).
   DenseMatrix<double> w(3, 3);
   w << 2.0, 0.5, 0.2, 0.5, 1.5, 0.3, 0.2, 0.3, 1.0;
   DenseVector<double> dfree(3);
   dfree << -1.0, 0.4, -0.3;
-  Eigen::Vector3d expected = Eigen::Vector3d::Zero();
-  bool found = false;
-  for (int set = 0; set < 8 && !found; ++set) {
-    std::vector<int> active;
-    for (int i = 0; i < 3; ++i) {
-      if (set & (1 << i)) active.push_back(i);
-    }
-    Eigen::Vector3d f = Eigen::Vector3d::Zero();
-    if (!active.empty()) {
-      Eigen::MatrixXd a(active.size(), active.size());
-      Eigen::VectorXd b(active.size());
-      for (std::size_t r = 0; r < active.size(); ++r) {
-        b[static_cast<Eigen::Index>(r)] = -dfree[active[r]];
-        for (std::size_t c = 0; c < active.size(); ++c) a(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = w(active[r], active[c]);
-      }
-      const Eigen::VectorXd x = a.lu().solve(b);
-      for (std::size_t r = 0; r < active.size(); ++r) f[active[r]] = x[static_cast<Eigen::Index>(r)];
-    }
-    const Eigen::Vector3d d = Eigen::Vector3d(dfree) + Eigen::Matrix3d(w) * f;
-    found = (f.array() >= -1e-15).all() && (d.array() >= -1e-12).all();
-    if (found) expected = f;
-  }
-  ASSERT_TRUE(found);
+  const auto solution = testing::complementarity_solution(w, dfree);
+  ASSERT_TRUE(solution);
+  const Eigen::Vector3d expected = *solution;
   ConstraintProblem<double> problem;
   problem.clear(3);
   problem.w = w;

@@ -271,10 +271,52 @@ TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
                         "<BilateralLagrangianConstraint object1=\"@both/a/p\" object2=\"@both/b/p\" first_point=\"0\" second_point=\"0\"/>")
                 .find("needs its own"),
             std::string::npos);
-  // A solver not simulated yet, named.
-  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/><LCPConstraintSolver/>" + beam("beam", 0, fixed + "<LinearSolverConstraintCorrection/>"))
-                .find("LCPConstraintSolver"),
+}
+
+TEST(LagrangianScene, LcpSolverWarnsThatItSolvesRowsAsContacts) {
+  // SOFA's LCPConstraintSolver ignores the constraints' resolutions: a fixed point's three rows are
+  // one frictional contact to it (x the normal). Run, with the warning that says so.
+  const std::string fixed = kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>";
+  LoadedScene scene = build_scene_text(
+      "<FreeMotionAnimationLoop/><LCPConstraintSolver mu=\"0.3\" maxIt=\"50\" tolerance=\"1e-6\"/>" + beam("beam", 0, fixed), kRoot);
+  bool warned = false;
+  for (const auto& line : scene.warnings) warned = warned || line.find("solves every row as a contact") != std::string::npos;
+  EXPECT_TRUE(warned);
+  scene.simulation.step();
+  const ConstraintReport& report = scene.simulation.constraint_report();
+  EXPECT_EQ(report.rows, 12);
+  EXPECT_DOUBLE_EQ(report.tolerance, 1e-6 * (4 + 1)) << "SOFA's LCP tolerance: tol × (contacts + 1)";
+  EXPECT_EQ(scene.simulation.constraints->solver_name(), std::string("LCPConstraintSolver"));
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/><LCPConstraintSolver mu=\"-1\"/>" + beam("beam", 0, fixed)).find("mu = -1"),
             std::string::npos);
+}
+
+TEST(LagrangianScene, ImprovedJacobiHoldsAFixedPointAsGaussSeidelDoes) {
+  // One held point: one block, which Jacobi solves as Gauss–Seidel does.
+  LoadedScene jacobi = build_scene_text(
+      "<FreeMotionAnimationLoop/><ImprovedJacobiConstraintSolver maxIterations=\"100\" tolerance=\"1e-14\"/>" +
+          beam("beam", 0, "<FixedLagrangianConstraint indices=\"0\"/><LinearSolverConstraintCorrection/>"),
+      kRoot);
+  LoadedScene projective = build_scene_text(beam("beam", 0, "<FixedProjectiveConstraint indices=\"0\"/>"), kRoot);
+  for (int step = 1; step <= 20; ++step) {
+    jacobi.simulation.step();
+    projective.simulation.step();
+    ASSERT_LT(max_difference(jacobi.simulation.objects[0].system.state.position, projective.simulation.objects[0].system.state.position), 1e-9)
+        << "step " << step;
+  }
+  EXPECT_TRUE(jacobi.simulation.constraint_report().converged);
+  // Four neighbouring points: their blocks are coupled more than Jacobi tolerates; the run stops
+  // naming the solver rather than carrying infinities.
+  LoadedScene coupled = build_scene_text(
+      "<FreeMotionAnimationLoop/><ImprovedJacobiConstraintSolver maxIterations=\"20000\" tolerance=\"1e-14\"/>" +
+          beam("beam", 0, kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>"),
+      kRoot);
+  try {
+    coupled.simulation.step();
+    FAIL() << "Jacobi diverges on these blocks";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("ImprovedJacobiConstraintSolver: the constraint impulses are not finite"), std::string::npos) << e.what();
+  }
 }
 
 TEST(LagrangianScene, CheckpointsAreRefusedWithTheReason) {

@@ -224,8 +224,8 @@ TEST(SceneBuilder, ComponentsFastcorotDoesNotSimulateAreRefusedSayingWhy) {
       << message;
   EXPECT_NE(error_of(kTet + "\n<HexahedronFEMForceField/>").find("HexahedronFEMForceField: its topology has no hexahedra"),
             std::string::npos);
-  EXPECT_NE(error_of(kTet + "\n<LCPConstraintSolver/>").find("LCPConstraintSolver: this scene needs what fastcorot does not have: "
-                                                            "LCPConstraintSolver is not simulated yet"),
+  EXPECT_NE(error_of(kTet + "\n<StandardTetrahedralFEMForceField/>")
+                .find("StandardTetrahedralFEMForceField: this scene needs what fastcorot does not have: hyperelastic FEM is not simulated"),
             std::string::npos);
 }
 

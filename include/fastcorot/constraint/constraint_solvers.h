@@ -102,4 +102,27 @@ class PreconditionedConjugateResidualSolver final : public ConstraintSolver<Real
   const char* name() const override { return "PreconditionedConjugateResidual"; }
 };
 
+// SOFA's ImprovedJacobiConstraintSolver: every block resolved against the same violations of the
+// previous iteration (Jacobi), λ starting from zero (or a resolution's warm start, against δ_free
+// alone in the first iteration, as SOFA does). Options: the violations scaled by ρ = factor ·
+// min(1, 1.8 / r), r SOFA's spectral measure of W (the largest squared eigenvalue modulus, as its
+// code computes it), and a momentum step λ += β Δλ_previous with β = min(1, (i / maxIterations)^speed).
+// Stops when the summed block errors fall below the tolerance, never after the first iteration.
+template <class Real>
+class ImprovedJacobiSolver final : public ConstraintSolver<Real> {
+ public:
+  struct Options {
+    bool spectral_correction = false;   // useSpectralCorrection
+    Real spectral_factor = 1;           // spectralCorrectionFactor
+    bool conjugate_residue = false;     // useConjugateResidue
+    Real conjugate_residue_speed = 10;  // conjugateResidueSpeedFactor
+  };
+  ImprovedJacobiSolver(ConstraintSolverParameters<Real> parameters, Options options);
+  ConstraintSolveReport solve(ConstraintProblem<Real>& problem) override;
+  const char* name() const override { return "ImprovedJacobiConstraintSolver"; }
+
+ private:
+  Options options_;
+};
+
 }  // namespace fastcorot
