@@ -39,6 +39,12 @@ std::vector<CLI::Option*> add_picture_options(CLI::App* command, fastcorot::cli:
                           "force fields drawn as shrunk tetrahedra: scene (each one's `drawing`), on, off")
           ->capture_default_str(),
       command->add_flag("--edges", picture.surface_edges, "outline the mesh on the boundary surface"),
+      command->add_option("--constraints", picture.constraints,
+                          "Lagrangian constraints' points, bilateral pairs and forces: on, off")
+          ->capture_default_str(),
+      command->add_option("--constraint-force-scale", picture.constraint_force_scale,
+                          "constraint force arrows' length per unit of force (0: the largest a tenth of the scene)")
+          ->capture_default_str(),
       command->add_option("--camera-eye", picture.camera_eye, "camera position X,Y,Z (default: framed automatically)"),
       command->add_option("--camera-target", picture.camera_target, "point looked at X,Y,Z (default: the scene's centre)"),
       command->add_option("--camera-up", picture.camera_up, "up direction X,Y,Z (default: against gravity)"),

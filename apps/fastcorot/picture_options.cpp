@@ -24,6 +24,15 @@ DrawOptions draw_options(const PictureOptions& options) {
   DrawOptions draw;
   draw.tetrahedra = parse_tetrahedron_drawing(options.drawing);
   draw.surface_edges = options.surface_edges;
+  if (options.constraints != "on" && options.constraints != "off") {
+    throw make_error("--constraints \"", options.constraints, "\": expected on or off");
+  }
+  draw.constraints = options.constraints == "on";
+  if (!(options.constraint_force_scale >= 0 && std::isfinite(options.constraint_force_scale))) {
+    throw make_error("--constraint-force-scale ", options.constraint_force_scale,
+                     ": must be a finite length per unit of force >= 0 (0: chosen per frame)");
+  }
+  draw.constraint_force_scale = options.constraint_force_scale;
   return draw;
 }
 

@@ -189,6 +189,9 @@ void on_key(GLFWwindow* window, int key, int, int action, int mods) {
     case GLFW_KEY_E:
       s.draw.surface_edges = !s.draw.surface_edges;
       break;
+    case GLFW_KEY_L:
+      s.draw.constraints = !s.draw.constraints;
+      break;
     case GLFW_KEY_F:
       c.reframe = true;
       break;

@@ -4,8 +4,9 @@
 // `run --png` draws it. Mouse: left drag orbits, right (or shift + left) drag pans, the wheel
 // zooms, ctrl + left drag (or left drag in cut mode) cuts: the tetrahedra under the cursor, within
 // the brush radius, are removed as it moves. Keys: space play/pause, N or → one step, D cycles the
-// tetrahedra drawing, E mesh edges, C cut mode, F reframes, R reloads the scene, Q or Esc quits;
-// a key with Ctrl goes to a Python scene's controllers (SofaPython3's onKeypressedEvent).
+// tetrahedra drawing, E mesh edges, L the Lagrangian constraints, C cut mode, F reframes, R
+// reloads the scene, Q or Esc quits; a key with Ctrl goes to a Python scene's controllers
+// (SofaPython3's onKeypressedEvent).
 // The panel shows time, steps and steps/s, switches cut mode, sets the brush radius, counts the
 // tetrahedra removed, and changes each object's method, Young's modulus and Poisson's ratio live.
 // `--frames N` closes after N frames and `--screenshot FILE` saves the last frame as PNG (tests run

@@ -60,6 +60,8 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
   ImGui::Checkbox("fixed points", &session.draw.fixed_points);
   ImGui::SameLine();
   ImGui::Checkbox("boxes", &session.draw.boxes);
+  ImGui::SameLine();
+  ImGui::Checkbox("constraints (L)", &session.draw.constraints);
 
   ImGui::Checkbox("cut mode (C)", &session.cut_mode);
   ImGui::SameLine();
@@ -99,7 +101,7 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
   ImGui::TextDisabled(
       "drag: orbit  right drag: pan  wheel: zoom\n"
       "ctrl drag (or drag in cut mode): cut\nspace: play/pause  N: step  D: drawing\n"
-      "E: edges  C: cut mode  F: reframe\nR: reload  Q: quit");
+      "E: edges  L: constraints  C: cut mode\nF: reframe  R: reload  Q: quit");
   ImGui::End();
   return requests;
 }

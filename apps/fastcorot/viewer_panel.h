@@ -1,7 +1,7 @@
 // The Dear ImGui panel of `fastcorot view`: time, step and speed; play, pause, step, reload and
-// reframe; the tetrahedra drawing and mesh edges; cut mode, the cutting brush's radius and how
-// many tetrahedra cuts removed; and per object its rotation method (applied at once) and Young's
-// modulus and Poisson's ratio (applied with a button, as they rebuild the force field). Messages
+// reframe; the tetrahedra drawing, mesh edges and constraints; cut mode, the cutting brush's radius
+// and how many tetrahedra cuts removed; and per object its rotation method (applied at once) and
+// Young's modulus and Poisson's ratio (applied with a button, as they rebuild the force field). Messages
 // from ViewerSession (a diverging step, a refused value or cut) show in red.
 #pragma once
 

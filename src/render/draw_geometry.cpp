@@ -69,6 +69,23 @@ void add_box(LineList& list, const DrawnBox& box, const Rgba& color) {
   }
 }
 
+// An arrow from `from` along `vector`: the shaft and a head of four strokes, a quarter of the
+// length long, spread about any two directions across the shaft.
+void add_arrow(LineList& list, const Eigen::Vector3f& from, const Eigen::Vector3f& vector, const Rgba& color) {
+  const float length = vector.norm();
+  if (!(length > 0)) return;
+  const Eigen::Vector3f d = vector / length;
+  Eigen::Index smallest = 0;
+  d.cwiseAbs().minCoeff(&smallest);
+  const Eigen::Vector3f u = d.cross(Eigen::Vector3f::Unit(smallest)).normalized();
+  const Eigen::Vector3f v = d.cross(u);
+  const Eigen::Vector3f tip = from + vector;
+  const Eigen::Vector3f back = tip - 0.25f * vector;
+  add_segment(list, from, tip, color);
+  const Eigen::Vector3f sides[4] = {u, -u, v, -v};
+  for (const Eigen::Vector3f& side : sides) add_segment(list, tip, back + 0.1f * length * side, color);
+}
+
 // FNV-1a, one 32-bit vertex index at a time, in order: position-dependent, so a swap-with-last
 // renumbering or a tetrahedron replaced by another changes it (up to the rare 64-bit collision).
 std::uint64_t fingerprint_of(const TetMesh& mesh) {
@@ -97,6 +114,7 @@ Eigen::AlignedBox3d DrawGeometry::bounds() const {
   for (const auto& p : triangles.positions) box.extend(p.cast<double>());
   for (const auto& p : lines.positions) box.extend(p.cast<double>());
   for (const auto& p : points.positions) box.extend(p.cast<double>());
+  for (const auto& p : markers.positions) box.extend(p.cast<double>());
   return box;
 }
 
@@ -104,6 +122,7 @@ Eigen::AlignedBox3d DrawGeometry::framing_bounds() const {
   Eigen::AlignedBox3d box;
   for (const auto& p : triangles.positions) box.extend(p.cast<double>());
   for (const auto& p : points.positions) box.extend(p.cast<double>());
+  for (const auto& p : markers.positions) box.extend(p.cast<double>());
   return box.isEmpty() ? bounds() : box;
 }
 
@@ -131,7 +150,35 @@ template <class Real>
 DrawGeometry SceneDrawer::draw(const Simulation<Real>& simulation, const DrawOptions& options) {
   DrawGeometry geometry;
   for (const auto& object : simulation.objects) draw_object(object, options, geometry);
+  draw_constraints(simulation, options, geometry);
   return geometry;
+}
+
+template <class Real>
+void SceneDrawer::draw_constraints(const Simulation<Real>& simulation, const DrawOptions& options,
+                                   DrawGeometry& geometry) {
+  if (!options.constraints || !simulation.constraints) return;
+  ConstraintDrawing drawing;
+  simulation.constraints->draw(simulation.objects, simulation.dt, drawing);
+  for (const ConstraintDrawing::Point& p : drawing.points) {
+    geometry.markers.positions.push_back(to_float(p.position));
+    geometry.markers.colors.push_back(p.active ? options.constraint_color : options.inactive_constraint_color);
+  }
+  for (const auto& [a, b] : drawing.pairs) {
+    const ConstraintDrawing::Point& first = drawing.points[a];
+    add_segment(geometry.lines, to_float(first.position), to_float(drawing.points[b].position),
+                first.active ? options.constraint_color : options.inactive_constraint_color);
+  }
+  double scale = options.constraint_force_scale;
+  if (scale == 0) {
+    double largest = 0;
+    for (const ConstraintDrawing::Point& p : drawing.points) largest = std::max(largest, p.force.norm());
+    if (largest > 0) scale = 0.1 * static_cast<double>(simulation.scene_size()) / largest;
+  }
+  for (const ConstraintDrawing::Point& p : drawing.points) {
+    add_arrow(geometry.lines, to_float(p.position), to_float(Vec3<double>(scale * p.force)),
+              options.constraint_force_color);
+  }
 }
 
 template <class Real>
@@ -225,6 +272,8 @@ template bool draws_tetrahedra(const SimulatedObject<float>&, std::size_t, Tetra
 template bool draws_tetrahedra(const SimulatedObject<double>&, std::size_t, TetrahedronDrawing);
 template DrawGeometry SceneDrawer::draw(const Simulation<float>&, const DrawOptions&);
 template DrawGeometry SceneDrawer::draw(const Simulation<double>&, const DrawOptions&);
+template void SceneDrawer::draw_constraints(const Simulation<float>&, const DrawOptions&, DrawGeometry&);
+template void SceneDrawer::draw_constraints(const Simulation<double>&, const DrawOptions&, DrawGeometry&);
 template void SceneDrawer::draw_object(const SimulatedObject<float>&, const DrawOptions&,
                                        DrawGeometry&);
 template void SceneDrawer::draw_object(const SimulatedObject<double>&, const DrawOptions&,

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace fastcorot {
 
@@ -222,6 +223,21 @@ void GlRenderer::draw(const DrawGeometry& geometry, const Camera& camera, int wi
   impl_->primitives(GL_LINES, geometry.lines.positions, geometry.lines.colors, nullptr);
   gl.PointSize(style.point_size * pixel_scale);
   impl_->primitives(GL_POINTS, geometry.points.positions, geometry.points.colors, nullptr);
+  // Markers are wide squares drawn at one depth, so a surface they lie on that turns away from the
+  // view would cut them; each comes toward the eye along its own ray (its pixel unchanged) by its
+  // width at its depth, at most 4 % of its distance (the near plane leaves 5 %).
+  std::vector<Eigen::Vector3f> markers = geometry.markers.positions;
+  const Eigen::Vector3d forward = (camera.target - camera.eye).normalized();
+  const double pixel = 2 * std::tan(camera.fov_y_degrees * std::acos(-1.0) / 360) / height;
+  for (Eigen::Vector3f& m : markers) {
+    const Eigen::Vector3d to_eye = camera.eye - m.cast<double>();
+    const double distance = to_eye.norm();
+    if (!(distance > 0)) continue;
+    const double width = style.marker_size * pixel_scale * pixel * std::max(0.0, -to_eye.dot(forward));
+    m += (std::min(width, 0.04 * distance) / distance * to_eye).cast<float>();
+  }
+  gl.PointSize(style.marker_size * pixel_scale);
+  impl_->primitives(GL_POINTS, markers, geometry.markers.colors, nullptr);
   gl.UseProgram(0);
   gl.BindBuffer(GL_ARRAY_BUFFER, 0);
   if (const GLenum error = gl.GetError(); error != GL_NO_ERROR) {

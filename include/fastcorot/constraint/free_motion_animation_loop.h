@@ -36,6 +36,8 @@ class FreeMotionAnimationLoop final : public ConstraintStage<Real> {
 
   std::span<const Real> constraint_forces() const override { return {forces_.data(), static_cast<std::size_t>(forces_.size())}; }
   const char* solver_name() const override { return solver_->name(); }
+  // Each constraint's draw, in row order, with the last step's impulses (constraint_drawing.cpp).
+  void draw(std::span<const SimulatedObject<Real>> objects, Real dt, ConstraintDrawing& drawing) const override;
   const ConstraintSolver<Real>& solver() const { return *solver_; }
   ConstraintOrder order() const {
     return parameters_.solve_velocity_constraint_first ? ConstraintOrder::velocity : ConstraintOrder::position_and_velocity;

@@ -18,6 +18,9 @@ namespace fastcorot {
 enum class ConstraintOrder { position_and_velocity, velocity };
 
 template <class Real>
+class ConstraintDrawer;  // constraint_drawing.h
+
+template <class Real>
 class LagrangianConstraint {
  public:
   explicit LagrangianConstraint(std::string where) : where_(std::move(where)) {}
@@ -32,6 +35,9 @@ class LagrangianConstraint {
   virtual void violation(ConstraintOrder order, Real dt, Real* dfree) const = 0;
   // Appends the resolutions of its blocks, in row order.
   virtual void add_resolutions(ConstraintProblem<Real>& problem) = 0;
+  // Adds what it shows (its points, their forces from its rows, tied pairs) for pictures and the
+  // viewer (constraint_drawing.h); nothing by default.
+  virtual void draw(ConstraintDrawer<Real>& drawer) const { (void)drawer; }
   // Its rows [first_row(), first_row() + rows()) in the last build.
   int first_row() const { return first_row_; }
   int rows() const { return rows_; }
@@ -55,6 +61,7 @@ class FixedLagrangianConstraint final : public LagrangianConstraint<Real> {
   void build(ConstraintRows<Real>& rows) override;
   void violation(ConstraintOrder order, Real dt, Real* dfree) const override;
   void add_resolutions(ConstraintProblem<Real>& problem) override;
+  void draw(ConstraintDrawer<Real>& drawer) const override;  // constraint_drawing.cpp
   const std::vector<Index>& indices() const { return indices_; }
   const ConstraintPoints<Real>& points() const { return points_; }
 
@@ -85,6 +92,7 @@ class BilateralLagrangianConstraint final : public LagrangianConstraint<Real> {
   void build(ConstraintRows<Real>& rows) override;
   void violation(ConstraintOrder order, Real dt, Real* dfree) const override;
   void add_resolutions(ConstraintProblem<Real>& problem) override;
+  void draw(ConstraintDrawer<Real>& drawer) const override;  // constraint_drawing.cpp
   // Scripts change these between steps (SofaPython3 controllers).
   Parameters& parameters() { return parameters_; }
   const ConstraintPoints<Real>& first() const { return first_; }

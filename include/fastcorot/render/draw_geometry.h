@@ -3,8 +3,9 @@
 // a colour each. `SceneDrawer` makes one from a Simulation as SOFA shows a scene with its force
 // fields displayed: force fields with `drawing` on as shrunk tetrahedra in drawColor1..4
 // (tetrahedron_drawing.h), the other objects as their shaded boundary surface, fixed points as
-// dots, BoxROI boxes as wire boxes and each rigid body's frame as three axes. Nothing here touches OpenGL, so it is testable and usable
-// without a display.
+// dots, BoxROI boxes as wire boxes, each rigid body's frame as three axes and the Lagrangian
+// constraints' points as markers, bilateral pairs joined, with their forces as arrows. Nothing here
+// touches OpenGL, so it is testable and usable without a display.
 #pragma once
 
 #include "fastcorot/sim/simulation.h"
@@ -29,10 +30,19 @@ struct DrawOptions {
   bool boxes = true;
   bool rigid_frames = true;  // each rigid body's axes: x red, y green, z blue (SOFA's colours)
   bool surface_edges = false;  // outline the boundary triangles (shows the mesh)
+  // Lagrangian constraints (a FreeMotionAnimationLoop's): their points as markers, bilateral pairs
+  // joined by a segment, and the force each applies at its point as an arrow of length
+  // constraint_force_scale × |f|; a scale of 0 chooses one per frame, the largest arrow a tenth of
+  // the scene's size (Simulation::scene_size()).
+  bool constraints = true;
+  double constraint_force_scale = 0;
   Rgba surface_color{0.80f, 0.80f, 0.78f, 1.0f};
   Rgba edge_color{0.15f, 0.15f, 0.17f, 1.0f};
   Rgba fixed_point_color{0.90f, 0.15f, 0.10f, 1.0f};
   Rgba box_color{1.00f, 0.75f, 0.10f, 1.0f};
+  Rgba constraint_color{1.00f, 0.00f, 1.00f, 1.0f};           // SOFA's bilateral points: magenta
+  Rgba inactive_constraint_color{0.00f, 1.00f, 0.00f, 1.0f};  // and green when inactive
+  Rgba constraint_force_color{0.10f, 0.85f, 0.95f, 1.0f};
 };
 
 // Triangles: corners i = 3t, 3t+1, 3t+2 of triangle t; one normal and colour per corner.
@@ -60,10 +70,11 @@ struct DrawGeometry {
   TriangleList triangles;
   LineList lines;
   PointList points;
+  PointList markers;  // larger points (RenderStyle::marker_size): the constraints' points
 
   // The box holding everything drawn (empty when nothing is).
   Eigen::AlignedBox3d bounds() const;
-  // The box a camera frames: the objects (triangles and points) without the lines, since BoxROI
+  // The box a camera frames: the objects (triangles, points and markers) without the lines, since BoxROI
   // boxes often reach far beyond the objects they select from; all of it when there are no
   // triangles or points.
   Eigen::AlignedBox3d framing_bounds() const;
@@ -88,6 +99,11 @@ class SceneDrawer {
   template <class Real>
   void draw_object(const SimulatedObject<Real>& object, const DrawOptions& options,
                    DrawGeometry& geometry);
+
+  // Appends the Lagrangian constraints' drawing (nothing without a constraint stage).
+  template <class Real>
+  void draw_constraints(const Simulation<Real>& simulation, const DrawOptions& options,
+                        DrawGeometry& geometry);
 
  private:
   const std::vector<BoundaryTriangle>& boundary_of(const TetMesh& mesh);

@@ -22,6 +22,7 @@ struct RenderStyle {
   Rgba background_bottom{0.08f, 0.09f, 0.11f, 1.0f};
   bool lighting = true;  // off: every triangle in its flat colour (tests compare exact colours)
   float point_size = 5;  // fixed points, in pixels of the final picture
+  float marker_size = 10;  // constraint points (SOFA draws its bilateral points 10 pixels wide)
   float line_width = 1.5f;
 };
 

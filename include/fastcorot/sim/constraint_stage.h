@@ -7,7 +7,10 @@
 
 #include "fastcorot/sim/mechanical_state.h"
 
+#include <array>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace fastcorot {
 
@@ -25,6 +28,23 @@ struct ConstraintReport {
   double solve_seconds = 0;       // the constraint solver
 };
 
+// What the constraints show in pictures and the viewer (SOFA draws its Lagrangian constraints under
+// VisualStyle's showInteractionForceFields): the points they act on, where those are now, and the
+// force each constraint applies there, Σ over its rows of coefficient × λ_row / dt (H's row written
+// on the point, so mapped points get their force before Jᵀ carries it down); pairs a constraint ties
+// (bilateral) are joined. Filled by ConstraintStage::draw, each constraint through its own draw.
+struct ConstraintDrawing {
+  struct Point {
+    Vec3<double> position = Vec3<double>::Zero();  // world, as the objects stand now
+    Vec3<double> force = Vec3<double>::Zero();     // zero before the first step or while inactive
+    std::size_t constraint = 0;                    // index into `constraints`
+    bool active = true;                            // false: an inactive constraint (SOFA: green)
+  };
+  std::vector<Point> points;
+  std::vector<std::array<std::size_t, 2>> pairs;  // indices into points
+  std::vector<std::string> constraints;           // each constraint's where(), in row order
+};
+
 template <class Real>
 class ConstraintStage {
  public:
@@ -37,6 +57,13 @@ class ConstraintStage {
                                    Real dt, double time) = 0;
   // The last step's impulses λ, one per row (SOFA's constraintForces: force × dt).
   virtual std::span<const Real> constraint_forces() const = 0;
+  // Appends what the constraints show, from the objects as they stand now and the last step's
+  // impulses over `dt` (the step they were computed with). Nothing by default.
+  virtual void draw(std::span<const SimulatedObject<Real>> objects, Real dt, ConstraintDrawing& drawing) const {
+    (void)objects;
+    (void)dt;
+    (void)drawing;
+  }
   // The constraint solver's name, for messages.
   virtual const char* solver_name() const = 0;
 };

@@ -1,0 +1,110 @@
+// What the Lagrangian constraints show: ConstraintDrawer, each constraint's draw and the loop's.
+// SOFA's BilateralLagrangianConstraint::draw shows its pairs' points (magenta, green when
+// inactive); fastcorot adds the segment between each pair and, for every constraint, the force its
+// rows apply at each point. SOFA's FixedLagrangianConstraint draws nothing; here it shows its
+// points and their holding forces too.
+#include "fastcorot/constraint/constraint_drawing.h"
+
+#include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/sim/simulation.h"
+
+namespace fastcorot {
+
+namespace {
+
+template <class Real>
+Vec3<Real> unit(int a) {
+  return Vec3<Real>::Unit(a);
+}
+
+}  // namespace
+
+template <class Real>
+ConstraintDrawer<Real>::ConstraintDrawer(std::span<const SimulatedObject<Real>> objects, std::span<const Real> impulses,
+                                         Real dt, ConstraintDrawing& drawing)
+    : objects_(objects), impulses_(impulses), dt_(dt), drawing_(drawing) {}
+
+template <class Real>
+void ConstraintDrawer<Real>::begin(const std::string& where) {
+  drawing_.constraints.push_back(where);
+}
+
+template <class Real>
+std::size_t ConstraintDrawer<Real>::point(const ConstraintPoints<Real>& points, std::size_t i, bool active) {
+  Vec3<Real> position;
+  if (points.mapping) {
+    auto [it, added] = mapped_.try_emplace(&points);
+    if (added) {
+      it->second.resize(points.mapping->size());
+      points.mapping->positions(objects_[points.object].system.state.position, it->second);
+    }
+    position = it->second[i];
+  } else if (i < points.blocks.size()) {
+    position = objects_[points.object].system.state.position[static_cast<std::size_t>(points.blocks[i])];
+  } else {
+    position = points.position[i];  // points of no simulated object: they stay where they were put
+  }
+  ConstraintDrawing::Point p;
+  p.position = position.template cast<double>();
+  p.constraint = drawing_.constraints.empty() ? 0 : drawing_.constraints.size() - 1;
+  p.active = active;
+  drawing_.points.push_back(p);
+  return drawing_.points.size() - 1;
+}
+
+template <class Real>
+void ConstraintDrawer<Real>::force(std::size_t p, int row, const Vec3<Real>& c) {
+  if (row < 0 || static_cast<std::size_t>(row) >= impulses_.size() || !(dt_ > 0)) return;
+  const double lambda = static_cast<double>(impulses_[static_cast<std::size_t>(row)]);
+  drawing_.points[p].force += c.template cast<double>() * (lambda / static_cast<double>(dt_));
+}
+
+template <class Real>
+void FixedLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  // Rows of the last build: 3 per index, +axis on the point (build()).
+  const bool built = this->rows_ == static_cast<int>(3 * indices_.size());
+  for (std::size_t k = 0; k < indices_.size(); ++k) {
+    const std::size_t p = drawer.point(points_, static_cast<std::size_t>(indices_[k]));
+    if (!built) continue;
+    for (int a = 0; a < 3; ++a) drawer.force(p, this->first_row_ + static_cast<int>(3 * k) + a, unit<Real>(a));
+  }
+}
+
+template <class Real>
+void BilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  // Rows of the last build: 3 per pair, -axis on the first point and +axis on the second; none
+  // while inactive. A script may have changed the pairs since: forces only when they still match.
+  const bool built = this->rows_ > 0 && this->rows_ == static_cast<int>(3 * pairs());
+  for (std::size_t k = 0; k < pairs(); ++k) {
+    const std::size_t a = drawer.point(first_, static_cast<std::size_t>(parameters_.first[k]), parameters_.active);
+    const std::size_t b = drawer.point(second_, static_cast<std::size_t>(parameters_.second[k]), parameters_.active);
+    drawer.pair(a, b);
+    if (!built) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      const int row = this->first_row_ + static_cast<int>(3 * k) + axis;
+      drawer.force(a, row, -unit<Real>(axis));
+      drawer.force(b, row, unit<Real>(axis));
+    }
+  }
+}
+
+template <class Real>
+void FreeMotionAnimationLoop<Real>::draw(std::span<const SimulatedObject<Real>> objects, Real dt,
+                                         ConstraintDrawing& drawing) const {
+  ConstraintDrawer<Real> drawer(objects, constraint_forces(), dt, drawing);
+  for (const auto& constraint : constraints) {
+    drawer.begin(constraint->where());
+    constraint->draw(drawer);
+  }
+}
+
+template class ConstraintDrawer<float>;
+template class ConstraintDrawer<double>;
+template void FixedLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
+template void FixedLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
+template void BilateralLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
+template void BilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
+template void FreeMotionAnimationLoop<float>::draw(std::span<const SimulatedObject<float>>, float, ConstraintDrawing&) const;
+template void FreeMotionAnimationLoop<double>::draw(std::span<const SimulatedObject<double>>, double, ConstraintDrawing&) const;
+
+}  // namespace fastcorot
