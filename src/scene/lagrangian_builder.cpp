@@ -1,6 +1,7 @@
 #include "lagrangian_builder.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/constraint/rigid_lagrangian_constraints.h"
 #include "fastcorot/constraint/sliding_lagrangian_constraint.h"
 #include "fastcorot/constraint/lcp_constraint_solver.h"
 #include "fastcorot/core/error.h"
@@ -200,10 +201,85 @@ class LoopBuilder {
     return points;
   }
 
-  void check_template(Component& c) {
-    if (is_rigid_template(data_.text(c, "template", "Vec3d"))) {
-      throw make_error(c.type(), " on Rigid3 states is not simulated yet (put it on points the rigid carries)");
+  // Whether c acts on Rigid3 states: its template when written, else its state's (SOFA's factory
+  // takes the linked state's). Only Vec3 and Rigid3 are simulated; the two must agree.
+  bool on_rigids(Component& c, Component& state) {
+    const bool rigid_state = is_rigid_template(data_.text(state, "template", "Vec3d"));
+    if (!c.has("template")) return rigid_state;
+    const std::string written = data_.text(c, "template", "Vec3d");
+    const bool rigid = is_rigid_template(written);
+    if (!rigid && written != "Vec3d" && written != "Vec3f" && written != "Vec3") {
+      throw make_error("template=\"", written, "\": only Vec3 and Rigid3 Lagrangian constraints are simulated");
     }
+    if (rigid != rigid_state) {
+      throw make_error("template=\"", written, "\" but ", state.where(), " is a ", rigid_state ? "Rigid3" : "Vec3", " state");
+    }
+    return rigid;
+  }
+
+  // The rigids of a simulated Rigid3 MechanicalObject, for the Rigid3 constraints.
+  RigidConstraintFrames<double> rigid_frames(Component& state, Component& user) {
+    const StateLocation where = locate(state, user);
+    const auto& object = simulation_.objects[where.object];
+    if (where.mapped || !where.rigid || !object.system.rigids) {
+      throw make_error(state.where(), " is not a simulated Rigid3 state: ", user.type(),
+                       " on Rigid3 acts on rigid bodies' own MechanicalObject (a mapped Rigid3 state is not supported)");
+    }
+    const auto& rigids = *object.system.rigids;
+    const auto& x = object.system.state;
+    RigidConstraintFrames<double> frames;
+    frames.rigids = object.system.rigids;
+    frames.linear.object = frames.angular.object = where.object;
+    for (Index b = where.offset; b < where.offset + where.size; b += 2) {
+      const auto found = std::find(rigids.block.begin(), rigids.block.end(), b);
+      if (found == rigids.block.end()) throw make_error(state.where(), ": block ", b, " of its object is not a rigid's centre");
+      const auto k = static_cast<std::size_t>(found - rigids.block.begin());
+      const auto block = static_cast<std::size_t>(b);
+      frames.index.push_back(k);
+      frames.linear.blocks.push_back(b);
+      frames.angular.blocks.push_back(b + 1);
+      frames.linear.rest_position.push_back(x.rest_position[block]);
+      frames.angular.rest_position.push_back(x.rest_position[block + 1]);
+      frames.rest.push_back(rigids.rest_coord(x.rest_position, k));
+      frames.initial.push_back(rigids.coord(x.position, k));
+    }
+    return frames;
+  }
+
+  // FixedLagrangianConstraint's and BilateralLagrangianConstraint's indices (fixAll: every one).
+  std::vector<Index> fixed_indices(Component& c, std::size_t size) {
+    std::vector<Index> indices;
+    if (data_.boolean(c, "fixAll", false)) {
+      for (std::size_t i = 0; i < size; ++i) indices.push_back(static_cast<Index>(i));
+    } else if (c.has("indices")) {
+      indices = data_.indices(c, "indices");
+    }
+    if (indices.empty()) info_.push_back(c.where() + ": no indices: it holds nothing (as in SOFA)");
+    return indices;
+  }
+
+  // BilateralLagrangianConstraint<Rigid3>: SOFA's Rigid3 specialisation (six numbers per rest vector,
+  // keepOrientationDifference; activate and load unused there).
+  void add_rigid_bilateral(Component& c, Component& first, Component& second, std::vector<Index> first_points,
+                           std::vector<Index> second_points) {
+    typename RigidBilateralLagrangianConstraint<double>::Parameters p;
+    p.first = std::move(first_points);
+    p.second = std::move(second_points);
+    p.keep_orientation_difference = data_.boolean(c, "keepOrientationDifference", false);
+    const Numbers rest = c.has("rest_vector") ? data_.data(c, "rest_vector") : Numbers{};
+    if (rest.size() % 6 != 0) {
+      throw make_error("rest_vector has ", rest.size(), " numbers: a Rigid3 pair's is 6 (vx vy vz wx wy wz)");
+    }
+    for (std::size_t k = 0; k < rest.size(); k += 6) p.rest.push_back({rest[k], rest[k + 1], rest[k + 2], rest[k + 3], rest[k + 4], rest[k + 5]});
+    if (p.keep_orientation_difference && !p.rest.empty()) {
+      data_.warn(c.where() + ": keepOrientationDifference is set: rest_vector is ignored (as SOFA warns)");
+    }
+    if (!data_.boolean(c, "activate", true) || data_.real(c, "load", 1.0) != 1.0) {
+      data_.warn(c.where() + ": activate and load are not used on Rigid3 states (SOFA's Rigid3 specialisation ignores them): "
+                 "the constraint is active with load 1");
+    }
+    loop_->constraints.push_back(std::make_unique<RigidBilateralLagrangianConstraint<double>>(
+        c.where(), rigid_frames(first, c), rigid_frames(second, c), std::move(p)));
   }
 
   // object1 / object2 of a pair constraint: the linked state, else the node's.
@@ -256,30 +332,31 @@ class LoopBuilder {
   }
 
   void add_constraint(Component& c) {
-    check_template(c);
     if (c.type() == "SlidingLagrangianConstraint") {
+      if (on_rigids(c, linked_state(c, "object1"))) throw make_error("SOFA defines SlidingLagrangianConstraint on Vec3 states only, not on Rigid3");
       add_sliding(c);
       return;
     }
     if (c.type() == "FixedLagrangianConstraint") {
       Component& state = own_state(c);
-      ConstraintPoints<double> points = points_of(state, c);
-      std::vector<Index> indices;
-      if (data_.boolean(c, "fixAll", false)) {
-        for (std::size_t i = 0; i < points.size(); ++i) indices.push_back(static_cast<Index>(i));
-      } else if (c.has("indices")) {
-        indices = data_.indices(c, "indices");
+      if (on_rigids(c, state)) {
+        RigidConstraintFrames<double> frames = rigid_frames(state, c);
+        std::vector<Index> indices = fixed_indices(c, frames.size());
+        loop_->constraints.push_back(std::make_unique<RigidFixedLagrangianConstraint<double>>(c.where(), std::move(frames), std::move(indices)));
+        return;
       }
-      if (indices.empty()) info_.push_back(c.where() + ": no indices: it holds nothing (as in SOFA)");
+      ConstraintPoints<double> points = points_of(state, c);
+      std::vector<Index> indices = fixed_indices(c, points.size());
       loop_->constraints.push_back(std::make_unique<FixedLagrangianConstraint<double>>(c.where(), std::move(points), std::move(indices)));
       return;
     }
     // BilateralLagrangianConstraint: object1 and object2 default to the node's state.
-    const auto linked = [&](const char* name) -> Component& {
-      return c.has(name) ? data_.resolve_state(*c.node, c.object->attributes.at(name), c) : own_state(c);
-    };
-    Component& first = linked("object1");
-    Component& second = linked("object2");
+    Component& first = linked_state(c, "object1");
+    Component& second = linked_state(c, "object2");
+    const bool rigid = on_rigids(c, first);
+    if (on_rigids(c, second) != rigid) {
+      throw make_error(first.where(), " and ", second.where(), ": one is a Rigid3 state and the other not");
+    }
     typename BilateralLagrangianConstraint<double>::Parameters p;
     p.first = c.has("first_point") ? data_.indices(c, "first_point") : std::vector<Index>{};
     p.second = c.has("second_point") ? data_.indices(c, "second_point") : std::vector<Index>{};
@@ -287,6 +364,10 @@ class LoopBuilder {
       data_.warn(c.where() + ": first_point has " + std::to_string(p.first.size()) + " indices and second_point " +
                  std::to_string(p.second.size()) + ": only the first " + std::to_string(std::min(p.first.size(), p.second.size())) +
                  " pairs are tied (as in SOFA)");
+    }
+    if (rigid) {
+      add_rigid_bilateral(c, first, second, std::move(p.first), std::move(p.second));
+      return;
     }
     p.rest = c.has("rest_vector") ? data_.points(c, "rest_vector") : std::vector<Vec3<double>>{};
     p.active = data_.boolean(c, "activate", true);

@@ -325,6 +325,23 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (name == "edges") return flatten_indices(mesh.edges);
     return {};
   }
+  // A surface loader read by a state or a topology (src="@loader": a static obstacle's points, a
+  // collision surface): the file's points placed as the loader places them, its triangles and quads.
+  if ((type == "MeshOBJLoader" || type == "MeshSTLLoader") && (name == "position" || name == "triangles" || name == "quads")) {
+    const std::string file = text(c, "filename", "");
+    if (file.empty()) throw make_error(c.where(), ": no filename given");
+    SurfaceData surface;
+    try {
+      surface = read_surface_file(find_data_file(c.object->location.file, file));
+    } catch (const Error& error) {
+      throw error_at(c.where(), error);
+    }
+    if (name == "triangles") return flatten_indices(surface.triangles);
+    if (name == "quads") return flatten_indices(surface.quads);
+    Vec3<double> scale = vec3(c, "scale3d", {1, 1, 1});
+    if (c.has("scale")) scale *= real(c, "scale", 1);
+    return flatten(transformed(surface.points, scale, vec3(c, "rotation", {0, 0, 0}), vec3(c, "translation", {0, 0, 0})));
+  }
   if (type == "MeshGmshLoader" || type == "MeshVTKLoader" || type == "GIDMeshLoader") {
     const MeshData& mesh = mesh_file(c);
     if (name == "position") return flatten(mesh.points);

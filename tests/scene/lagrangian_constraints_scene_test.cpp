@@ -2,7 +2,9 @@
 // scene builder. Sliding: a bead on a rail stays on it to the solver's tolerance and moves along it
 // as a point mass sliding without friction (the implicit Euler closed form: with the rows across
 // the rail, s_n = s_0 + h² g_a n (n + 1) / 2); the stop at the rail's end holds; a rigid cube slides
-// on a point it carries a segment through. Bad input is refused naming the component.
+// on a point it carries a segment through. Rigid3: FixedLagrangianConstraint holds a body at its
+// rest pose under gravity and a torque; BilateralLagrangianConstraint keeps two bodies' frames
+// together (keepOrientationDifference) or at a rest offset. Bad input is refused naming the component.
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/scene/scene_builder.h"
 
@@ -139,6 +141,104 @@ TEST(SlidingLagrangianConstraintScene, BadInputIsRefusedNamingTheComponent) {
   const std::string stopper = scene_error("<StopperLagrangianConstraint/>");
   EXPECT_NE(stopper.find("only on Vec1"), std::string::npos) << stopper;
   EXPECT_NE(scene_error("<UniformLagrangianConstraint/>").find("only on Vec1"), std::string::npos);
+}
+
+// A rigid body of mass 2 (inertia 2 I) at `pose` with `extra` components, under its own solver.
+std::string rigid_body(const std::string& name, const std::string& pose, const std::string& extra) {
+  return "<Node name=\"" + name + "\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><CGLinearSolver iterations=\"100\" "
+         "tolerance=\"1e-30\" threshold=\"1e-30\"/><MechanicalObject name=\"frame\" template=\"Rigid3d\" position=\"" + pose +
+         "\"/><UniformMass totalMass=\"2\"/><UncoupledConstraintCorrection/>" + extra + "</Node>";
+}
+
+Eigen::Quaterniond quaternion_of(const RigidCoord<double>& c) { return c.orientation.normalized(); }
+
+TEST(RigidLagrangianConstraintsScene, FixedHoldsARigidBodyAtItsRestPose) {
+  // Gravity and a torque of (1, -2, 0.5) act; the body stays where it rests, turned as it rests.
+  const std::string pose = "0.5 1 -0.25  0.1 0.2 -0.3 0.9273618495495703";
+  LoadedScene scene = build_scene_text(
+      kLoop + rigid_body("body", pose, "<ConstantForceField force=\"0 0 0 1 -2 0.5\"/><FixedLagrangianConstraint indices=\"0\"/>"),
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const auto& system = scene.simulation.objects[0].system;
+  const RigidCoord<double> rest = system.rigids->coord(system.state.position, 0);
+  for (int n = 1; n <= 200; ++n) {
+    scene.simulation.step();
+    const RigidCoord<double> now = system.rigids->coord(system.state.position, 0);
+    ASSERT_LT((now.center - rest.center).norm(), 1e-10) << "step " << n;
+    ASSERT_LT(quaternion_of(now).angularDistance(quaternion_of(rest)), 1e-7) << "step " << n;
+  }
+  EXPECT_EQ(scene.simulation.constraint_report().rows, 6);
+  // Without the constraint the same body falls and turns.
+  LoadedScene free = build_scene_text(kLoop + rigid_body("body", pose, "<ConstantForceField force=\"0 0 0 1 -2 0.5\"/>"),
+                                      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  for (int n = 0; n < 20; ++n) free.simulation.step();
+  const auto& f = free.simulation.objects[0].system;
+  EXPECT_GT((f.rigids->coord(f.state.position, 0).center - rest.center).norm(), 0.01);
+  EXPECT_GT(quaternion_of(f.rigids->coord(f.state.position, 0)).angularDistance(quaternion_of(rest)), 0.01);
+}
+
+TEST(RigidLagrangianConstraintsScene, BilateralKeepsTwoRigidFramesTogether) {
+  // Body a is pushed and twisted, body b follows: with keepOrientationDifference the constraint
+  // keeps b.c - a.c and a⁻¹ b at their initial values (SOFA's definition: the offset in the world frame).
+  const std::string tie = "<BilateralLagrangianConstraint template=\"Rigid3d\" object1=\"@a/frame\" object2=\"@b/frame\" "
+                          "first_point=\"0\" second_point=\"0\" keepOrientationDifference=\"1\"/>";
+  LoadedScene scene = build_scene_text(
+      kLoop + rigid_body("a", "0 0 0  0 0 0 1", "<ConstantForceField force=\"1 0 0 0 0 2\"/>") +
+          rigid_body("b", "1 0.5 0  0 0 0.38268343236508978 0.92387953251128674", "") + tie,
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const auto& a = scene.simulation.objects[0].system;
+  const auto& b = scene.simulation.objects[1].system;
+  const RigidCoord<double> a0 = a.rigids->coord(a.state.position, 0), b0 = b.rigids->coord(b.state.position, 0);
+  const Eigen::Quaterniond relative0 = quaternion_of(a0).conjugate() * quaternion_of(b0);
+  for (int n = 1; n <= 100; ++n) {
+    scene.simulation.step();
+    const RigidCoord<double> an = a.rigids->coord(a.state.position, 0), bn = b.rigids->coord(b.state.position, 0);
+    ASSERT_LT(((bn.center - an.center) - (b0.center - a0.center)).norm(), 1e-6) << "step " << n;
+    ASSERT_LT((quaternion_of(an).conjugate() * quaternion_of(bn)).angularDistance(relative0), 1e-6) << "step " << n;
+  }
+  const RigidCoord<double> end = a.rigids->coord(a.state.position, 0);
+  EXPECT_LT(end.center.y(), -1) << "both fall together";
+  EXPECT_GT(quaternion_of(end).angularDistance(quaternion_of(a0)), 0.05) << "a turned, and b with it";
+  EXPECT_EQ(scene.simulation.constraint_report().rows, 6);
+}
+
+TEST(RigidLagrangianConstraintsScene, BilateralRestVectorOffsetsTheFrames) {
+  // Without keepOrientationDifference, b is held at a.c + (0, -1, 0) and a's orientation turned by
+  // rest's angular part (here none): a fixed body, b hanging below it.
+  LoadedScene scene = build_scene_text(
+      kLoop + rigid_body("a", "0 0 0  0 0 0 1", "<FixedProjectiveConstraint indices=\"0\"/>") +
+          rigid_body("b", "0 -1 0  0 0 0 1", "") +
+          "<BilateralLagrangianConstraint object1=\"@a/frame\" object2=\"@b/frame\" first_point=\"0\" second_point=\"0\" "
+          "rest_vector=\"0 -1 0 0 0 0\"/>",
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const auto& b = scene.simulation.objects[1].system;
+  for (int n = 1; n <= 100; ++n) {
+    scene.simulation.step();
+    const RigidCoord<double> bn = b.rigids->coord(b.state.position, 0);
+    ASSERT_LT((bn.center - Vec3<double>(0, -1, 0)).norm(), 1e-10) << "step " << n;
+    ASSERT_LT(quaternion_of(bn).angularDistance(Eigen::Quaterniond::Identity()), 1e-10) << "step " << n;
+  }
+}
+
+TEST(RigidLagrangianConstraintsScene, BadRigidInputIsRefusedClearly) {
+  const std::string body = rigid_body("a", "0 0 0  0 0 0 1", "");
+  const std::string beadless = "<Node name=\"p\"><EulerImplicitSolver/><SparseLDLSolver/><MechanicalObject name=\"points\" position=\"0 0 0\"/>"
+                               "<UniformMass totalMass=\"1\"/><LinearSolverConstraintCorrection/></Node>";
+  const auto refused = [&](const std::string& scene, const std::string& expected) {
+    const std::string error = scene_error("<FreeMotionAnimationLoop/>" + scene);
+    EXPECT_NE(error.find(expected), std::string::npos) << error;
+  };
+  refused(rigid_body("a", "0 0 0  0 0 0 1", "<FixedLagrangianConstraint indices=\"1\"/>"), "indices[0] = 1 is out of range");
+  refused(body + beadless + "<BilateralLagrangianConstraint object1=\"@a/frame\" object2=\"@p/points\" first_point=\"0\" second_point=\"0\"/>",
+          "one is a Rigid3 state and the other not");
+  refused(body + "<BilateralLagrangianConstraint object1=\"@a/frame\" object2=\"@a/frame\" first_point=\"0\" second_point=\"0\" "
+                 "rest_vector=\"0 0 0\"/>",
+          "a Rigid3 pair's is 6");
+  refused(body + "<BilateralLagrangianConstraint object1=\"@a/frame\" object2=\"@missing/frame\" first_point=\"0\" second_point=\"0\"/>",
+          "BilateralLagrangianConstraint");
+  refused(rigid_body("a", "0 0 0  0 0 0 1", "<FixedLagrangianConstraint template=\"Vec3d\" indices=\"0\"/>"),
+          "template=\"Vec3d\" but");
+  refused(rigid_body("a", "0 0 0  0 0 0 1", "<FixedLagrangianConstraint template=\"Vec2d\" indices=\"0\"/>"),
+          "only Vec3 and Rigid3");
 }
 
 }  // namespace

@@ -395,6 +395,31 @@ TEST_F(VisualSurfaces, AnOglModelFollowsItsObjectThroughTheMappingSofaWouldChoos
   }
 }
 
+TEST_F(VisualSurfaces, AStateReadsASurfaceLoaderAndAStaticSurfaceUnderASolverStaysPut) {
+  // SOFA's FrictionContact scenes: a box's surface (MechanicalObject src="@loader", no mass, no
+  // force field) in the node of the solver that moves a falling body beside it.
+  std::ofstream(dir_ / "box.obj") << "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 0 0 2\nf 1 2 3\nf 1 3 4\n";
+  LoadedScene scene = load(R"(<Node name="root" dt="0.01" gravity="0 -10 0">
+  <Node name="solver"><EulerImplicitSolver/><CGLinearSolver iterations="50" tolerance="1e-12" threshold="1e-12"/>
+    <Node name="body"><MechanicalObject position="5 5 5"/><UniformMass totalMass="1"/></Node>
+    <Node name="BOX">
+      <MeshOBJLoader name="loader" filename="box.obj" translation="1 0 0" scale="0.5"/>
+      <MeshTopology src="@loader"/>
+      <MechanicalObject name="surface" src="@loader"/>
+    </Node>
+  </Node>
+</Node>)");
+  ASSERT_EQ(scene.simulation.objects.size(), 1u);
+  const auto& state = scene.simulation.objects[0].system.state;
+  ASSERT_EQ(state.position.size(), 5u);  // the body's point, then the box's four, scaled then moved
+  EXPECT_EQ(state.position[2], Vec3<double>(2, 0, 0));
+  EXPECT_EQ(state.position[4], Vec3<double>(1, 0, 1));
+  for (int step = 0; step < 10; ++step) scene.simulation.step();
+  EXPECT_LT(state.position[0].y(), 5 - 0.04) << "the body falls (g t² / 2 = 0.05)";
+  for (std::size_t i = 1; i < 5; ++i) EXPECT_EQ(state.velocity[i], Vec3<double>::Zero()) << "the box stays put";
+  EXPECT_EQ(state.position[2], Vec3<double>(2, 0, 0));
+}
+
 TEST_F(VisualSurfaces, IdentityMappingNeedsOnePointPerPointAndBadSurfacesAreErrors) {
   try {
     load(visual_scene(dir_, "tets", "IdentityMapping"));
