@@ -103,6 +103,19 @@ std::vector<ComponentSpec> lagrangian_components() {
         {"correctionVelocityFactor", "real", "1", "without the ODE factors: v += factor / dt dx"},
         {"verbose", "bool", "false", "accepted"},
         {"topology", "link", "", "accepted"}}},
+      {"PrecomputedConstraintCorrection", "constraintcorrection",
+       "The object's dense compliance C = h P A₀⁻¹ P, computed once at the start (A₀ factorised, exact to round-off; SOFA's CG at 1e-20) "
+       "or read from SOFA's cache file <node name>-<3 × points>-<dt>.comp (raw doubles, row after row); W += H C Hᵀ (1/dt in "
+       "velocity order), correction x = x_free + C Hᵀλ, v = v_free + C Hᵀλ / dt. Points (Vec3) only, C at most 4 GiB.",
+       {{"rotations", "bool", "false", "turn C by the point rotations of a TetrahedronFEMForceField or HexahedronFEMForceField each step "
+                                      "(R C Rᵀ; SOFA master's option has no effect)"},
+        {"restDeformations", "bool", "false", "accepted (SOFA reads it nowhere)"},
+        {"recompute", "bool", "false", "always compute C, never read a cache file (it is still written)"},
+        {"regularizationTerm", "real", "0", "added to W's diagonal, once per point each row touches (as SOFA's loop adds it)"},
+        {"debugViewFrameScale", "real", "1", "accepted (display of the rotations)"},
+        {"fileCompliance", "file", "", "the cache file to read (found as mesh files are); default: SOFA's name on the data paths"},
+        {"filePrefix", "file", "", "SOFA's alias of fileCompliance"},
+        {"fileDir", "string", "", "folder the cache file is read from and written to (default: written beside the scene)"}}},
       {"FixedLagrangianConstraint", "lagrangian",
        "Holds points at their rest positions by Lagrange multipliers: 3 rows per point, violation x_free - x_rest. On Rigid3 states: 6 rows per rigid (centre, rotation), the rotation's violation SOFA's Euler vector of q_free q_rest⁻¹.",
        {{"indices", "indices", "", "the points"}, {"fixAll", "bool", "false", "every point"}}},

@@ -1,4 +1,5 @@
 #include "lagrangian_builder.h"
+#include "precomputed_correction_builder.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/constraint/rigid_lagrangian_constraints.h"
@@ -22,8 +23,8 @@ constexpr std::array<std::string_view, 7> kSolvers = {"BlockGaussSeidelConstrain
                                                       "GenericConstraintSolver", "PreconditionedConjugateResidual",
                                                       "NNCGConstraintSolver", "ImprovedJacobiConstraintSolver",
                                                       "LCPConstraintSolver"};
-constexpr std::array<std::string_view, 3> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
-                                                          "UncoupledConstraintCorrection"};
+constexpr std::array<std::string_view, 4> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
+                                                          "UncoupledConstraintCorrection", "PrecomputedConstraintCorrection"};
 constexpr std::array<std::string_view, 3> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint",
                                                           "SlidingLagrangianConstraint"};
 
@@ -395,6 +396,10 @@ class LoopBuilder {
     }
     const std::size_t o = where.object;
     auto& object = simulation_.objects[o];
+    if (c.type() == "PrecomputedConstraintCorrection") {
+      add_precomputed(c, where);
+      return;
+    }
     if (c.type() == "UncoupledConstraintCorrection") {
       if (kind_.count(o) && kind_[o] != "uncoupled") {
         throw make_error(object.path, " already has a ", kind_[o], ": one kind of correction per ODE solver's object");
@@ -411,6 +416,7 @@ class LoopBuilder {
     }
     // LinearSolverConstraintCorrection and GenericConstraintCorrection: through the object's solver.
     if (kind_.count(o)) {
+      if (kind_[o] == "PrecomputedConstraintCorrection") throw make_error(object.path, " already has a PrecomputedConstraintCorrection: one kind of correction per ODE solver's object");
       if (kind_[o] == "uncoupled") throw make_error(object.path, " already has an UncoupledConstraintCorrection: one kind of correction per ODE solver's object");
       // Several objects under one linear solver each with a correction (SOFA issue #5501): one
       // correction of the whole system serves them all.
@@ -433,6 +439,17 @@ class LoopBuilder {
     const double compliance_factor = c.type() == "GenericConstraintCorrection" ? data_.real(c, "complianceFactor", 1.0) : 1.0;
     loop_->corrections.push_back(std::make_unique<LinearSolverConstraintCorrection<double>>(
         c.where(), o, data_.real(c, "regularizationTerm", 0.0), compliance_factor));
+  }
+
+  // SOFA's PrecomputedConstraintCorrection (precomputed_correction_builder.cpp).
+  void add_precomputed(Component& c, const StateLocation& where) {
+    const std::size_t o = where.object;
+    if (kind_.count(o)) {
+      throw make_error(simulation_.objects[o].path, " already has a ", kind_[o] == "uncoupled" ? "UncoupledConstraintCorrection" : kind_[o],
+                       ": one kind of correction per ODE solver's object");
+    }
+    loop_->corrections.push_back(build_precomputed_correction(data_, info_, c, simulation_, where));
+    kind_[o] = "PrecomputedConstraintCorrection";
   }
 
   // SOFA's UncoupledConstraintCorrection::init for points and for rigid bodies.
