@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,11 @@ ConstraintSolver<Real>::ConstraintSolver(ConstraintSolverParameters<Real> parame
   if (!(parameters_.regularization >= 0) || !std::isfinite(parameters_.regularization)) {
     throw make_error("regularizationTerm = ", parameters_.regularization, ": must be a finite number >= 0");
   }
+  if (!(parameters_.svd_value_factor >= 0) || !(parameters_.svd_vector_factor >= 0) || !std::isfinite(parameters_.svd_value_factor) ||
+      !std::isfinite(parameters_.svd_vector_factor)) {
+    throw make_error("svdSingularValueNullSpaceCriteriaFactor = ", parameters_.svd_value_factor, ", svdSingularVectorNullSpaceCriteriaFactor = ",
+                     parameters_.svd_vector_factor, ": must be finite numbers >= 0");
+  }
 }
 
 template <class Real>
@@ -32,11 +38,36 @@ Real ConstraintSolver<Real>::effective_tolerance(int rows) const {
 }
 
 template <class Real>
+void ConstraintSolver<Real>::regularize(ConstraintProblem<Real>& problem) const {
+  const Real term = parameters_.regularization;
+  if (!(term > std::numeric_limits<Real>::epsilon())) return;
+  const int n = problem.size();
+  if (!parameters_.svd_regularization) {
+    for (int i = 0; i < n; ++i) problem.w(i, i) += term;
+    return;
+  }
+  using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+  const Eigen::JacobiSVD<Matrix> svd(Matrix(problem.w), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const auto& values = svd.singularValues();  // decreasing
+  int null_begin = -1;
+  for (int i = 0; i < n; ++i) {
+    if (std::fabs(values[i]) < std::fabs(values[0]) * parameters_.svd_value_factor) {
+      null_begin = i;
+      break;
+    }
+  }
+  if (null_begin < 0) return;
+  for (int j = 0; j < n; ++j) {
+    bool in_null_space = false;
+    for (int i = null_begin; i < n && !in_null_space; ++i) in_null_space = std::fabs(svd.matrixV()(j, i)) > parameters_.svd_vector_factor;
+    if (in_null_space) problem.w(j, j) += term;
+  }
+}
+
+template <class Real>
 void ConstraintSolver<Real>::init_blocks(ConstraintProblem<Real>& problem) const {
   problem.check_blocks();
-  if (parameters_.regularization > std::numeric_limits<Real>::epsilon()) {
-    for (int i = 0; i < problem.size(); ++i) problem.w(i, i) += parameters_.regularization;
-  }
+  regularize(problem);
   for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
     problem.resolutions[b]->init(problem.first_line[b], problem.w, problem.f.data());
   }
@@ -184,9 +215,7 @@ ConstraintSolveReport PreconditionedConjugateResidualSolver<Real>::solve(Constra
   if (n == 0) return report;
   problem.check_blocks();
   const auto& p = this->parameters_;
-  if (p.regularization > std::numeric_limits<Real>::epsilon()) {
-    for (int i = 0; i < n; ++i) problem.w(i, i) += p.regularization;
-  }
+  this->regularize(problem);
   const auto& w = problem.w;
   DenseVector<Real> scale(n);
   for (int j = 0; j < n; ++j) {

@@ -54,6 +54,9 @@ ConstraintSolverParameters<double> solver_parameters(SceneData& data, Component&
   p.regularization = data.real(c, "regularizationTerm", 0.0);
   p.scale_tolerance = data.boolean(c, "scaleTolerance", true);
   p.all_verified = data.boolean(c, "allVerified", false);
+  p.svd_regularization = data.boolean(c, "useSVDForRegularization", false);
+  p.svd_value_factor = data.real(c, "svdSingularValueNullSpaceCriteriaFactor", 0.01);
+  p.svd_vector_factor = data.real(c, "svdSingularVectorNullSpaceCriteriaFactor", 0.001);
   return p;
 }
 
@@ -90,7 +93,12 @@ std::unique_ptr<ConstraintSolver<double>> build_solver(SceneData& data, std::vec
       data.warn(c.where() + ": GenericConstraintSolver was replaced in SOFA v25.12; run as " + std::string(type) +
                 " (resolutionMethod " + method + "), as SOFA's change list maps it");
     }
-    if (type == "UnbuiltGaussSeidelConstraintSolver") return std::make_unique<UnbuiltGaussSeidelSolver<double>>(p);
+    if (type == "UnbuiltGaussSeidelConstraintSolver") {
+      // Not one of SOFA's built solvers: W's singular values are not looked at there.
+      auto unbuilt = p;
+      unbuilt.svd_regularization = false;
+      return std::make_unique<UnbuiltGaussSeidelSolver<double>>(unbuilt);
+    }
     if (type == "PreconditionedConjugateResidual") return std::make_unique<PreconditionedConjugateResidualSolver<double>>(p);
     if (type == "NNCGConstraintSolver") return std::make_unique<NNCGSolver<double>>(p);
     if (type == "ImprovedJacobiConstraintSolver") {
@@ -300,6 +308,8 @@ class LoopBuilder {
     points.position = transformed(data_.points(state, "position"), data_.placement(state, "scale3d"),
                                   data_.placement(state, "rotation"), data_.placement(state, "translation"));
     if (points.position.empty()) throw make_error(state.where(), ": no position: ", user.type(), " has no point to act on");
+    carried_by_still_rigid(state, points.position);
+    warn_if_moved(state, user);
     points.free_position = points.position;
     points.free_velocity.assign(points.position.size(), Vec3<double>::Zero());
     points.rest_position = points.position;
@@ -307,20 +317,69 @@ class LoopBuilder {
     return points;
   }
 
+  // An unsimulated state under a RigidMapping from an unsimulated rigid (SOFA's example scenes
+  // attach points to a still rigid frame): its positions are local coordinates in the rigid's frame
+  // (SOFA's default) unless globalToLocalCoords. Other mappings from unsimulated states are refused.
+  void carried_by_still_rigid(Component& state, std::vector<Vec3<double>>& positions) {
+    for (Component* m : state.node->of_category("visualmapping")) {
+      if (m->has("output") && &data_.resolve_object(*m->node, m->object->attributes.at("output"), *m) != &state) continue;
+      if (m->type() != "RigidMapping") {
+        throw make_error(state.where(), " is mapped by ", m->where(), " from a state no ODE solver integrates: only a "
+                         "RigidMapping is followed there");
+      }
+      if (m->has("rigidIndexPerPoint")) throw make_error(m->where(), ": rigidIndexPerPoint on a rigid no ODE solver integrates is not supported");
+      Component* parent = nullptr;
+      if (m->has("input")) {
+        parent = &data_.resolve_state(*m->node, m->object->attributes.at("input"), *m);
+      } else if (state.node->parent && !state.node->parent->of_category("state").empty()) {
+        parent = state.node->parent->of_category("state").front();
+      }
+      if (!parent || !is_rigid_template(data_.text(*parent, "template", "Vec3d"))) {
+        throw make_error(m->where(), ": its input is not a Rigid3 MechanicalObject");
+      }
+      Component& input = *parent;
+      const Numbers poses = data_.data(input, "position");
+      const Index index = data_.whole_number(*m, "index", 0);
+      if (poses.size() % 7 != 0 || index < 0 || static_cast<std::size_t>(7 * index + 7) > poses.size()) {
+        throw make_error(m->where(), ": index ", index, " is not a rigid of ", input.where());
+      }
+      const double* pose = &poses[static_cast<std::size_t>(7 * index)];
+      const Eigen::Quaterniond q(pose[6], pose[3], pose[4], pose[5]);
+      const Vec3<double> centre(pose[0], pose[1], pose[2]);
+      if (data_.boolean(*m, "globalToLocalCoords", false)) return;  // already in the world
+      for (auto& x : positions) x = centre + q.normalized() * x;
+      return;
+    }
+  }
+
+  // SOFA's FreeMotionAnimationLoop projects every state's positions at the end of a step, so a
+  // prescribed movement on a state no solver integrates moves it there; here such a state stays put.
+  void warn_if_moved(Component& state, Component& user) {
+    for (const GraphNode* node = state.node; node; node = node->parent) {
+      for (const auto& c : node->components) {
+        const std::string_view type = c->type();
+        if (type.find("Movement") != std::string_view::npos || type.find("Oscillator") != std::string_view::npos) {
+          data_.warn(user.where() + ": " + c->where() + " moves " + node->path + " in SOFA (its FreeMotionAnimationLoop "
+                     "projects every state), but no ODE solver integrates it here: it stays put");
+          return;
+        }
+      }
+    }
+  }
+
+  // The points of a simulated state, or of one no ODE solver integrates (they stay put).
+  ConstraintPoints<double> points_or_unsimulated(Component& state, Component& user) {
+    if (!locate_(state)) {
+      if (auto still = unsimulated_points(state, user)) return std::move(*still);
+    }
+    return points_of(state, user);  // throws, saying why, when neither
+  }
+
   // SlidingLagrangianConstraint: object1's sliding_point on the segment axis_1–axis_2 of object2.
   void add_sliding(Component& c) {
     ConstraintPoints<double> sets[2];
     const char* links[2] = {"object1", "object2"};
-    for (int k = 0; k < 2; ++k) {
-      Component& state = linked_state(c, links[k]);
-      if (locate_(state)) {
-        sets[k] = points_of(state, c);
-      } else if (auto still = unsimulated_points(state, c)) {
-        sets[k] = std::move(*still);
-      } else {
-        sets[k] = points_of(state, c);  // throws, saying why
-      }
-    }
+    for (int k = 0; k < 2; ++k) sets[k] = points_or_unsimulated(linked_state(c, links[k]), c);
     if (sets[0].unsimulated && sets[1].unsimulated) {
       throw make_error("object1 and object2 are both unsimulated: nothing can move to satisfy it");
     }
@@ -377,8 +436,13 @@ class LoopBuilder {
       data_.warn(c.where() + ": load = " + std::to_string(p.load) + " lies outside [0, 1]: clamped, as SOFA does");
       p.load = std::clamp(p.load, 0.0, 1.0);
     }
+    ConstraintPoints<double> first_points = points_or_unsimulated(first, c);
+    ConstraintPoints<double> second_points = points_or_unsimulated(second, c);
+    if (first_points.unsimulated && second_points.unsimulated) {
+      throw make_error("object1 and object2 are both unsimulated: nothing can move to satisfy it");
+    }
     loop_->constraints.push_back(std::make_unique<BilateralLagrangianConstraint<double>>(
-        c.where(), points_of(first, c), points_of(second, c), std::move(p)));
+        c.where(), std::move(first_points), std::move(second_points), std::move(p)));
   }
 
   // The linear solver component of object o's solver node, if any.

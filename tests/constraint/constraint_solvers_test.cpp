@@ -190,6 +190,31 @@ TEST(PreconditionedConjugateResidualSolver, StopsAtAZeroResidualWithoutDividingB
   EXPECT_EQ(Eigen::VectorXd(zero.f), Eigen::VectorXd::Zero(3));
 }
 
+TEST(ConstraintSolver, SvdRegularizationReachesOnlyTheRowsOfWsNullSpace) {
+  // Rows 0 and 1 are the same constraint twice (W singular along (1, -1, 0, 0)); rows 2 and 3 are
+  // independent. SOFA's SVD rule regularises rows 0 and 1 only; the plain rule every row.
+  DenseMatrix<double> w(4, 4);
+  w << 1, 1, 0, 0, 1, 1, 0, 0, 0, 0, 2, 0, 0, 0, 0, 3;
+  for (bool svd : {true, false}) {
+    ConstraintProblem<double> problem;
+    problem.clear(4);
+    problem.w = w;
+    problem.dfree << -1, -1, -1, -1;
+    for (int i = 0; i < 4; ++i) problem.add_block(std::make_unique<UnilateralResolution<double>>());
+    ConstraintSolverParameters<double> p;
+    p.regularization = 0.5;
+    p.svd_regularization = svd;
+    p.tolerance = 1e-12;
+    EXPECT_TRUE(BlockGaussSeidelSolver<double>(p).solve(problem).converged);
+    Eigen::Vector4d diagonal(1.5, 1.5, svd ? 2.0 : 2.5, svd ? 3.0 : 3.5);
+    EXPECT_EQ(Eigen::Vector4d(problem.w.diagonal()), diagonal) << svd;
+    EXPECT_EQ(problem.w(0, 1), 1.0);
+    // The regularised duplicate rows share the push: 1.5 λ0 + λ1 = 1 = λ0 + 1.5 λ1.
+    EXPECT_NEAR(problem.f[0], 0.4, 1e-11);
+    EXPECT_NEAR(problem.f[1], 0.4, 1e-11);
+  }
+}
+
 TEST(ConstraintSolver, RefusesBadParameters) {
   ConstraintSolverParameters<double> p;
   p.max_iterations = 0;

@@ -241,11 +241,12 @@ TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
             "");
   // No correction on the object a constraint acts on.
   EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + beam("beam", 0, fixed)).find("no constraint correction"), std::string::npos);
-  // A constraint on a state no solver integrates.
+  // A constraint between two states no solver integrates: nothing can move.
   EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + beam("A", 0, "<LinearSolverConstraintCorrection/>") +
                         "<Node name=\"loose\"><MechanicalObject name=\"p\" position=\"0 0 0\"/></Node>"
-                        "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"@loose/p\" first_point=\"0\" second_point=\"0\"/>")
-                .find("is not simulated"),
+                        "<Node name=\"other\"><MechanicalObject name=\"p\" position=\"1 0 0\"/></Node>"
+                        "<BilateralLagrangianConstraint object1=\"@other/p\" object2=\"@loose/p\" first_point=\"0\" second_point=\"0\"/>")
+                .find("both unsimulated"),
             std::string::npos);
   // An index out of range, a non-finite rest vector.
   EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" +
@@ -271,6 +272,34 @@ TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
                         "<BilateralLagrangianConstraint object1=\"@both/a/p\" object2=\"@both/b/p\" first_point=\"0\" second_point=\"0\"/>")
                 .find("needs its own"),
             std::string::npos);
+}
+
+TEST(LagrangianScene, BilateralConstraintTiesAPointToAStateNoSolverMoves) {
+  // SOFA's BilateralLagrangianConstraint_PGS and regularization scenes: a simulated point tied to a
+  // MechanicalObject without ODE solver, which stays where the scene puts it. The beam's point 0
+  // (at the origin) is tied to (0, 0.05, 0): it is lifted there and held while the beam sags. The
+  // anchor written directly, or carried by a still rigid at (0, 0.02, 0) turned 90° about z from
+  // local coordinates (0.03, 0, 0) (SOFA's RigidMapping places it in the rigid's frame).
+  const std::string anchors[] = {
+      "<Node name=\"anchor\"><MechanicalObject name=\"p\" position=\"0 0.05 0\"/></Node>",
+      "<Node name=\"frame\"><MechanicalObject template=\"Rigid3\" position=\"0 0.02 0 0 0 0.70710678118654752 0.70710678118654752\"/>"
+      "<Node name=\"anchor\"><MechanicalObject name=\"p\" position=\"0.03 0 0\"/><RigidMapping/></Node></Node>"};
+  for (const std::string& anchor : anchors) {
+    const std::string link = anchor.find("frame") != std::string::npos ? "@frame/anchor/p" : "@anchor/p";
+    LoadedScene scene = build_scene_text(
+        "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"1000\" tolerance=\"1e-12\"/>" +
+            beam("A", 0, "<LinearSolverConstraintCorrection/>") + anchor +
+            "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"" + link + "\" first_point=\"0\" second_point=\"0\"/>",
+        kRoot);
+    bool told = false;
+    for (const auto& line : scene.info) told = told || line.find("is not simulated (no ODE solver): its points stay put") != std::string::npos;
+    EXPECT_TRUE(told) << link;
+    const auto& state = scene.simulation.objects[0].system.state;
+    for (int step = 0; step < 100; ++step) scene.simulation.step();
+    EXPECT_LT((state.position[0] - Vec3<double>(0, 0.05, 0)).norm(), 1e-9) << link;
+    EXPECT_LT(state.position[5].y(), -0.05) << "the rest of the beam falls";
+    EXPECT_EQ(scene.simulation.constraint_report().rows, 3);
+  }
 }
 
 TEST(LagrangianScene, LcpSolverWarnsThatItSolvesRowsAsContacts) {

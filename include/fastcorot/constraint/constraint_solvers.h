@@ -18,6 +18,13 @@ struct ConstraintSolverParameters {
   Real regularization = 0;      // added to W's diagonal when above machine epsilon
   bool scale_tolerance = true;  // tolerance × rows
   bool all_verified = false;    // stop only when every block's error is below the tolerance
+  // SOFA's useSVDForRegularization (built solvers): the regularisation only on the rows that take
+  // part in W's near-null space, found by a singular value decomposition of W: singular values
+  // below svd_value_factor × the largest, and on their vectors the rows whose entry exceeds
+  // svd_vector_factor in magnitude.
+  bool svd_regularization = false;
+  Real svd_value_factor = Real(0.01);
+  Real svd_vector_factor = Real(0.001);
 };
 
 // What one solve did.
@@ -47,7 +54,9 @@ class ConstraintSolver {
   // |W_bb Δλ|_l for a block, rescaled by a block's own tolerance). Returns the summed error; sets
   // `verified` false when a row's error exceeds `tolerance`.
   Real sweep(ConstraintProblem<Real>& problem, Real tolerance, bool& verified) const;
-  // Each block's init (warm starts), then regularisation.
+  // W's diagonal += the regularisation (on every row, or on the near-null space's rows with SVD).
+  void regularize(ConstraintProblem<Real>& problem) const;
+  // Regularisation, then each block's init (warm starts).
   void init_blocks(ConstraintProblem<Real>& problem) const;
   // Each block's store (what the next step starts from), after the solve.
   void store_blocks(ConstraintProblem<Real>& problem) const;
