@@ -4,6 +4,7 @@
 // rows apply at each point. SOFA's FixedLagrangianConstraint draws nothing; here it shows its
 // points and their holding forces too.
 #include "fastcorot/constraint/constraint_drawing.h"
+#include "fastcorot/constraint/sliding_lagrangian_constraint.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/sim/simulation.h"
@@ -89,6 +90,30 @@ void BilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) c
 }
 
 template <class Real>
+void SlidingLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  const std::size_t p = drawer.point(first_, static_cast<std::size_t>(parameters_.sliding_point));
+  const std::size_t a = drawer.point(second_, static_cast<std::size_t>(parameters_.axis_1));
+  const std::size_t b = drawer.point(second_, static_cast<std::size_t>(parameters_.axis_2));
+  drawer.pair(a, b);
+  // Rows of the last build (directions_ on P): collapsed, +e on P and -e on A; otherwise rows 0 and
+  // 1 across the axis, -(1 - β) and -β of it on A and B; row 2 -a on A; row 3 +a on B.
+  if (this->rows_ != static_cast<int>(directions_.size())) return;
+  for (int r = 0; r < this->rows_; ++r) {
+    const int row = this->first_row_ + r;
+    const Vec3<Real>& d = directions_[static_cast<std::size_t>(r)];
+    drawer.force(p, row, d);
+    if (collapsed() || r == 2) {
+      drawer.force(a, row, -d);
+    } else if (r == 3) {
+      drawer.force(b, row, -d);
+    } else {
+      drawer.force(a, row, -(1 - beta_) * d);
+      drawer.force(b, row, -beta_ * d);
+    }
+  }
+}
+
+template <class Real>
 void FreeMotionAnimationLoop<Real>::draw(std::span<const SimulatedObject<Real>> objects, Real dt,
                                          ConstraintDrawing& drawing) const {
   ConstraintDrawer<Real> drawer(objects, constraint_forces(), dt, drawing);
@@ -104,6 +129,8 @@ template void FixedLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) c
 template void FixedLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void BilateralLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
 template void BilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
+template void SlidingLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
+template void SlidingLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void FreeMotionAnimationLoop<float>::draw(std::span<const SimulatedObject<float>>, float, ConstraintDrawing&) const;
 template void FreeMotionAnimationLoop<double>::draw(std::span<const SimulatedObject<double>>, double, ConstraintDrawing&) const;
 

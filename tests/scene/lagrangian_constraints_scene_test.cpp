@@ -53,6 +53,24 @@ TEST(SlidingLagrangianConstraintScene, BeadSlidesFreelyAlongItsRail) {
   EXPECT_TRUE(said) << "the rail is reported as not simulated";
 }
 
+TEST(SlidingLagrangianConstraintScene, DrawsTheBeadTheRailAndTheForcesThatHoldIt) {
+  // One step from rest: the rows across the rail cancel gravity's part across it, so the force on
+  // the bead is -m g_perp = (0, 9.81, -0.5); the rail's ends take the opposite force, split by β =
+  // x / 4 = 0.125 (the bead's place along the rail at the step's start), and the three sum to zero.
+  LoadedScene scene = build_scene_text(bead_on_rail(0.5), "dt=\"0.01\" gravity=\"2 -9.81 0.5\"");
+  scene.simulation.step();
+  ConstraintDrawing drawing;
+  scene.simulation.constraints->draw(scene.simulation.objects, scene.simulation.dt, drawing);
+  ASSERT_EQ(drawing.points.size(), 3u);
+  ASSERT_EQ(drawing.pairs.size(), 1u);
+  EXPECT_EQ(drawing.pairs[0], (std::array<std::size_t, 2>{1, 2})) << "the rail's ends joined";
+  const Vec3<double> held(0, 9.81, -0.5);
+  EXPECT_LT((drawing.points[0].force - held).norm(), 1e-9);
+  EXPECT_LT((drawing.points[1].force + 0.875 * held).norm(), 1e-9);
+  EXPECT_LT((drawing.points[2].force + 0.125 * held).norm(), 1e-9);
+  EXPECT_EQ(drawing.points[2].position, Vec3<double>(4, 0, 0));
+}
+
 TEST(SlidingLagrangianConstraintScene, BeadSlidesFreelyAlongAnInclinedRail) {
   // A rail from (0, 0, 0) to (-2, -1, 0.5) under gravity (0, -9.81, 0): g_a = g·a along it.
   const std::string body = kLoop +

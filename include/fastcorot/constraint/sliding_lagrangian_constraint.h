@@ -38,6 +38,8 @@ class SlidingLagrangianConstraint final : public LagrangianConstraint<Real> {
   void build(ConstraintRows<Real>& rows) override;
   void violation(ConstraintOrder order, Real dt, Real* dfree) const override;
   void add_resolutions(ConstraintProblem<Real>& problem) override;
+  // The sliding point and the segment's ends, the segment joined (constraint_drawing.cpp).
+  void draw(ConstraintDrawer<Real>& drawer) const override;
 
   const Parameters& parameters() const { return parameters_; }
   // The last build's row directions on the sliding point (4, or 3 when A and B coincide) and β.
