@@ -73,12 +73,13 @@ def canonical(kind, name, value, where):
         if array.ndim > 1:
             raise ValueError(f"{label}: expected a number or a list of numbers, got shape {array.shape}")
         return array.reshape(-1)
-    if kind == "vec3s":
-        array = _array(value, label, False, "an (n, 3) array of numbers")
-        if array.shape == (3,):
-            array = array.reshape(1, 3)
-        if array.ndim != 2 or array.shape[1] != 3:
-            raise ValueError(f"{label}: expected an (n, 3) array of numbers, got shape {array.shape}")
+    if kind in ("vec3s", "vec6s"):
+        width = 3 if kind == "vec3s" else 6
+        array = _array(value, label, False, f"an (n, {width}) array of numbers")
+        if array.shape == (width,):
+            array = array.reshape(1, width)
+        if array.ndim != 2 or array.shape[1] != width:
+            raise ValueError(f"{label}: expected an (n, {width}) array of numbers, got shape {array.shape}")
         return array
     if kind == "indices":
         array = _array(value, label, True, "integer indices")
@@ -150,8 +151,9 @@ def from_text(kind, name, text, where):
         if array.size != 1:
             raise ValueError(f"{label}: needs one number, got {array.size}")
         return array[0].item()
-    if kind == "vec3s":
-        if array.size % 3 != 0:
-            raise ValueError(f"{label}: needs 3 numbers per point, got {array.size} numbers")
-        array = array.reshape(-1, 3)
+    if kind in ("vec3s", "vec6s"):
+        width = 3 if kind == "vec3s" else 6
+        if array.size % width != 0:
+            raise ValueError(f"{label}: needs {width} numbers per {'point' if width == 3 else 'pair'}, got {array.size} numbers")
+        array = array.reshape(-1, width)
     return canonical(kind, name, array, where)

@@ -110,10 +110,22 @@ class Object:
             warnings.warn(line, SceneWarning, stacklevel=4)
 
     def _kind(self, name):
+        if self._type == "BilateralLagrangianConstraint" and name == "rest_vector" and self._rigid_pair():
+            return "vec6s"  # SOFA's Rigid3 variant: 6 numbers per pair (offset, rotation)
         spec = _spec(self._type)
         if spec and name in spec[1]:
             return spec[1][name][0]
         return None
+
+    def _rigid_pair(self):
+        """A Rigid3 pair constraint: by its template, or by what the running constraint holds."""
+        template = self._data.get("template")
+        if isinstance(template, str) and template.startswith("Rigid"):
+            return True
+        if self._lagrangian is not None and self._lagrangian[1] is not None:
+            core, index = self._lagrangian
+            return core.bilateral(index)["rest_vector"].shape[1] == 6
+        return False
 
     def data_names(self):
         """The data this object has: those given, then the others its component supports."""
@@ -230,7 +242,8 @@ class Object:
             canonical = self._canonical(name, value)
             live = from_text(self._kind(name), name, canonical, self.location) if isinstance(canonical, str) else canonical
             try:
-                core.set_bilateral(index, **{name: np.asarray(live, dtype=float).reshape(-1, 3) if name == "rest_vector" else live})
+                width = 6 if self._rigid_pair() else 3
+                core.set_bilateral(index, **{name: np.asarray(live, dtype=float).reshape(-1, width) if name == "rest_vector" else live})
             except ValueError as error:
                 raise ValueError(f"{self.location}: {self._label()}: {error}") from None
             self._data[name] = canonical

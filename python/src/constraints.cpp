@@ -7,6 +7,7 @@
 #include "simulation_core.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/constraint/rigid_lagrangian_constraints.h"
 
 #include <pybind11/stl.h>
 
@@ -24,12 +25,52 @@ FreeMotionAnimationLoop<double>& loop_of(SimulationCore& c) {
   return *loop;
 }
 
-BilateralLagrangianConstraint<double>& bilateral(SimulationCore& c, std::size_t index) {
+LagrangianConstraint<double>& constraint_at(SimulationCore& c, std::size_t index) {
   auto& constraints = loop_of(c).constraints;
   if (index >= constraints.size()) throw py::index_error("constraint " + std::to_string(index) + " out of range");
-  auto* constraint = dynamic_cast<BilateralLagrangianConstraint<double>*>(constraints[index].get());
-  if (!constraint) throw py::value_error(constraints[index]->where() + " is not a BilateralLagrangianConstraint");
-  return *constraint;
+  return *constraints[index];
+}
+
+BilateralLagrangianConstraint<double>& bilateral(SimulationCore& c, std::size_t index) {
+  auto& constraint = constraint_at(c, index);
+  auto* bilateral = dynamic_cast<BilateralLagrangianConstraint<double>*>(&constraint);
+  if (!bilateral) throw py::value_error(constraint.where() + " is not a BilateralLagrangianConstraint");
+  return *bilateral;
+}
+
+// A Rigid3 BilateralLagrangianConstraint (null for any other constraint).
+RigidBilateralLagrangianConstraint<double>* rigid_bilateral(SimulationCore& c, std::size_t index) {
+  return dynamic_cast<RigidBilateralLagrangianConstraint<double>*>(&constraint_at(c, index));
+}
+
+// A (pairs × 6) array of a Rigid3 pair's rest values (v then ω).
+py::array_t<double> rigid_rest(const std::vector<std::array<double, 6>>& rest) {
+  py::array_t<double> array({static_cast<py::ssize_t>(rest.size()), py::ssize_t{6}});
+  for (std::size_t k = 0; k < rest.size(); ++k) {
+    for (int a = 0; a < 6; ++a) array.mutable_at(static_cast<py::ssize_t>(k), a) = rest[k][static_cast<std::size_t>(a)];
+  }
+  return array;
+}
+
+// A script's rest_vector for a Rigid3 pair constraint: (pairs × 6) finite numbers; activate and
+// load are accepted and, as in SOFA's Rigid3 variant, have no effect (warned).
+void set_rigid_rest(RigidBilateralLagrangianConstraint<double>& constraint, py::object rest, py::object activate, py::object load) {
+  if (!activate.is_none() || !load.is_none()) {
+    const std::string message = constraint.where() + ": activate and load have no effect on a Rigid3 BilateralLagrangianConstraint (as in SOFA)";
+    if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) < 0) throw py::error_already_set();
+  }
+  if (rest.is_none()) return;
+  const auto array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(rest);
+  if (!array || array.size() % 6 != 0) {
+    throw py::value_error(constraint.where() + ": rest_vector: 6 numbers per Rigid3 pair (vx vy vz wx wy wz) are needed");
+  }
+  std::vector<std::array<double, 6>> values(static_cast<std::size_t>(array.size() / 6));
+  for (py::ssize_t i = 0; i < array.size(); ++i) {
+    const double v = array.data()[i];
+    if (!std::isfinite(v)) throw py::value_error(constraint.where() + ": rest_vector[" + std::to_string(i / 6) + "] is not finite");
+    values[static_cast<std::size_t>(i / 6)][static_cast<std::size_t>(i % 6)] = v;
+  }
+  constraint.set_rest(std::move(values));
 }
 
 }  // namespace
@@ -72,6 +113,14 @@ void bind_constraints(py::class_<SimulationCore>& core) {
           "bilateral",
           [](SimulationCore& c, std::size_t index) {
             std::lock_guard lock(c.stepping);
+            if (auto* rigid = rigid_bilateral(c, index)) {
+              // SOFA's Rigid3 variant reads rest_vector (6 numbers per pair), not activate or load.
+              py::dict d;
+              d["rest_vector"] = rigid_rest(rigid->parameters().rest);
+              d["activate"] = true;
+              d["load"] = 1.0;
+              return d;
+            }
             auto& p = bilateral(c, index).parameters();
             py::array_t<double> rest({static_cast<py::ssize_t>(p.rest.size()), py::ssize_t{3}});
             for (std::size_t k = 0; k < p.rest.size(); ++k) {
@@ -88,6 +137,10 @@ void bind_constraints(py::class_<SimulationCore>& core) {
           "set_bilateral",
           [](SimulationCore& c, std::size_t index, py::object rest, py::object activate, py::object load) {
             std::lock_guard lock(c.stepping);
+            if (auto* rigid = rigid_bilateral(c, index)) {
+              set_rigid_rest(*rigid, rest, activate, load);
+              return;
+            }
             auto& constraint = bilateral(c, index);
             auto& p = constraint.parameters();
             if (!rest.is_none()) {

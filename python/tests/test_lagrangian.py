@@ -94,3 +94,34 @@ def test_bad_values_are_refused_naming_the_constraint():
     assert root.tie.load.value == 1.0
     with pytest.raises(ValueError, match="rest_vector"):
         root.tie.rest_vector.value = [[np.nan, 0, 0]]
+
+
+def test_a_rigid_pair_constraint_reads_and_takes_six_numbers_per_rest_vector():
+    """A Rigid3 BilateralLagrangianConstraint (SOFA's Rigid3 specialisation): rest_vector holds 6
+    numbers per pair (offset, rotation); a script moves the hanging body's offset and it follows."""
+    root = Sofa.Core.Node("root")
+    root.dt = DT
+    root.gravity = [0, -9.81, 0]
+    root.addObject("FreeMotionAnimationLoop")
+    root.addObject("BlockGaussSeidelConstraintSolver", tolerance=1e-14, maxIterations=1000)
+    for name, pose, fixed in (("a", [0, 0, 0, 0, 0, 0, 1], True), ("b", [0, -1, 0, 0, 0, 0, 1], False)):
+        body = root.addChild(name)
+        body.addObject("EulerImplicitSolver", rayleighMass=0, rayleighStiffness=0)
+        body.addObject("CGLinearSolver", iterations=100, tolerance=1e-30, threshold=1e-30)
+        body.addObject("MechanicalObject", name="frame", template="Rigid3d", position=[pose])
+        body.addObject("UniformMass", totalMass=2)
+        body.addObject("UncoupledConstraintCorrection")
+        if fixed:
+            body.addObject("FixedProjectiveConstraint", indices=[0])
+    root.addObject("BilateralLagrangianConstraint", name="tie", template="Rigid3d", object1="@a/frame", object2="@b/frame",
+                   first_point=[0], second_point=[0], rest_vector=[[0, -1, 0, 0, 0, 0]])
+    Sofa.Simulation.init(root)
+    np.testing.assert_array_equal(np.asarray(root.tie.rest_vector.value).reshape(-1), [0, -1, 0, 0, 0, 0])
+    Sofa.Simulation.animate(root, DT)
+    root.tie.rest_vector.value = [[0.1, -1, 0, 0, 0, 0]]
+    np.testing.assert_array_equal(np.asarray(root.tie.rest_vector.value).reshape(-1), [0.1, -1, 0, 0, 0, 0])
+    for _ in range(3):
+        Sofa.Simulation.animate(root, DT)
+    np.testing.assert_allclose(root.b.frame.position.value[0][:3], [0.1, -1, 0], atol=1e-9)
+    with pytest.raises(ValueError, match=r"expected an \(n, 6\) array"):
+        root.tie.rest_vector.value = [[0, 1, 0, 0]]
