@@ -171,7 +171,7 @@ void PrecomputedConstraintCorrection<Real>::add_compliance(SimulatedObject<Real>
       h(3 * slot[static_cast<std::size_t>(block)] + static_cast<Index>(it.row()) % 3, k) = it.value();
     }
   }
-  if (parameters_.rotations) {
+  if (parameters_.rotations == Rotations::both) {
     const auto& turn = rotations(object);
     for (Index j = 0; j < s; ++j) {
       h.middleRows(3 * j, 3) = (turn[static_cast<std::size_t>(support_[static_cast<std::size_t>(j)])].transpose() *
@@ -198,14 +198,15 @@ void PrecomputedConstraintCorrection<Real>::correct(SimulatedObject<Real>& objec
                                                     ConstraintOrder order, Real dt) {
   check_size(object);
   const std::size_t n = impulse.size();
-  const std::vector<Mat3<Real>>* turn = parameters_.rotations ? &rotations(object) : nullptr;
-  // Hᵀλ on the points it reaches, in their start frames when rotating.
+  const std::vector<Mat3<Real>>* turn = parameters_.rotations != Rotations::none ? &rotations(object) : nullptr;
+  const bool into_start_frame = parameters_.rotations == Rotations::both;
+  // Hᵀλ on the points it reaches (in their start frames with both rotations).
   support_.clear();
   local_.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (impulse[i].isZero(0)) continue;
     support_.push_back(static_cast<Index>(i));
-    local_.push_back(turn ? Vec3<Real>((*turn)[i].transpose() * impulse[i]) : impulse[i]);
+    local_.push_back(into_start_frame ? Vec3<Real>((*turn)[i].transpose() * impulse[i]) : impulse[i]);
   }
   auto& x = object.system.state.position;
   auto& v = object.system.state.velocity;

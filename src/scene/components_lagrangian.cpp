@@ -110,10 +110,10 @@ std::vector<ComponentSpec> lagrangian_components() {
        "The object's dense compliance C = h P A₀⁻¹ P, computed once at the start (A₀ factorised, exact to round-off; SOFA's CG at 1e-20) "
        "or read from SOFA's cache file <node name>-<3 × points>-<dt>.comp (raw doubles, row after row); W += H C Hᵀ (1/dt in "
        "velocity order), correction x = x_free + C Hᵀλ, v = v_free + C Hᵀλ / dt. Points (Vec3) only, C at most 4 GiB.",
-       {{"rotations", "bool", "false", "turn C by the point rotations of a TetrahedronFEMForceField or HexahedronFEMForceField each step "
-                                      "(R C Rᵀ; SOFA master's option has no effect)"},
+       {{"rotations", "bool", "false", "as SOFA master: under LCPConstraintSolver the response is turned by the point rotations of a "
+                                      "TetrahedronFEMForceField or HexahedronFEMForceField (dx = R C Hᵀλ); under the other solvers no effect (warned)"},
         {"restDeformations", "bool", "false", "accepted (SOFA reads it nowhere)"},
-        {"recompute", "bool", "false", "always compute C, never read a cache file (it is still written)"},
+        {"recompute", "bool", "false", "compute C rather than search the data paths for a cache file (fileDir's is still read, as SOFA); written either way"},
         {"regularizationTerm", "real", "0", "added to W's diagonal, once per point each row touches (as SOFA's loop adds it)"},
         {"debugViewFrameScale", "real", "1", "accepted (display of the rotations)"},
         {"fileCompliance", "file", "", "the cache file to read (found as mesh files are); default: SOFA's name on the data paths"},

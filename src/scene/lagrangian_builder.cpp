@@ -152,6 +152,14 @@ class LoopBuilder {
     }
     typename FreeMotionAnimationLoop<double>::Parameters parameters;
     parameters.solve_velocity_constraint_first = data_.boolean(loop_component, "solveVelocityConstraintFirst", false);
+    if (solver_component && solver_component->type() == "LCPConstraintSolver" && parameters.solve_velocity_constraint_first) {
+      // SOFA's LCP solver builds its problem with its own parameters (position violations, both x
+      // and v corrected) whatever the loop asks: the two do not combine into one defined step.
+      throw error_at(loop_component.where(), make_error("solveVelocityConstraintFirst with ", solver_component->where(),
+                                                        ": SOFA's LCPConstraintSolver always solves on positions; use "
+                                                        "another constraint solver, or solveVelocityConstraintFirst=\"0\""));
+    }
+    lcp_ = solver_component && solver_component->type() == "LCPConstraintSolver";
     loop_ = std::make_shared<FreeMotionAnimationLoop<double>>(parameters, std::move(solver));
     for (Component* c : components) {
       try {
@@ -327,7 +335,9 @@ class LoopBuilder {
         throw make_error(state.where(), " is mapped by ", m->where(), " from a state no ODE solver integrates: only a "
                          "RigidMapping is followed there");
       }
-      if (m->has("rigidIndexPerPoint")) throw make_error(m->where(), ": rigidIndexPerPoint on a rigid no ODE solver integrates is not supported");
+      for (const char* data : {"rigidIndexPerPoint", "indexFromEnd", "initialPoints", "useX0"}) {
+        if (m->has(data)) throw make_error(m->where(), ": ", data, " on a rigid no ODE solver integrates is not supported");
+      }
       Component* parent = nullptr;
       if (m->has("input")) {
         parent = &data_.resolve_state(*m->node, m->object->attributes.at("input"), *m);
@@ -512,7 +522,7 @@ class LoopBuilder {
       throw make_error(simulation_.objects[o].path, " already has a ", kind_[o] == "uncoupled" ? "UncoupledConstraintCorrection" : kind_[o],
                        ": one kind of correction per ODE solver's object");
     }
-    loop_->corrections.push_back(build_precomputed_correction(data_, info_, c, simulation_, where));
+    loop_->corrections.push_back(build_precomputed_correction(data_, info_, c, simulation_, where, lcp_));
     kind_[o] = "PrecomputedConstraintCorrection";
   }
 
@@ -638,6 +648,7 @@ class LoopBuilder {
   Simulation<double>& simulation_;
   const std::vector<const GraphNode*>& solver_nodes_;
   const LocateState& locate_;
+  bool lcp_ = false;  // the loop's solver is an LCPConstraintSolver
   std::shared_ptr<FreeMotionAnimationLoop<double>> loop_;
   std::map<std::size_t, std::string> kind_;  // the kind of correction of each corrected object
   std::map<std::size_t, std::vector<std::pair<Index, Index>>> covered_;  // blocks [first, end) with an uncoupled correction

@@ -11,7 +11,7 @@ namespace fastcorot::scene_detail {
 
 std::unique_ptr<ConstraintCorrection<double>> build_precomputed_correction(SceneData& data, std::vector<std::string>& info,
                                                                            Component& c, Simulation<double>& simulation,
-                                                                           const StateLocation& where) {
+                                                                           const StateLocation& where, bool lcp) {
   auto& object = simulation.objects[where.object];
   if (where.rigid || is_rigid_template(data.text(c, "template", "Vec3d"))) {
     throw make_error("on Rigid3 states it is not simulated yet (points only)");
@@ -25,11 +25,19 @@ std::unique_ptr<ConstraintCorrection<double>> build_precomputed_correction(Scene
                      "EulerImplicitSolver)");
   }
   typename PrecomputedConstraintCorrection<double>::Parameters p;
-  p.rotations = data.boolean(c, "rotations", false);
+  using Rotations = typename PrecomputedConstraintCorrection<double>::Rotations;
   p.regularization = data.real(c, "regularizationTerm", 0.0);
-  if (p.rotations && !has_rotation_finder(object.system)) {
-    throw make_error("rotations=\"1\" needs the point rotations of a TetrahedronFEMForceField or HexahedronFEMForceField on ",
-                     object.path, " (SOFA's RotationFinder; SOFA only warns and does not rotate)");
+  if (data.boolean(c, "rotations", false)) {
+    if (!has_rotation_finder(object.system)) {
+      data.warn(c.where() + ": rotations=\"1\" finds no point rotations (a TetrahedronFEMForceField or HexahedronFEMForceField "
+                "on " + object.path + "): not rotated, as SOFA warns and does not rotate");
+    } else if (lcp) {
+      p.rotations = Rotations::response;  // SOFA's applyContactForce turns dx = C Hᵀλ
+    } else {
+      data.warn(c.where() + ": rotations=\"1\" has no effect under SOFA master's Gauss–Seidel family of constraint solvers "
+                "(it turns a copy of H and a vector the correction does not read, since sofa PR #3894): "
+                "reproduced here, the compliance is not rotated");
+    }
   }
   const auto points = static_cast<std::size_t>(object.system.size());
   check_precomputed_compliance_size(c.where(), points);
@@ -39,10 +47,11 @@ std::unique_ptr<ConstraintCorrection<double>> build_precomputed_correction(Scene
   const char* file_data = c.has("fileCompliance") ? "fileCompliance" : "filePrefix";
   const std::string given = data.text(c, file_data, "");
   const std::filesystem::path scene = c.object->location.file;
-  // The file to read: fileDir/<name>, else the given file, else SOFA's name on the data paths.
+  // The file to read: fileDir/<name> (read whenever fileDir is set, recompute or not, as SOFA's
+  // loadCompliance), else the given file, else SOFA's name on the data paths (unless recompute).
   // SOFA reports a named file it cannot load, then computes C.
   std::optional<std::filesystem::path> cached;
-  if (!recompute) {
+  if (!recompute || !dir.empty()) {
     const std::string wanted = given.empty() ? name : given;
     std::string missing;
     if (!dir.empty()) {

@@ -83,18 +83,13 @@ SimulatedObject<double> merge_objects(std::vector<SimulatedObject<double>> parts
   system.gravity = parts.front().system.gravity;
   Index total = 0;
   for (const auto& part : parts) total += part.system.size();
-  // A part without mass whose every point is fixed (an anchor that SOFA's springs pull on) weighs
-  // nothing beside parts with masses: zero masses, which its fixed points never use. A part with
-  // neither mass nor force field (a static obstacle's surface under the solver's node) is one too:
-  // nothing acts on it, so SOFA's solve leaves it where it is; its points are held.
+  // A part without mass whose every point is fixed (an anchor that SOFA's springs pull on, or a
+  // still surface the scene builder holds) weighs nothing beside parts with masses: zero masses,
+  // which its fixed points never use.
   bool any_mass = false;
   for (const auto& part : parts) any_mass = any_mass || part.system.mass.size() != 0;
   for (auto& part : parts) {
     auto& s = part.system;
-    if (any_mass && s.mass.size() == 0 && s.force_fields.empty() && !s.rigids) {
-      s.fixed.resize(static_cast<std::size_t>(s.size()));
-      for (Index i = 0; i < s.size(); ++i) s.fixed[static_cast<std::size_t>(i)] = i;
-    }
     if (any_mass && s.mass.size() == 0 && static_cast<Index>(s.fixed.size()) == s.size()) {
       s.mass = Mass<double>::lumped(std::vector<double>(static_cast<std::size_t>(s.size()), 0.0));
     }

@@ -100,7 +100,7 @@ TEST(PrecomputedConstraintCorrection, WIsHtCHWithSofasRegularisation) {
   const Eigen::SparseMatrix<double> ht = projection_matrix(object.system) * rows_transposed(object.system.size());
   const Eigen::MatrixXd h = Eigen::MatrixXd(ht);
   const Eigen::MatrixXd expected = h.transpose() * Eigen::MatrixXd(*c) * h;
-  PrecomputedConstraintCorrection<double> correction("test", 0, c, {false, 0.25});
+  PrecomputedConstraintCorrection<double> correction("test", 0, c, {PrecomputedConstraintCorrection<double>::Rotations::none, 0.25});
   DenseMatrix<double> w = DenseMatrix<double>::Zero(5, 5);
   correction.add_compliance(object, ht, ConstraintOrder::position_and_velocity, kDt, w);
   // SOFA adds the regularisation once per point of the row: row 2 touches two points; row 3's
@@ -150,7 +150,8 @@ TEST(PrecomputedConstraintCorrection, RotationsTurnTheComplianceByThePointRotati
   const Eigen::SparseMatrix<double> ht = projection_matrix(object.system) * rows_transposed(object.system.size());
   const Eigen::MatrixXd h = Eigen::MatrixXd(ht);
   const Eigen::MatrixXd turned = r * Eigen::MatrixXd(*c) * r.transpose();
-  PrecomputedConstraintCorrection<double> correction("test", 0, c, {true, 0});
+  using Rotations = PrecomputedConstraintCorrection<double>::Rotations;
+  PrecomputedConstraintCorrection<double> correction("test", 0, c, {Rotations::both, 0});
   DenseMatrix<double> w = DenseMatrix<double>::Zero(5, 5);
   correction.add_compliance(object, ht, ConstraintOrder::position_and_velocity, kDt, w);
   const Eigen::MatrixXd expected = h.transpose() * turned * h;
@@ -162,9 +163,20 @@ TEST(PrecomputedConstraintCorrection, RotationsTurnTheComplianceByThePointRotati
   correction.correct(object, testing::points_of(impulse), ConstraintOrder::position_and_velocity, kDt);
   const Eigen::VectorXd dx = turned * impulse;
   EXPECT_LT((testing::flat_vector(object.system.state.position) - testing::flat_vector(x_free) - dx).norm(), 1e-14);
-  // Without a rotation finder (FastTetrahedralCorotationalForceField), rotations are refused.
+  // SOFA's LCP path: W unrotated (H C Hᵀ), the response turned, dx = R C Hᵀλ.
+  SimulatedObject<double> lcp = grid_object(true, turn);
+  PrecomputedConstraintCorrection<double> response("test", 0, c, {Rotations::response, 0});
+  DenseMatrix<double> w_response = DenseMatrix<double>::Zero(5, 5);
+  response.add_compliance(lcp, ht, ConstraintOrder::position_and_velocity, kDt, w_response);
+  const Eigen::MatrixXd unrotated = h.transpose() * Eigen::MatrixXd(*c) * h;
+  EXPECT_LT((Eigen::MatrixXd(w_response) - unrotated).norm(), 1e-13 * unrotated.norm());
+  const auto lcp_free = lcp.system.state.position;
+  response.correct(lcp, testing::points_of(impulse), ConstraintOrder::position_and_velocity, kDt);
+  const Eigen::VectorXd turned_response = r * (Eigen::MatrixXd(*c) * impulse);
+  EXPECT_LT((testing::flat_vector(lcp.system.state.position) - testing::flat_vector(lcp_free) - turned_response).norm(), 1e-14);
+  // Without a rotation finder (FastTetrahedralCorotationalForceField), rotating is an error.
   SimulatedObject<double> fast = grid_object();
-  PrecomputedConstraintCorrection<double> unfound("test", 0, c, {true, 0});
+  PrecomputedConstraintCorrection<double> unfound("test", 0, c, {Rotations::both, 0});
   try {
     unfound.add_compliance(fast, ht, ConstraintOrder::position_and_velocity, kDt, w);
     FAIL() << "accepted";

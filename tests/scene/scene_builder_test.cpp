@@ -418,6 +418,20 @@ TEST_F(VisualSurfaces, AStateReadsASurfaceLoaderAndAStaticSurfaceUnderASolverSta
   EXPECT_LT(state.position[0].y(), 5 - 0.04) << "the body falls (g t² / 2 = 0.05)";
   for (std::size_t i = 1; i < 5; ++i) EXPECT_EQ(state.velocity[i], Vec3<double>::Zero()) << "the box stays put";
   EXPECT_EQ(state.position[2], Vec3<double>(2, 0, 0));
+  // A massless part something acts on is no still surface: refused as before (a force on it, or a
+  // spring that ties it to the body).
+  const std::string body = R"(<Node name="root" dt="0.01"><Node name="solver"><EulerImplicitSolver/><CGLinearSolver/>
+    <Node name="body"><MechanicalObject name="p" position="5 5 5"/><UniformMass totalMass="1"/></Node>
+    <Node name="handle"><MechanicalObject name="p" position="0 0 0"/>)";
+  for (const std::string acting : {std::string(R"(<ConstantForceField force="1 0 0"/></Node>)"),
+                                   std::string(R"(</Node><SpringForceField object1="@body/p" object2="@handle/p" spring="0 0 10 0 1"/>)")}) {
+    try {
+      load(body + acting + "</Node></Node>");
+      ADD_FAILURE() << acting;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("a mass on some of the objects"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST_F(VisualSurfaces, IdentityMappingNeedsOnePointPerPointAndBadSurfacesAreErrors) {

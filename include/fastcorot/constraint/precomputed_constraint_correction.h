@@ -10,11 +10,13 @@
 //   reaches; SOFA's regularizationTerm is added to a row's diagonal once per point the row
 //   touches, as SOFA's loop adds it.
 //   correction dx = C Hᵀλ: x = x_free + dx, v = v_free + dx / dt (velocity order: v only).
-//   rotations: Hᵀ's blocks turned into the start frame by each point's rotation Rᵀ and the answer
-//   turned back by R (dx = R C Rᵀ Hᵀλ), the rotations of the object's rotation finder
-//   (sim/rotation_finder.h). SOFA master's code turns a copy of H and the state's dx vector rather
-//   than the correction (since sofa PR #3894), so its option changes nothing; here it does what it
-//   says. Design and the cache file: docs/constraints.md.
+//   rotations, R each point's rotation from the object's rotation finder (sim/rotation_finder.h):
+//   SOFA master turns a copy of H (so W stays H C Hᵀ) and the state's dx vector (since sofa PR
+//   #3894). Under its Gauss–Seidel family the correction does not read that vector, so the option
+//   changes nothing (Rotations::none, what the scene builder picks, with a warning); under its
+//   LCPConstraintSolver the correction is that vector, turned: dx = R C Hᵀλ (Rotations::response).
+//   Rotations::both is the exact rotated compliance, W = H R C Rᵀ Hᵀ and dx = R C Rᵀ Hᵀλ, for
+//   callers of this class. Design and the cache file: docs/constraints.md.
 #pragma once
 
 #include "fastcorot/constraint/constraint_corrections.h"
@@ -56,8 +58,9 @@ void write_compliance_file(const std::filesystem::path& file, const DenseMatrix<
 template <class Real>
 class PrecomputedConstraintCorrection final : public ConstraintCorrection<Real> {
  public:
+  enum class Rotations { none, response, both };  // see above
   struct Parameters {
-    bool rotations = false;   // SOFA's `rotations`
+    Rotations rotations = Rotations::none;
     Real regularization = 0;  // SOFA's `regularizationTerm`
   };
   // `compliance` is C for the whole object (3#V square); throws fastcorot::Error when it is not
