@@ -11,15 +11,6 @@
 
 namespace fastcorot {
 
-namespace {
-
-template <class Real>
-Vec3<Real> unit(int a) {
-  return Vec3<Real>::Unit(a);
-}
-
-}  // namespace
-
 template <class Real>
 ConstraintDrawer<Real>::ConstraintDrawer(std::span<const SimulatedObject<Real>> objects, std::span<const Real> impulses,
                                          Real dt, ConstraintDrawing& drawing)
@@ -67,7 +58,7 @@ void FixedLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const
   for (std::size_t k = 0; k < indices_.size(); ++k) {
     const std::size_t p = drawer.point(points_, static_cast<std::size_t>(indices_[k]));
     if (!built) continue;
-    for (int a = 0; a < 3; ++a) drawer.force(p, this->first_row_ + static_cast<int>(3 * k) + a, unit<Real>(a));
+    for (int a = 0; a < 3; ++a) drawer.force(p, this->first_row_ + static_cast<int>(3 * k) + a, Vec3<Real>::Unit(a));
   }
 }
 
@@ -83,8 +74,8 @@ void BilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) c
     if (!built) continue;
     for (int axis = 0; axis < 3; ++axis) {
       const int row = this->first_row_ + static_cast<int>(3 * k) + axis;
-      drawer.force(a, row, -unit<Real>(axis));
-      drawer.force(b, row, unit<Real>(axis));
+      drawer.force(a, row, -Vec3<Real>::Unit(axis));
+      drawer.force(b, row, Vec3<Real>::Unit(axis));
     }
   }
 }

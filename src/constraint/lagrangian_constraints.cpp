@@ -10,13 +10,6 @@ namespace fastcorot {
 
 namespace {
 
-const Vec3<double> kAxes[3] = {Vec3<double>::UnitX(), Vec3<double>::UnitY(), Vec3<double>::UnitZ()};
-
-template <class Real>
-Vec3<Real> axis(int k) {
-  return kAxes[k].template cast<Real>();
-}
-
 template <class Real>
 void check_indices(const std::vector<Index>& indices, std::size_t size, const char* what) {
   for (std::size_t k = 0; k < indices.size(); ++k) {
@@ -45,7 +38,7 @@ void FixedLagrangianConstraint<Real>::build(ConstraintRows<Real>& rows) {
   this->first_row_ = rows.add_rows(this->rows_);
   for (std::size_t k = 0; k < indices_.size(); ++k) {
     for (int a = 0; a < 3; ++a) {
-      rows.add(this->first_row_ + static_cast<int>(3 * k) + a, points_, static_cast<std::size_t>(indices_[k]), axis<Real>(a));
+      rows.add(this->first_row_ + static_cast<int>(3 * k) + a, points_, static_cast<std::size_t>(indices_[k]), Vec3<Real>::Unit(a));
     }
   }
 }
@@ -87,8 +80,8 @@ void BilateralLagrangianConstraint<Real>::build(ConstraintRows<Real>& rows) {
   for (std::size_t k = 0; k < pairs(); ++k) {
     for (int a = 0; a < 3; ++a) {
       const int row = this->first_row_ + static_cast<int>(3 * k) + a;
-      rows.add(row, first_, static_cast<std::size_t>(parameters_.first[k]), -axis<Real>(a));
-      rows.add(row, second_, static_cast<std::size_t>(parameters_.second[k]), axis<Real>(a));
+      rows.add(row, first_, static_cast<std::size_t>(parameters_.first[k]), -Vec3<Real>::Unit(a));
+      rows.add(row, second_, static_cast<std::size_t>(parameters_.second[k]), Vec3<Real>::Unit(a));
     }
   }
 }

@@ -10,13 +10,6 @@ namespace fastcorot {
 
 namespace {
 
-const Vec3<double> kAxes[3] = {Vec3<double>::UnitX(), Vec3<double>::UnitY(), Vec3<double>::UnitZ()};
-
-template <class Real>
-Vec3<Real> axis(int k) {
-  return kAxes[k].template cast<Real>();
-}
-
 void check_indices(const std::vector<Index>& indices, std::size_t size, const char* what) {
   for (std::size_t k = 0; k < indices.size(); ++k) {
     if (indices[k] < 0 || static_cast<std::size_t>(indices[k]) >= size) {
@@ -101,8 +94,8 @@ void RigidFixedLagrangianConstraint<Real>::build(ConstraintRows<Real>& rows) {
     const auto i = static_cast<std::size_t>(indices_[k]);
     const int row = this->first_row_ + static_cast<int>(6 * k);
     for (int a = 0; a < 3; ++a) {
-      rows.add(row + a, frames_.linear, i, axis<Real>(a));
-      rows.add(row + 3 + a, frames_.angular, i, axis<Real>(a));
+      rows.add(row + a, frames_.linear, i, Vec3<Real>::Unit(a));
+      rows.add(row + 3 + a, frames_.angular, i, Vec3<Real>::Unit(a));
     }
   }
 }
@@ -171,10 +164,10 @@ void RigidBilateralLagrangianConstraint<Real>::build(ConstraintRows<Real>& rows)
     const auto j = static_cast<std::size_t>(parameters_.second[k]);
     const int row = this->first_row_ + static_cast<int>(6 * k);
     for (int a = 0; a < 3; ++a) {
-      rows.add(row + a, first_.linear, i, -axis<Real>(a));
-      rows.add(row + a, second_.linear, j, axis<Real>(a));
-      rows.add(row + 3 + a, first_.angular, i, -axis<Real>(a));
-      rows.add(row + 3 + a, second_.angular, j, axis<Real>(a));
+      rows.add(row + a, first_.linear, i, -Vec3<Real>::Unit(a));
+      rows.add(row + a, second_.linear, j, Vec3<Real>::Unit(a));
+      rows.add(row + 3 + a, first_.angular, i, -Vec3<Real>::Unit(a));
+      rows.add(row + 3 + a, second_.angular, j, Vec3<Real>::Unit(a));
     }
   }
 }
