@@ -163,6 +163,9 @@ class Object:
             # Rigid3 rows (7 or 6 numbers each) are kept as SOFA's text: flat numbers.
             return to_text(np.asarray(value, dtype=float).reshape(-1))
         kind = self._kind(name)
+        if (kind == "vec3s" and self._type == "BilateralLagrangianConstraint" and name == "rest_vector"
+                and np.ndim(value) == 2 and np.shape(value)[1] == 6):
+            kind = "vec6s"  # rows of a Rigid3 pair, before the linked states tell the template
         if isinstance(value, Object) and kind == "link":
             value = value.link()
         return canonical(kind, name, value, f"{self.location}: {self._label()}")
@@ -182,6 +185,8 @@ class Object:
                     "currentNumConstraints": report["rows"]}
             return live.get(name, _NOT_LIVE)
         if self._type == "BilateralLagrangianConstraint" and name in _BILATERAL_LIVE:
+            if name != "rest_vector" and self._rigid_pair():
+                return _NOT_LIVE  # kept as written: SOFA's Rigid3 variant reads neither
             return core.bilateral(index)[name]
         return _NOT_LIVE
 

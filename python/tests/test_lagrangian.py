@@ -113,7 +113,8 @@ def test_a_rigid_pair_constraint_reads_and_takes_six_numbers_per_rest_vector():
         body.addObject("UncoupledConstraintCorrection")
         if fixed:
             body.addObject("FixedProjectiveConstraint", indices=[0])
-    root.addObject("BilateralLagrangianConstraint", name="tie", template="Rigid3d", object1="@a/frame", object2="@b/frame",
+    # No template: SOFA deduces Rigid3 from the linked states, and SofaPython3 takes (n, 6) rows.
+    root.addObject("BilateralLagrangianConstraint", name="tie", object1="@a/frame", object2="@b/frame",
                    first_point=[0], second_point=[0], rest_vector=[[0, -1, 0, 0, 0, 0]])
     Sofa.Simulation.init(root)
     np.testing.assert_array_equal(np.asarray(root.tie.rest_vector.value).reshape(-1), [0, -1, 0, 0, 0, 0])
@@ -125,3 +126,7 @@ def test_a_rigid_pair_constraint_reads_and_takes_six_numbers_per_rest_vector():
     np.testing.assert_allclose(root.b.frame.position.value[0][:3], [0.1, -1, 0], atol=1e-9)
     with pytest.raises(ValueError, match=r"expected an \(n, 6\) array"):
         root.tie.rest_vector.value = [[0, 1, 0, 0]]
+    # activate and load have no effect on the Rigid3 variant (warned) but read back as written.
+    with pytest.warns(UserWarning, match="no effect on a Rigid3"):
+        root.tie.activate.value = False
+    assert root.tie.activate.value is False or root.tie.activate.value == 0

@@ -347,6 +347,14 @@ class LoopBuilder {
       if (!parent || !is_rigid_template(data_.text(*parent, "template", "Vec3d"))) {
         throw make_error(m->where(), ": its input is not a Rigid3 MechanicalObject");
       }
+      for (const GraphNode* node = parent->node; node; node = node->parent) {
+        if (!node->of_category("odesolver").empty() || locate_(*parent)) {
+          // The rigid moves (SOFA's loop carries the point with it and Jᵀ gives the rigid the
+          // constraint's force); a point off a simulated rigid's own subtree is not followed here.
+          throw make_error(state.where(), " is carried by ", parent->where(), ", which an ODE solver moves, from outside that "
+                           "solver's node: Lagrangian constraints on it are not supported (put the mapped node under the rigid's)");
+        }
+      }
       Component& input = *parent;
       const Numbers poses = data_.data(input, "position");
       const Index index = data_.whole_number(*m, "index", 0);

@@ -344,25 +344,41 @@ class Builder {
   // node: SOFA's FrictionContact scenes): no mass, no force, no constraint of its own, and no spring
   // or attachment among the solver's nodes names it. SOFA's solve leaves it where it is (its rows
   // are zero); here its points are held, which merge_objects accepts beside massive parts.
-  void hold_if_still(Component& state, const std::vector<GraphNode*>& nodes, SimulatedObject<double>& part) {
+  void hold_if_still(Component& state, SimulatedObject<double>& part) {
     const auto& s = part.system;
     if (s.mass.size() != 0 || !s.force_fields.empty() || !s.constant_forces.empty() || s.rigids || !s.fixed.empty() ||
         !s.projections.empty() || !s.couplings.empty() || !s.placements.empty() || !s.motions.empty() || !s.linear_movements.empty()) {
       return;
     }
-    for (GraphNode* node : nodes) {
-      for (const auto& c : node->components) {
-        if (!c->spec) continue;
-        if (!scene_detail::is_interaction_spring(c->type()) && c->type() != "AttachProjectiveConstraint") continue;
-        for (const char* link : {"object1", "object2"}) {
-          if (c->has(link) && &data_.resolve_state(*c->node, c->object->attributes.at(link), *c) == &state) return;
-        }
-      }
-    }
+    if (acted_on(data_.root(), state)) return;
     auto& held = part.system.fixed;
     held.resize(static_cast<std::size_t>(part.system.size()));
     for (Index i = 0; i < part.system.size(); ++i) held[static_cast<std::size_t>(i)] = i;
     info_.push_back(state.where() + ": no mass, force or constraint acts on it: it stays where it is (as in SOFA's solve)");
+  }
+
+  // Whether a spring, an attachment or a Lagrangian constraint anywhere below `node` names `state`
+  // (object1 / object2, each by default the state of the component's own node, as SOFA reads them).
+  bool acted_on(GraphNode& node, const Component& state) {
+    for (const auto& c : node.components) {
+      if (!c->spec) continue;
+      if (!scene_detail::is_interaction_spring(c->type()) && c->type() != "AttachProjectiveConstraint" && c->spec->category != "lagrangian") {
+        continue;
+      }
+      for (const char* link : {"object1", "object2"}) {
+        const Component* named = nullptr;
+        if (c->has(link)) {
+          named = &data_.resolve_state(*c->node, c->object->attributes.at(link), *c);
+        } else if (const auto own = c->node->of_category("state"); !own.empty()) {
+          named = own.front();
+        }
+        if (named == &state) return true;
+      }
+    }
+    for (const auto& child : node.children) {
+      if (acted_on(*child, state)) return true;
+    }
+    return false;
   }
 
   // One object: `state` with the components of `nodes` and the visual models of `visuals`.
@@ -527,7 +543,7 @@ class Builder {
           if (owner(*node->parent, states) == state) visuals.push_back(node);
         }
         parts.push_back(build_part(*state, own, visuals));
-        hold_if_still(*state, nodes, parts.back());
+        hold_if_still(*state, parts.back());
         offsets.push_back(sizes.empty() ? 0 : offsets.back() + sizes.back());
         sizes.push_back(parts.back().system.size());
       }

@@ -248,6 +248,15 @@ TEST(LagrangianScene, RefusesWhatCannotBeSolved) {
                         "<BilateralLagrangianConstraint object1=\"@other/p\" object2=\"@loose/p\" first_point=\"0\" second_point=\"0\"/>")
                 .find("both unsimulated"),
             std::string::npos);
+  // A still-looking point that a RigidMapping takes from a rigid an ODE solver moves, from outside
+  // that solver's node: not followed here, so refused rather than held.
+  EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" + beam("A", 0, "<LinearSolverConstraintCorrection/>") +
+                        "<Node name=\"R\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject name=\"frame\" template=\"Rigid3\"/>"
+                        "<UniformMass totalMass=\"1\"/><UncoupledConstraintCorrection/></Node>"
+                        "<Node name=\"carried\"><MechanicalObject name=\"p\" position=\"0 0 0\"/><RigidMapping input=\"@../R/frame\"/></Node>"
+                        "<BilateralLagrangianConstraint object1=\"@A/dofs\" object2=\"@carried/p\" first_point=\"0\" second_point=\"0\"/>")
+                .find("which an ODE solver moves"),
+            std::string::npos);
   // An index out of range, a non-finite rest vector.
   EXPECT_NE(scene_error("<FreeMotionAnimationLoop/>" +
                         beam("beam", 0, "<FixedLagrangianConstraint indices=\"24\"/><LinearSolverConstraintCorrection/>"))

@@ -424,7 +424,9 @@ TEST_F(VisualSurfaces, AStateReadsASurfaceLoaderAndAStaticSurfaceUnderASolverSta
     <Node name="body"><MechanicalObject name="p" position="5 5 5"/><UniformMass totalMass="1"/></Node>
     <Node name="handle"><MechanicalObject name="p" position="0 0 0"/>)";
   for (const std::string acting : {std::string(R"(<ConstantForceField force="1 0 0"/></Node>)"),
-                                   std::string(R"(</Node><SpringForceField object1="@body/p" object2="@handle/p" spring="0 0 10 0 1"/>)")}) {
+                                   std::string(R"(</Node><SpringForceField object1="@body/p" object2="@handle/p" spring="0 0 10 0 1"/>)"),
+                                   // object1 by default the spring's own node's state (the handle's)
+                                   std::string(R"(<StiffSpringForceField object2="@../body/p" spring="0 0 10 0 1"/></Node>)")}) {
     try {
       load(body + acting + "</Node></Node>");
       ADD_FAILURE() << acting;

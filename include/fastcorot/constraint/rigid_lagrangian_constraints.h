@@ -93,8 +93,8 @@ class RigidBilateralLagrangianConstraint final : public LagrangianConstraint<Rea
   void add_resolutions(ConstraintProblem<Real>& problem) override;
   std::size_t pairs() const { return std::min(parameters_.first.size(), parameters_.second.size()); }
   const Parameters& parameters() const { return parameters_; }
-  // A script's new rest values (finite, checked by the caller); ignored, as in SOFA, while
-  // keepOrientationDifference holds the initial difference.
+  // A script's new rest values (finite, checked by the caller), subtracted from the violation as
+  // SOFA does (also beside keepOrientationDifference's initial difference).
   void set_rest(std::vector<std::array<Real, 6>> rest) { parameters_.rest = std::move(rest); }
 
  private:
