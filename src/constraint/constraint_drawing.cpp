@@ -4,6 +4,7 @@
 // rows apply at each point. SOFA's FixedLagrangianConstraint draws nothing; here it shows its
 // points and their holding forces too.
 #include "fastcorot/constraint/constraint_drawing.h"
+#include "fastcorot/constraint/rigid_lagrangian_constraints.h"
 #include "fastcorot/constraint/sliding_lagrangian_constraint.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
@@ -105,6 +106,34 @@ void SlidingLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) con
 }
 
 template <class Real>
+void RigidFixedLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  // Rows of the last build: 6 per rigid, the first 3 the axes on its centre (the torque rows are
+  // not drawn).
+  const bool built = this->rows_ == static_cast<int>(6 * indices_.size());
+  for (std::size_t k = 0; k < indices_.size(); ++k) {
+    const std::size_t p = drawer.point(frames_.linear, static_cast<std::size_t>(indices_[k]));
+    if (!built) continue;
+    for (int a = 0; a < 3; ++a) drawer.force(p, this->first_row_ + static_cast<int>(6 * k) + a, Vec3<Real>::Unit(a));
+  }
+}
+
+template <class Real>
+void RigidBilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  const bool built = this->rows_ == static_cast<int>(6 * pairs());
+  for (std::size_t k = 0; k < pairs(); ++k) {
+    const std::size_t a = drawer.point(first_.linear, static_cast<std::size_t>(parameters_.first[k]));
+    const std::size_t b = drawer.point(second_.linear, static_cast<std::size_t>(parameters_.second[k]));
+    drawer.pair(a, b);
+    if (!built) continue;
+    for (int axis = 0; axis < 3; ++axis) {
+      const int row = this->first_row_ + static_cast<int>(6 * k) + axis;
+      drawer.force(a, row, -Vec3<Real>::Unit(axis));
+      drawer.force(b, row, Vec3<Real>::Unit(axis));
+    }
+  }
+}
+
+template <class Real>
 void FreeMotionAnimationLoop<Real>::draw(std::span<const SimulatedObject<Real>> objects, Real dt,
                                          ConstraintDrawing& drawing) const {
   ConstraintDrawer<Real> drawer(objects, constraint_forces(), dt, drawing);
@@ -122,6 +151,10 @@ template void BilateralLagrangianConstraint<float>::draw(ConstraintDrawer<float>
 template void BilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void SlidingLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
 template void SlidingLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
+template void RigidFixedLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
+template void RigidFixedLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
+template void RigidBilateralLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
+template void RigidBilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void FreeMotionAnimationLoop<float>::draw(std::span<const SimulatedObject<float>>, float, ConstraintDrawing&) const;
 template void FreeMotionAnimationLoop<double>::draw(std::span<const SimulatedObject<double>>, double, ConstraintDrawing&) const;
 

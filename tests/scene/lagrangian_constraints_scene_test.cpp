@@ -237,6 +237,34 @@ TEST(RigidLagrangianConstraintsScene, BilateralRestVectorOffsetsTheFrames) {
   }
 }
 
+TEST(RigidLagrangianConstraintsScene, DrawsTheHeldCentresWithTheForcesHoldingThem) {
+  // A fixed body of mass 2 is held against its weight: the force at its centre is -m g. A body
+  // hanging from a fixed one by a Rigid3 bilateral constraint: the pair joined, +m g on the hanging
+  // body's centre, -m g on the other's.
+  const Vec3<double> weight(0, -2 * 9.81, 0);
+  LoadedScene fixed = build_scene_text(
+      kLoop + rigid_body("body", "0.5 1 -0.25  0 0 0 1", "<ConstantForceField force=\"0 0 0 1 -2 0.5\"/><FixedLagrangianConstraint indices=\"0\"/>"),
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  for (int n = 0; n < 5; ++n) fixed.simulation.step();
+  ConstraintDrawing held;
+  fixed.simulation.constraints->draw(fixed.simulation.objects, fixed.simulation.dt, held);
+  ASSERT_EQ(held.points.size(), 1u);
+  EXPECT_LT((held.points[0].position - Vec3<double>(0.5, 1, -0.25)).norm(), 1e-9);
+  EXPECT_LT((held.points[0].force + weight).norm(), 1e-6);
+  LoadedScene hanging = build_scene_text(
+      kLoop + rigid_body("a", "0 0 0  0 0 0 1", "<FixedProjectiveConstraint indices=\"0\"/>") + rigid_body("b", "0 -1 0  0 0 0 1", "") +
+          "<BilateralLagrangianConstraint object1=\"@a/frame\" object2=\"@b/frame\" first_point=\"0\" second_point=\"0\" "
+          "rest_vector=\"0 -1 0 0 0 0\"/>",
+      "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  for (int n = 0; n < 5; ++n) hanging.simulation.step();
+  ConstraintDrawing tied;
+  hanging.simulation.constraints->draw(hanging.simulation.objects, hanging.simulation.dt, tied);
+  ASSERT_EQ(tied.points.size(), 2u);
+  ASSERT_EQ(tied.pairs.size(), 1u);
+  EXPECT_LT((tied.points[1].force + weight).norm(), 1e-6) << "the hanging body is held up";
+  EXPECT_LT((tied.points[0].force - weight).norm(), 1e-6);
+}
+
 TEST(RigidLagrangianConstraintsScene, BadRigidInputIsRefusedClearly) {
   const std::string body = rigid_body("a", "0 0 0  0 0 0 1", "");
   const std::string beadless = "<Node name=\"p\"><EulerImplicitSolver/><SparseLDLSolver/><MechanicalObject name=\"points\" position=\"0 0 0\"/>"

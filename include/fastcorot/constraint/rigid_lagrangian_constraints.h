@@ -58,6 +58,8 @@ class RigidFixedLagrangianConstraint final : public LagrangianConstraint<Real> {
   void build(ConstraintRows<Real>& rows) override;
   void violation(ConstraintOrder order, Real dt, Real* dfree) const override;
   void add_resolutions(ConstraintProblem<Real>& problem) override;
+  // Each held rigid's centre and the force holding it (constraint_drawing.cpp).
+  void draw(ConstraintDrawer<Real>& drawer) const override;
   const RigidConstraintFrames<Real>& frames() const { return frames_; }
 
  private:
@@ -92,6 +94,8 @@ class RigidBilateralLagrangianConstraint final : public LagrangianConstraint<Rea
   void violation(ConstraintOrder order, Real dt, Real* dfree) const override;
   void add_resolutions(ConstraintProblem<Real>& problem) override;
   std::size_t pairs() const { return std::min(parameters_.first.size(), parameters_.second.size()); }
+  // Each pair's centres joined, with the forces of the linear rows (constraint_drawing.cpp).
+  void draw(ConstraintDrawer<Real>& drawer) const override;
   const Parameters& parameters() const { return parameters_; }
   // A script's new rest values (finite, checked by the caller), subtracted from the violation as
   // SOFA does (also beside keepOrientationDifference's initial difference).
