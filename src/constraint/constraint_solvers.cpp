@@ -306,9 +306,8 @@ ConstraintSolveReport ImprovedJacobiSolver<Real>::solve(ConstraintProblem<Real>&
     // SOFA's measure: the largest squared modulus of W's eigenvalues (std::norm of each).
     const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> dense = w;
     Real radius = 0;
-    for (const auto& value : Eigen::EigenSolver<Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>>(dense, false).eigenvalues()) {
-      radius = std::max(radius, std::norm(value));
-    }
+    const Eigen::EigenSolver<Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>> eigen(dense, false);  // kept: eigenvalues() is a view into it
+    for (const auto& value : eigen.eigenvalues()) radius = std::max(radius, std::norm(value));
     rho = options_.spectral_factor * std::min(Real(1), Real(0.9) * 2 / radius);
   }
   report.converged = false;
