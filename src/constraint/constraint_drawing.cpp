@@ -52,6 +52,23 @@ void ConstraintDrawer<Real>::force(std::size_t p, int row, const Vec3<Real>& c) 
   drawing_.points[p].force += c.template cast<double>() * (lambda / static_cast<double>(dt_));
 }
 
+namespace {
+
+// Points a and b of a pair joined, with the forces of the three rows from `row` (-axis on a,
+// +axis on b: the bilateral rows of Vec3 points and of Rigid3 centres); no forces when row < 0
+// (rows not built for the pairs drawn).
+template <class Real>
+void tie(ConstraintDrawer<Real>& drawer, std::size_t a, std::size_t b, int row) {
+  drawer.pair(a, b);
+  if (row < 0) return;
+  for (int axis = 0; axis < 3; ++axis) {
+    drawer.force(a, row + axis, -Vec3<Real>::Unit(axis));
+    drawer.force(b, row + axis, Vec3<Real>::Unit(axis));
+  }
+}
+
+}  // namespace
+
 template <class Real>
 void FixedLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
   // Rows of the last build: 3 per index, +axis on the point (build()).
@@ -71,13 +88,7 @@ void BilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) c
   for (std::size_t k = 0; k < pairs(); ++k) {
     const std::size_t a = drawer.point(first_, static_cast<std::size_t>(parameters_.first[k]), parameters_.active);
     const std::size_t b = drawer.point(second_, static_cast<std::size_t>(parameters_.second[k]), parameters_.active);
-    drawer.pair(a, b);
-    if (!built) continue;
-    for (int axis = 0; axis < 3; ++axis) {
-      const int row = this->first_row_ + static_cast<int>(3 * k) + axis;
-      drawer.force(a, row, -Vec3<Real>::Unit(axis));
-      drawer.force(b, row, Vec3<Real>::Unit(axis));
-    }
+    tie(drawer, a, b, built ? this->first_row_ + static_cast<int>(3 * k) : -1);
   }
 }
 
@@ -123,13 +134,7 @@ void RigidBilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& draw
   for (std::size_t k = 0; k < pairs(); ++k) {
     const std::size_t a = drawer.point(first_.linear, static_cast<std::size_t>(parameters_.first[k]));
     const std::size_t b = drawer.point(second_.linear, static_cast<std::size_t>(parameters_.second[k]));
-    drawer.pair(a, b);
-    if (!built) continue;
-    for (int axis = 0; axis < 3; ++axis) {
-      const int row = this->first_row_ + static_cast<int>(6 * k) + axis;
-      drawer.force(a, row, -Vec3<Real>::Unit(axis));
-      drawer.force(b, row, Vec3<Real>::Unit(axis));
-    }
+    tie(drawer, a, b, built ? this->first_row_ + static_cast<int>(6 * k) : -1);
   }
 }
 
