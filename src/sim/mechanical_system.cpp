@@ -186,12 +186,14 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
   held.insert(held.end(), moving.begin(), moving.end());
   for (Index i : held) is_fixed[static_cast<std::size_t>(i)] = true;
   auto& triplets = sink.triplets;
-  triplets.erase(std::remove_if(triplets.begin(), triplets.end(),
-                                [&](const Eigen::Triplet<Real>& t) {
-                                  return is_fixed[static_cast<std::size_t>(t.row() / 3)] ||
-                                         is_fixed[static_cast<std::size_t>(t.col() / 3)];
-                                }),
-                 triplets.end());
+  if (!held.empty()) {
+    triplets.erase(std::remove_if(triplets.begin(), triplets.end(),
+                                  [&](const Eigen::Triplet<Real>& t) {
+                                    return is_fixed[static_cast<std::size_t>(t.row() / 3)] ||
+                                           is_fixed[static_cast<std::size_t>(t.col() / 3)];
+                                  }),
+                   triplets.end());
+  }
   for (Index i : held) {
     for (Index c = 0; c < 3; ++c) triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
   }

@@ -1,13 +1,13 @@
-// SparseFactorisation<Real>: the LDL^T factorisation of an assembled system matrix (Eigen's
-// SimplicialLDLT, AMD ordering) that keeps its symbolic analysis (ordering, elimination tree) while
-// the sparsity pattern stays the same, which it does from step to step unless the topology or the
-// fixed points change. Used by the sparse direct solver and by the preconditioned CG's direct
-// preconditioner.
+// SparseFactorisation<Real>: the LDLᵀ factorisation of an assembled system matrix (BlockLDLT: 3×3
+// blocks, AMD ordering of the points) that keeps its symbolic analysis (ordering, elimination tree)
+// while the sparsity pattern stays the same, which it does from step to step unless the topology or
+// the fixed points change. Used by the sparse direct solver, the preconditioned CG's direct
+// preconditioner and the constraint corrections.
 #pragma once
 
 #include "fastcorot/core/types.h"
 
-#include <Eigen/SparseCholesky>
+#include "fastcorot/sim/block_ldlt.h"
 
 #include <vector>
 
@@ -25,15 +25,14 @@ class SparseFactorisation {
   // x = A^-1 b for the last factorised A; b and x hold `size` values each (they may not overlap).
   void solve(const Real* b, Real* x, Index size) const;
 
-  // Cᵀ A⁻¹ C for the last factorised A and sparse columns C (A's size × r), dense r × r: with A
-  // = Pᵀ L D Lᵀ P, Z = L⁻¹ P C by sparse triangular solves (each column touches only the
-  // elimination-tree paths from its nonzeros to the root), then Zᵀ D⁻¹ Z on those paths. What
-  // constraint corrections need for H A⁻¹ Hᵀ (C = Hᵀ). Columns on up to `threads` threads, the
-  // same bits for any count.
+  // Cᵀ A⁻¹ C for the last factorised A and sparse columns C (A's size × r), dense r × r, by
+  // sparse triangular solves on the elimination-tree paths of C's nonzeros (BlockLDLT::compliance):
+  // what constraint corrections need for H A⁻¹ Hᵀ (C = Hᵀ). Columns on up to `threads` threads,
+  // the same bits for any count.
   Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> compliance(const Matrix& columns, int threads = 1) const;
 
  private:
-  Eigen::SimplicialLDLT<Matrix> ldlt_;
+  BlockLDLT<Real> ldlt_;
   std::vector<typename Matrix::StorageIndex> analysed_outer_, analysed_inner_;
 };
 
