@@ -42,10 +42,16 @@ std::vector<Spring<Real>> regular_grid_springs(const RegularGrid& grid, const Re
       throw make_error("RegularGridSpringForceField: stiffness or damping ", value, ": must be finite and >= 0");
     }
   }
-  // SOFA's spacing vectors: (max - min) / (n - 1) along each axis.
-  const Vec3<double> dx((grid.max.x() - grid.min.x()) / static_cast<double>(grid.n[0] - 1), 0, 0);
-  const Vec3<double> dy(0, (grid.max.y() - grid.min.y()) / static_cast<double>(grid.n[1] - 1), 0);
-  const Vec3<double> dz(0, 0, (grid.max.z() - grid.min.z()) / static_cast<double>(grid.n[2] - 1));
+  // SOFA's spacing vectors: (max - min) / (n - 1) along each axis, max - min along an axis with a
+  // single point (a flat grid, a cloth: no spring runs along that axis).
+  const auto spacing = [&](int a) {
+    const double extent = grid.max[a] - grid.min[a];
+    const Index n = grid.n[static_cast<std::size_t>(a)];
+    return n > 1 ? extent / static_cast<double>(n - 1) : extent;
+  };
+  const Vec3<double> dx(spacing(0), 0, 0);
+  const Vec3<double> dy(0, spacing(1), 0);
+  const Vec3<double> dz(0, 0, spacing(2));
   std::vector<Spring<Real>> springs;
   if (p.lines_stiffness != 0 || p.lines_damping != 0) {
     add_family(springs, grid, {1, 0, 0}, {0, 0, 0}, {1, 0, 0}, dx, p.lines_stiffness, p.lines_damping);

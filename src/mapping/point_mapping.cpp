@@ -128,7 +128,7 @@ PointMapping<Real> PointMapping<Real>::from_barycentric(const TetMesh& mesh, con
 
 template <class Real>
 PointMapping<Real> PointMapping<Real>::trilinear(const RegularGrid& grid, std::span<const Vec3<Real>> points) {
-  validate(grid);
+  validate_cells(grid);
   PointMapping m;
   m.vertices.assign(points.size(), {});
   m.weights.assign(points.size(), {});

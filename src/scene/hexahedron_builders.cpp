@@ -18,6 +18,11 @@ std::vector<Hexahedron> topology_hexahedra(SceneData& data, Component& topology)
   std::vector<Hexahedron> hexahedra;
   if (is_grid_topology(topology.type())) {
     const RegularGrid grid = data.grid(topology);
+    try {
+      validate_cells(grid);
+    } catch (const Error& error) {
+      throw error_at(topology.where(), error);
+    }
     for (Index k = 0; k + 1 < grid.n[2]; ++k) {
       for (Index j = 0; j + 1 < grid.n[1]; ++j) {
         for (Index i = 0; i + 1 < grid.n[0]; ++i) hexahedra.push_back(grid_cell_corners(grid, i, j, k));

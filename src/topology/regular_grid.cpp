@@ -110,9 +110,9 @@ bool finite(const Vec3<double>& v) {
 
 void validate(const RegularGrid& grid) {
   const auto& n = grid.n;
-  if (n[0] < 2 || n[1] < 2 || n[2] < 2) {
+  if (n[0] < 1 || n[1] < 1 || n[2] < 1) {
     throw make_error("RegularGrid: n = (", n[0], ", ", n[1], ", ", n[2],
-                     "): each count must be at least 2");
+                     "): each count must be at least 1");
   }
   // Points and tetrahedra are numbered with Index; their counts must fit in it.
   const std::int64_t points = std::int64_t{n[0]} * n[1] * n[2];
@@ -139,13 +139,24 @@ void validate(const RegularGrid& grid) {
                      "): each coordinate must be finite");
   }
   // SOFA accepts max < min (a mirrored grid, tetrahedra of negative orientation) but a zero extent
-  // makes every tetrahedron flat, which the force field cannot use.
+  // makes every tetrahedron flat, which the force field cannot use (an axis with one point has no
+  // extent to speak of).
   constexpr char kAxis[3] = {'x', 'y', 'z'};
   for (int a = 0; a < 3; ++a) {
-    if (!(lo[a] != hi[a])) {
+    if (n[static_cast<std::size_t>(a)] > 1 && !(lo[a] != hi[a])) {
       throw make_error("RegularGrid: min.", kAxis[a], " = max.", kAxis[a], " = ", lo[a],
                        ": the box has zero extent along ", kAxis[a]);
     }
+  }
+}
+
+void validate_cells(const RegularGrid& grid) {
+  validate(grid);
+  const auto& n = grid.n;
+  if (n[0] < 2 || n[1] < 2 || n[2] < 2) {
+    throw make_error("RegularGrid: n = (", n[0], ", ", n[1], ", ", n[2],
+                     "): a grid with a single point along an axis is flat and has no cells (each count must be at "
+                     "least 2 for hexahedra or tetrahedra)");
   }
 }
 
@@ -155,11 +166,17 @@ std::vector<Vec3<Real>> grid_points(const RegularGrid& grid) {
   const auto& n = grid.n;
   // SOFA's computation in its own scalar: min and max are held in Real, the step is the extent
   // divided by the cell count, and a point is p0 + dx*i + dy*j + dz*k with steps as axis vectors.
-  const Vec3<Real> p0 = grid.origin().template cast<Real>();
+  // An axis with a single point (a flat grid: SOFA's setPos) puts it midway between min and max
+  // along x and y, at min along z, unless p0 places it; its step is never used.
+  Vec3<Real> p0 = grid.origin().template cast<Real>();
   const Vec3<Real> extent = grid.max.template cast<Real>() - grid.min.template cast<Real>();
-  const Vec3<Real> dx(extent.x() / Real(n[0] - 1), Real(0), Real(0));
-  const Vec3<Real> dy(Real(0), extent.y() / Real(n[1] - 1), Real(0));
-  const Vec3<Real> dz(Real(0), Real(0), extent.z() / Real(n[2] - 1));
+  for (int a = 0; a < 2; ++a) {
+    if (n[static_cast<std::size_t>(a)] == 1 && !grid.p0) p0[a] = (Real(grid.max[a]) + Real(grid.min[a])) / Real(2);
+  }
+  const auto step = [&](int a) { return n[static_cast<std::size_t>(a)] > 1 ? extent[a] / Real(n[static_cast<std::size_t>(a)] - 1) : Real(0); };
+  const Vec3<Real> dx(step(0), Real(0), Real(0));
+  const Vec3<Real> dy(Real(0), step(1), Real(0));
+  const Vec3<Real> dz(Real(0), Real(0), step(2));
 
   std::vector<Vec3<Real>> points;
   points.reserve(static_cast<std::size_t>(grid.num_points()));
@@ -243,7 +260,7 @@ std::vector<Tetrahedron> tetrahedron_fem_grid_tetrahedra(const RegularGrid& grid
 namespace {
 
 std::vector<Tetrahedron> split_cells(const RegularGrid& grid, bool swapping, bool follow_mirror) {
-  validate(grid);
+  validate_cells(grid);
   const auto& n = grid.n;
   std::vector<Tetrahedron> tetrahedra;
   tetrahedra.reserve(static_cast<std::size_t>(kTetrahedraPerCell) *

@@ -92,9 +92,26 @@ TEST(RegularGridSprings, BadValuesAreRefused) {
   RegularGridSpringParameters<double> p;
   p.quads_stiffness = -1;
   EXPECT_THROW(regular_grid_springs<double>(grid_3x2x2(), p), Error);
+  RegularGrid empty = grid_3x2x2();
+  empty.n = {3, 0, 2};
+  EXPECT_THROW(regular_grid_springs<double>(empty, RegularGridSpringParameters<double>{}), Error);
+}
+
+TEST(RegularGridSprings, AFlatGridIsACloth) {
+  // One point along y (SOFA's 2D grid): lines along x and z and the xz faces' diagonals, nothing
+  // along y; every rest length is the distance between the points it joins.
   RegularGrid flat = grid_3x2x2();
   flat.n = {3, 1, 2};
-  EXPECT_THROW(regular_grid_springs<double>(flat, RegularGridSpringParameters<double>{}), Error);
+  RegularGridSpringParameters<double> p;
+  p.lines_stiffness = 10;
+  p.quads_stiffness = 10;
+  p.cubes_stiffness = 10;
+  const auto springs = regular_grid_springs<double>(flat, p);
+  EXPECT_EQ(springs.size(), 4u + 3u + 2u * 2u);  // x lines, z lines, two diagonals per xz face
+  const auto x = grid_points<double>(flat);
+  for (const auto& s : springs) {
+    EXPECT_NEAR((x[static_cast<std::size_t>(s.b)] - x[static_cast<std::size_t>(s.a)]).norm(), s.rest_length, 1e-14);
+  }
 }
 
 }  // namespace

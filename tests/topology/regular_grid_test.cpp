@@ -419,18 +419,38 @@ TEST(RegularGridTest, SwappingChangesOnlyMirroredCells) {
 // ---------------------------------------------------------------------------------------------
 // Validation
 
-TEST(RegularGridTest, ValidateRejectsCountsBelowTwo) {
-  EXPECT_EQ(error_message([] { validate(unit_grid(1, 5, 5)); }),
-            "RegularGrid: n = (1, 5, 5): each count must be at least 2");
+TEST(RegularGridTest, ValidateRejectsCountsBelowOneAndCellsOfFlatGrids) {
   EXPECT_EQ(error_message([] { validate(unit_grid(5, 0, 5)); }),
-            "RegularGrid: n = (5, 0, 5): each count must be at least 2");
+            "RegularGrid: n = (5, 0, 5): each count must be at least 1");
   EXPECT_EQ(error_message([] { validate(unit_grid(5, 5, -3)); }),
-            "RegularGrid: n = (5, 5, -3): each count must be at least 2");
-  EXPECT_THROW(grid_points<double>(unit_grid(1, 2, 2)), Error);
-  EXPECT_THROW(grid_points<float>(unit_grid(2, 1, 2)), Error);
-  EXPECT_THROW(grid_tetrahedra(unit_grid(2, 2, 1), true), Error);
+            "RegularGrid: n = (5, 5, -3): each count must be at least 1");
+  EXPECT_NO_THROW(validate(unit_grid(1, 5, 5)));
+  const std::string flat = error_message([] { grid_tetrahedra(unit_grid(2, 2, 1), true); });
+  EXPECT_NE(flat.find("RegularGrid: n = (2, 2, 1): a grid with a single point along an axis is flat and has no cells"),
+            std::string::npos)
+      << flat;
+  EXPECT_THROW(tetrahedron_fem_grid_tetrahedra(unit_grid(1, 3, 3)), Error);
+  EXPECT_THROW(grid_cell_corners(unit_grid(3, 1, 3), 0, 0, 0), Error);
   EXPECT_NO_THROW(validate(unit_grid(2, 2, 2)));
   EXPECT_NO_THROW(validate(four_beams_grid()));
+}
+
+TEST(RegularGridTest, FlatGridPlacesItsSinglePointsAsSofaDoes) {
+  // SOFA's RegularGridTopology::setPos: an axis with one point puts it at the middle of the x or y
+  // range, at the z minimum; the others step as usual. Zero extent is fine along such an axis.
+  const auto z_flat = grid_points<double>(make_grid(4, 4, 1, Vec3<double>(-1, -1, -0.5), Vec3<double>(1, 1, -0.5)));
+  ASSERT_EQ(z_flat.size(), 16u);
+  EXPECT_EQ(z_flat[0], Vec3<double>(-1, -1, -0.5));
+  EXPECT_EQ(z_flat[5], Vec3<double>(-1 + 2.0 / 3, -1 + 2.0 / 3, -0.5));
+  EXPECT_EQ(z_flat[15], Vec3<double>(1, 1, -0.5));
+  const auto z_range = grid_points<double>(make_grid(2, 2, 1, Vec3<double>(0, 0, 2), Vec3<double>(1, 1, 6)));
+  EXPECT_EQ(z_range[3], Vec3<double>(1, 1, 2));  // z at min
+  const auto x_flat = grid_points<double>(make_grid(1, 2, 2, Vec3<double>(2, 0, 0), Vec3<double>(6, 1, 1)));
+  ASSERT_EQ(x_flat.size(), 4u);
+  EXPECT_EQ(x_flat[0], Vec3<double>(4, 0, 0));  // x at the middle
+  EXPECT_EQ(x_flat[3], Vec3<double>(4, 1, 1));
+  EXPECT_EQ(grid_edges(make_grid(3, 3, 1, Vec3<double>(0, 0, 0), Vec3<double>(1, 1, 0))).size(), 12u);
+  EXPECT_EQ(grid_quads(make_grid(3, 3, 1, Vec3<double>(0, 0, 0), Vec3<double>(1, 1, 0))).size(), 4u);
 }
 
 TEST(RegularGridTest, ValidateRejectsNonFiniteBox) {

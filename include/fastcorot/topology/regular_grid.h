@@ -29,15 +29,18 @@ struct RegularGrid {
   Index num_cells() const { return (n[0] - 1) * (n[1] - 1) * (n[2] - 1); }
 };
 
-// Throws fastcorot::Error when a count is below 2, min/max are not finite, min equals max along an
-// axis, or the point or tetrahedron count does not fit in Index. (A count of 1 or a zero extent
-// along an axis makes a flat grid, which no tetrahedral mesh can use; max < min is accepted, as
-// SOFA accepts it, and mirrors the grid.)
+// Throws fastcorot::Error when a count is below 1, min/max are not finite, min equals max along an
+// axis with several points, or the point or tetrahedron count does not fit in Index. (A count of 1
+// makes a flat grid: points, lines and quads, as SOFA's target grids use, but no cells; max < min
+// is accepted, as SOFA accepts it, and mirrors the grid.)
 void validate(const RegularGrid& grid);
+// validate, and every count at least 2: what hexahedra and tetrahedra need.
+void validate_cells(const RegularGrid& grid);
 
 // #points positions in RegularGridTopology order, evaluated in Real exactly as SOFA evaluates them
-// in its own scalar (step = (max-min)/(n-1), point = min + step.x*i + step.y*j + step.z*k), so
-// Real = double reproduces SOFA's double build bitwise. Validates the grid first.
+// in its own scalar (step = (max-min)/(n-1), point = min + step.x*i + step.y*j + step.z*k; an axis
+// with one point puts it at the middle of x's or y's range, at z's min), so Real = double reproduces
+// SOFA's double build bitwise. Validates the grid first.
 template <class Real>
 std::vector<Vec3<Real>> grid_points(const RegularGrid& grid);
 
