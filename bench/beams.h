@@ -34,15 +34,20 @@ inline std::string benchmark_name(const std::string& what, const Beam& beam, Rot
   return what + "/" + beam.name + "/" + to_string(method) + "/" + real_name + "/threads:" + std::to_string(threads);
 }
 
+// main() of a benchmark program once its benchmarks are registered.
+inline int run_registered_benchmarks(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
+
 // main() of a benchmark program whose register_all<Real>(real_name) registers its benchmarks.
 template <class Registrar>
 int run_benchmarks(int argc, char** argv, Registrar register_all) {
   register_all(double(), "double");
   register_all(float(), "float");
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return run_registered_benchmarks(argc, argv);
 }
 
 template <class Real>

@@ -95,8 +95,5 @@ void register_all() {
 
 int main(int argc, char** argv) {
   fastcorot::bench::register_all();
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return fastcorot::bench::run_registered_benchmarks(argc, argv);
 }

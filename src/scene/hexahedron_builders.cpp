@@ -17,12 +17,7 @@ bool is_grid_topology(std::string_view type) {
 std::vector<Hexahedron> topology_hexahedra(SceneData& data, Component& topology) {
   std::vector<Hexahedron> hexahedra;
   if (is_grid_topology(topology.type())) {
-    const RegularGrid grid = data.grid(topology);
-    try {
-      validate_cells(grid);
-    } catch (const Error& error) {
-      throw error_at(topology.where(), error);
-    }
+    const RegularGrid grid = data.grid(topology);  // a flat grid (one point along an axis) has none
     for (Index k = 0; k + 1 < grid.n[2]; ++k) {
       for (Index j = 0; j + 1 < grid.n[1]; ++j) {
         for (Index i = 0; i + 1 < grid.n[0]; ++i) hexahedra.push_back(grid_cell_corners(grid, i, j, k));
@@ -53,7 +48,13 @@ std::vector<Hexahedron> topology_hexahedra(SceneData& data, Component& topology)
 }
 
 std::vector<Tetrahedron> tetrahedron_fem_tetrahedra(SceneData& data, Component& topology) {
-  if (is_grid_topology(topology.type())) return tetrahedron_fem_grid_tetrahedra(data.grid(topology));
+  if (is_grid_topology(topology.type())) {
+    try {
+      return tetrahedron_fem_grid_tetrahedra(data.grid(topology));
+    } catch (const Error& error) {
+      throw error_at(topology.where(), error);
+    }
+  }
   // SOFA's TetrahedronFEMForceField takes a topology that is not a grid as cells of a 2 x 1 layer.
   return split_hexahedra(topology_hexahedra(data, topology), 2, 1, true, false);
 }

@@ -366,7 +366,13 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
         throw make_error(m->where(), ": input must be a RegularGridTopology or a HexahedronSetTopologyContainer, not ", grid.type());
       }
       if (name == "position") return data(grid, "position");
-      if (name == "tetrahedra") return flatten_indices(grid_tetrahedra(this->grid(grid), boolean(*m, "swapping", false)));
+      if (name == "tetrahedra") {
+        try {
+          return flatten_indices(grid_tetrahedra(this->grid(grid), boolean(*m, "swapping", false)));
+        } catch (const Error& error) {
+          throw error_at(m->where(), error);
+        }
+      }
     }
     // Filled by a SimpleTesselatedTetraTopologicalMapping: its input cut into 8 per tetrahedron.
     if (Component* m = mapping_into(c, "SimpleTesselatedTetraTopologicalMapping")) {

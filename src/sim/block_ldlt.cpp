@@ -28,6 +28,7 @@ void BlockLDLT<Real>::analyse(const Matrix& matrix) {
     throw make_error("block LDLᵀ: the matrix is " + std::to_string(matrix.rows()) + " × " +
                      std::to_string(matrix.cols()) + ", not square in 3×3 blocks");
   }
+  if (!matrix.isCompressed()) throw make_error("block LDLᵀ: the matrix is not compressed (makeCompressed first)");
   const Index n = static_cast<Index>(matrix.rows()) / 3;
   points_ = n;
   // The points' graph (both triangles, for the ordering) from A's lower triangle.
@@ -70,6 +71,7 @@ void BlockLDLT<Real>::analyse(const Matrix& matrix) {
     return 9 * static_cast<std::int64_t>(std::lower_bound(first, last, row) - a_rows_.begin());
   };
   // Each stored entry of A's lower triangle, and where it lands (twice inside a diagonal block).
+  stored_entries_ = static_cast<std::size_t>(matrix.nonZeros());
   scatter_from_.clear();
   scatter_to_.clear();
   for (Index c = 0; c < 3 * n; ++c) {
@@ -122,9 +124,22 @@ void BlockLDLT<Real>::analyse(const Matrix& matrix) {
 template <class Real>
 bool BlockLDLT<Real>::factorise(const Matrix& matrix) {
   const Index n = points_;
+  if (matrix.rows() != 3 * n || matrix.cols() != 3 * n || !matrix.isCompressed() ||
+      static_cast<std::size_t>(matrix.nonZeros()) != stored_entries_) {
+    throw make_error("block LDLᵀ: factorise takes a compressed matrix of the analysed pattern (", 3 * n, " × ", 3 * n,
+                     ", ", stored_entries_, " stored entries), not ", matrix.rows(), " × ", matrix.cols(), " with ",
+                     matrix.nonZeros());
+  }
   std::fill(a_values_.begin(), a_values_.end(), Real(0));
   const Real* stored = matrix.valuePtr();
-  for (std::size_t s = 0; s < scatter_from_.size(); ++s) a_values_[scatter_to_[s]] = stored[scatter_from_[s]];
+  for (std::size_t s = 0; s < scatter_from_.size(); ++s) {
+    const Real value = stored[scatter_from_[s]];
+    if (!std::isfinite(value)) {
+      throw make_error("the system matrix has a non-finite entry (", value, ") in its lower triangle: a diverging or "
+                       "ill-defined step");
+    }
+    a_values_[scatter_to_[s]] = value;
+  }
 
   // Up-looking: row k of L solves L(0:k, 0:k) D(0:k) y = A(0:k, k) on the tree paths from the
   // column's nonzero blocks, in topological order. A block of y lies as three rows of four values
@@ -142,7 +157,7 @@ bool BlockLDLT<Real>::factorise(const Matrix& matrix) {
     flag[static_cast<std::size_t>(k)] = k;
     for (Index p = a_start_[static_cast<std::size_t>(k)]; p < a_start_[static_cast<std::size_t>(k) + 1]; ++p) {
       Index i = a_rows_[static_cast<std::size_t>(p)];
-      const Real* a = a_values_.data() + 9 * p;
+      const Real* a = a_values_.data() + 9 * static_cast<std::size_t>(p);
       for (Index e = 0; e < 3; ++e) {
         for (Index c = 0; c < 3; ++c) work[12 * i + 4 * e + c] = a[at(e, c)];
       }
@@ -171,7 +186,7 @@ bool BlockLDLT<Real>::factorise(const Matrix& matrix) {
       const Index begin = l_start_[static_cast<std::size_t>(j)];
       const Index end = begin + filled[static_cast<std::size_t>(j)];
       for (Index p = begin; p < end; ++p) {
-        const Real* l = entries + 9 * p;  // column-major: L(e, f) at 3 f + e
+        const Real* l = entries + 9 * static_cast<std::size_t>(p);  // column-major: L(e, f) at 3 f + e
         Real* target = work + 12 * rows[p];
         Eigen::Map<Row>(target) -= l[0] * y0 + l[3] * y1 + l[6] * y2;
         Eigen::Map<Row>(target + 4) -= l[1] * y0 + l[4] * y1 + l[7] * y2;
@@ -180,7 +195,7 @@ bool BlockLDLT<Real>::factorise(const Matrix& matrix) {
       const Square lkj = yj.transpose() * ConstBlock<Real>(d_inverse_.data() + 9 * j);
       diagonal.noalias() -= lkj * yj;
       l_rows_[static_cast<std::size_t>(end)] = k;
-      Block<Real>(entries + 9 * end) = lkj;
+      Block<Real>(entries + 9 * static_cast<std::size_t>(end)) = lkj;
       ++filled[static_cast<std::size_t>(j)];
     }
     // D's block as U diag(d) Uᵀ (no pivoting, its lower triangle read), and its inverse.
@@ -216,7 +231,7 @@ void BlockLDLT<Real>::solve(const Real* b, Real* x) const {
     const Vector tj = Eigen::Map<const Vector>(t.data() + 3 * j);
     for (Index p = l_start_[static_cast<std::size_t>(j)]; p < l_start_[static_cast<std::size_t>(j) + 1]; ++p) {
       Eigen::Map<Vector>(t.data() + 3 * l_rows_[static_cast<std::size_t>(p)]).noalias() -=
-          ConstBlock<Real>(l_values_.data() + 9 * p) * tj;
+          ConstBlock<Real>(l_values_.data() + 9 * static_cast<std::size_t>(p)) * tj;
     }
   }
   for (Index j = 0; j < n; ++j) {
@@ -226,7 +241,7 @@ void BlockLDLT<Real>::solve(const Real* b, Real* x) const {
   for (Index j = n - 1; j >= 0; --j) {
     Vector tj = Eigen::Map<const Vector>(t.data() + 3 * j);
     for (Index p = l_start_[static_cast<std::size_t>(j)]; p < l_start_[static_cast<std::size_t>(j) + 1]; ++p) {
-      tj.noalias() -= ConstBlock<Real>(l_values_.data() + 9 * p).transpose() *
+      tj.noalias() -= ConstBlock<Real>(l_values_.data() + 9 * static_cast<std::size_t>(p)).transpose() *
                       Eigen::Map<const Vector>(t.data() + 3 * l_rows_[static_cast<std::size_t>(p)]);
     }
     Eigen::Map<Vector>(t.data() + 3 * j) = tj;
@@ -240,6 +255,9 @@ template <class Real>
 typename BlockLDLT<Real>::DenseMatrix BlockLDLT<Real>::compliance(const Matrix& columns, int threads) const {
   const Index n = points_;
   const auto r = static_cast<Index>(columns.cols());
+  if (columns.rows() != 3 * n) {
+    throw make_error("block LDLᵀ: compliance of columns with ", columns.rows(), " rows for a ", 3 * n, "-unknown system");
+  }
   // Z's columns in groups of kGroup (constraint rows come in threes on one point, whose paths
   // nearly coincide): each group solved on the union of its paths. A point's entries lie as three
   // packets (x, y, z) of kGroup columns each, so that each block of L updates three packets.
@@ -275,7 +293,7 @@ typename BlockLDLT<Real>::DenseMatrix BlockLDLT<Real>::compliance(const Matrix& 
       const Packet z2 = Eigen::Map<const Packet>(work + kGroup * (3 * j + 2));
       if ((z0 == 0).all() && (z1 == 0).all() && (z2 == 0).all()) continue;
       for (Index p = start[j]; p < start[j + 1]; ++p) {
-        const Real* l = entries + 9 * p;  // column-major: L(e, f) at 3 f + e
+        const Real* l = entries + 9 * static_cast<std::size_t>(p);  // column-major: L(e, f) at 3 f + e
         Real* target = work + kGroup * 3 * rows[p];
         Eigen::Map<Packet>(target) -= l[0] * z0 + l[3] * z1 + l[6] * z2;
         Eigen::Map<Packet>(target + kGroup) -= l[1] * z0 + l[4] * z1 + l[7] * z2;
@@ -300,6 +318,7 @@ typename BlockLDLT<Real>::DenseMatrix BlockLDLT<Real>::compliance(const Matrix& 
   std::sort(used.begin(), used.end());
   for (std::size_t q = 0; q < used.size(); ++q) where[static_cast<std::size_t>(used[q])] = static_cast<Index>(q);
   const auto m = static_cast<Eigen::Index>(3 * used.size());
+  if (m == 0) return DenseMatrix::Zero(r, r);  // no column has an entry
   DenseMatrix z = DenseMatrix::Zero(m, r);
   for (Index g = 0; g < groups; ++g) {
     const auto& points = reach[static_cast<std::size_t>(g)];

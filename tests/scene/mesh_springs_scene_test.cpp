@@ -5,6 +5,7 @@
 // Expected counts are worked out by hand from SOFA's element lists (GridTopology, MeshSpringForceField::init).
 #include "fastcorot/scene/scene_builder.h"
 
+#include "fastcorot/core/error.h"
 #include "fastcorot/fem/spring_force_field.h"
 #include "fastcorot/io/mesh_readers.h"
 #include "fastcorot/topology/hexahedron_faces.h"
@@ -14,6 +15,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 namespace fastcorot {
@@ -57,6 +59,28 @@ TEST(MeshSpringsScene, StiffnessAloneMakesEveryKindOnAGrid) {
   EXPECT_DOUBLE_EQ(springs[0].rest_length, 2);
   EXPECT_EQ(springs[20].a, 0);
   EXPECT_EQ(springs[20].b, 4);
+}
+
+TEST(MeshSpringsScene, AFlatGridIsAClothOfLinesAndQuads) {
+  // SOFA's cloth: a RegularGridTopology with one point along z (3 × 3 × 1). Its 12 lines and the
+  // two diagonals of its 4 quads; no cells. A TetrahedronFEMForceField on it is refused naming the grid.
+  const std::string flat =
+      "<Node name=\"N\"><EulerImplicitSolver/><CGLinearSolver iterations=\"50\" tolerance=\"1e-12\" threshold=\"1e-12\"/>"
+      "<MechanicalObject/><UniformMass totalMass=\"1\"/><RegularGridTopology n=\"3 3 1\" min=\"0 0 0\" max=\"2 2 0\"/>";
+  LoadedScene scene = testing::build_scene_text(flat + "<MeshSpringForceField stiffness=\"100\"/></Node>");
+  const auto& springs = springs_of(scene).springs();
+  EXPECT_EQ(springs.size(), 12u + 8u);
+  for (const auto& s : springs) EXPECT_TRUE(s.rest_length == 1 || std::abs(s.rest_length - std::sqrt(2.0)) < 1e-15) << s.rest_length;
+  scene.simulation.step();
+  for (const auto& x : scene.simulation.objects[0].system.state.position) EXPECT_TRUE(x.allFinite());
+  try {
+    testing::build_scene_text(flat + "<TetrahedronFEMForceField youngModulus=\"100\" poissonRatio=\"0.3\"/></Node>");
+    ADD_FAILURE() << "a TetrahedronFEMForceField on a flat grid was built";
+  } catch (const Error& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("RegularGridTopology"), std::string::npos) << message;
+    EXPECT_NE(message.find("flat and has no cells"), std::string::npos) << message;
+  }
 }
 
 TEST(MeshSpringsScene, AKindWrittenOverridesStiffness) {

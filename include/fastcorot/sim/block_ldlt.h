@@ -30,7 +30,9 @@ class BlockLDLT {
   void analyse(const Matrix& matrix);
 
   // The numeric phase for a matrix with the analysed pattern. Returns false when a pivot is zero
-  // or not finite (a singular matrix, or one LDLᵀ cannot factorise without pivoting).
+  // or not finite (a singular matrix, or one LDLᵀ cannot factorise without pivoting); throws
+  // fastcorot::Error naming the value when an entry is not finite, or when the matrix is not of
+  // the analysed size and entry count.
   bool factorise(const Matrix& matrix);
 
   // x = A⁻¹ b for the last factorised A; b and x hold size() values each (they may not overlap).
@@ -55,6 +57,7 @@ class BlockLDLT {
   std::vector<Index> a_start_, a_rows_;
   std::vector<Real> a_values_;
   std::vector<std::int64_t> scatter_from_, scatter_to_;
+  std::size_t stored_entries_ = 0;  // A's stored entries when analysed
   // L's blocks below the diagonal, column by column (rows ascending), 9 values each.
   std::vector<Index> l_start_, l_rows_;
   std::vector<Real> l_values_;
