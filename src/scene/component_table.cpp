@@ -26,7 +26,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 62> kIgnored = {
+constexpr std::array<std::string_view, 63> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -42,7 +42,7 @@ constexpr std::array<std::string_view, 62> kIgnored = {
     "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod", "TaskSchedulerSettings",
     "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase",
     "PointSetTopologyModifier", "PointSetGeometryAlgorithms", "QuadSetTopologyModifier", "QuadSetGeometryAlgorithms",
-    "HexahedronSetTopologyModifier", "HexahedronSetGeometryAlgorithms"};
+    "HexahedronSetTopologyModifier", "HexahedronSetGeometryAlgorithms", "TrailRenderer"};
 
 std::string join_names(std::span<const AttributeSpec> attributes) {
   std::string list;
