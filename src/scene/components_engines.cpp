@@ -138,7 +138,25 @@ std::vector<ComponentSpec> engine_components() {
         {"indices", "indices", "", "where `value` goes"},
         {"value", "real", "0", "the value"},
         {"defaultValue", "real", "1", "for the gaps when the list grows"},
-        {"outputValues", "reals", "", "the result (an output)"}}}
+        {"outputValues", "reals", "", "the result (an output)"}}},
+      {"TransformEngine", "engine",
+       "output_position = input_position scaled, rotated by the Euler angles, rotated by the quaternion, translated "
+       "(SOFA's order; each step only when it is not the identity); with inverse the inverse steps in the opposite "
+       "order. Templates Vec1, Vec2, Vec3 (default) and Rigid3 (7 numbers per rigid: a rotation also turns the "
+       "orientations).",
+       {{"input_position", "vec3s", "", "the points (Rigid3: x y z qx qy qz qw per rigid)"},
+        {"translation", "vec3", "0 0 0", "applied last"},
+        {"rotation", "vec3", "0 0 0", "Euler angles in degrees, R = Rz Ry Rx (SOFA's createQuaterFromEuler), applied after the scale"},
+        {"quaternion", "reals", "0 0 0 1", "qx qy qz qw, applied after rotation (not normalised, as SOFA)"},
+        {"scale", "vec3", "1 1 1", "applied first"},
+        {"inverse", "bool", "false", "apply the inverse transformation"},
+        {"output_position", "vec3s", "", "the result (an output)"}}},
+      {"PointsFromIndices", "engine",
+       "indices_position = the points of position at indices, in that order, each distinct point once (SOFA's "
+       "comparison: every coordinate within 1e-6); Vec3.",
+       {{"position", "vec3s", "", "the points (default: the position of the node's state, or the nearest above)"},
+        {"indices", "indices", "", "the points to take"},
+        {"indices_position", "vec3s", "", "the result (an output)"}}}
   };
 }
 

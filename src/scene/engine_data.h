@@ -1,7 +1,8 @@
-// Internal to the scene builder: the data of SOFA's engines SubsetTopology, MeshTetraStuffing and
-// MeshSplittingEngine as SceneData::compute asks for them (their inputs' defaults and their outputs),
-// computed at load as SOFA computes them at init. One file per engine: subset_topology.cpp,
-// mesh_tetra_stuffing_engine.cpp, mesh_splitting_engine.cpp.
+// Internal to the scene builder: the data of SOFA's engines SubsetTopology, MeshTetraStuffing,
+// MeshSplittingEngine, TransformEngine and PointsFromIndices as SceneData::compute asks for them
+// (their inputs' defaults and their outputs), computed at load as SOFA computes them at init. One
+// file per engine: subset_topology.cpp, mesh_tetra_stuffing_engine.cpp, mesh_splitting_engine.cpp,
+// transform_engine.cpp, points_from_indices.cpp.
 #pragma once
 
 #include "scene_data.h"
@@ -20,6 +21,10 @@ Numbers subset_topology(SceneData& scene, Component& c, const std::string& name)
 Numbers mesh_tetra_stuffing(SceneData& scene, Component& c, const std::string& name);
 // Data `name` of a MeshSplittingEngine (points shared among sub-meshes by index lists).
 Numbers mesh_splitting_engine(SceneData& scene, Component& c, const std::string& name);
+// Data `name` of a TransformEngine (input_position scaled, rotated, translated).
+Numbers transform_engine(SceneData& scene, Component& c, const std::string& name);
+// Data `name` of a PointsFromIndices (the points of position at indices).
+Numbers points_from_indices(SceneData& scene, Component& c, const std::string& name);
 
 // What the component's src="@..." provides for `name` (same-named data of the linked component),
 // or nullopt when it has no src.

@@ -499,6 +499,8 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   }
   if (type == "MeshTetraStuffing") return mesh_tetra_stuffing(*this, c, name);
   if (type == "MeshSplittingEngine") return mesh_splitting_engine(*this, c, name);
+  if (type == "TransformEngine") return transform_engine(*this, c, name);
+  if (type == "PointsFromIndices") return points_from_indices(*this, c, name);
   return {};
 }
 

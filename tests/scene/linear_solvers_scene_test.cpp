@@ -7,6 +7,7 @@
 #include "fastcorot/sim/minres_solver.h"
 #include "fastcorot/sim/precomputed_linear_solver.h"
 #include "fastcorot/sim/preconditioned_conjugate_gradient.h"
+#include "fastcorot/sim/sparse_direct_solver.h"
 #include "fastcorot/sim/ssor_preconditioner.h"
 #include "fastcorot/sim/warp_preconditioner.h"
 
@@ -135,6 +136,21 @@ TEST(LinearSolversScene, WarpPreconditionerWithItsRotationMatrixSystem) {
   tight.replace(tight.find(R"(iterations="1000")"), 17, R"(iterations="1000" tolerance="1e-30")");
   LoadedScene warped = build(tight, "TetrahedronFEMForceField");
   EXPECT_LT(trajectory_difference(direct_tets, warped, 30), 1e-8);
+}
+
+TEST(LinearSolversScene, EigenSimplicialLLTSolvesAsTheDirectSolver) {
+  // SOFA's EigenSimplicialLLT (InextensiblePendulum.scn writes it with its block template) is the
+  // block LDL^T here: the trajectory of an independent converged CG to 1e-8, and that of
+  // EigenSimplicialLDLT exactly.
+  const LoadedScene block = build(R"(<EigenSimplicialLLT template="CompressedRowSparseMatrixMat3x3"/>)");
+  EXPECT_NE(dynamic_cast<const SparseDirectSolver<double>*>(block.simulation.objects.at(0).linear_solver.get()), nullptr);
+  EXPECT_NO_THROW(build(R"(<EigenSimplicialLLT template="CompressedRowSparseMatrixd"/>)"));
+  LoadedScene llt = build(R"(<EigenSimplicialLLT template="CompressedRowSparseMatrixMat3x3"/>)");
+  LoadedScene ldlt = build("<EigenSimplicialLDLT/>");
+  LoadedScene cg = build(R"(<CGLinearSolver iterations="1000" tolerance="1e-30" threshold="1e-30"/>)");
+  EXPECT_EQ(trajectory_difference(llt, ldlt, 10), 0.0);
+  LoadedScene llt_again = build(R"(<EigenSimplicialLLT template="CompressedRowSparseMatrixMat3x3"/>)");
+  EXPECT_LT(trajectory_difference(llt_again, cg, 10), 1e-8);
 }
 
 TEST(LinearSolversScene, PrecomputedLinearSolverAndMatrixImage) {
