@@ -103,9 +103,13 @@ std::vector<double> read_number_or_list(const json& value, const std::string& wh
   return numbers;
 }
 
-json points_to_json(std::span<const Vec3<double>> points) {
+json points_to_json(std::span<const Vec3<double>> points, int coordinates) {
   json out = json::array();
-  for (const auto& p : points) out.push_back({p.x(), p.y(), p.z()});
+  for (const auto& p : points) {
+    json row = json::array();
+    for (int c = 0; c < coordinates; ++c) row.push_back(p[c]);
+    out.push_back(std::move(row));
+  }
   return out;
 }
 

@@ -29,7 +29,7 @@ double read_number(const json& value, const std::string& where);
 // A number or a non-empty list of numbers.
 std::vector<double> read_number_or_list(const json& value, const std::string& where);
 
-json points_to_json(std::span<const Vec3<double>> points);
+json points_to_json(std::span<const Vec3<double>> points, int coordinates = 3);
 // Values in rows of `width` (a Rigid3 state: 7 numbers per position, 6 per velocity).
 json rows_to_json(std::span<const double> values, std::size_t width);
 

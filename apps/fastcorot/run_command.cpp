@@ -327,9 +327,10 @@ void record(json& steps, nlohmann::ordered_json& states, json& impulses, const S
       all[state.key()] = {{"node", state.node},
                           {"object", state.name},
                           {"mapped", state.mapped},
-                          {"position", state.rigid ? rows_to_json(state.rigid_position, 7) : points_to_json(state.position)},
-                          {"velocity", state.rigid ? rows_to_json(state.rigid_velocity, 6) : points_to_json(state.velocity)}};
+                          {"position", state.rigid ? rows_to_json(state.rigid_position, 7) : points_to_json(state.position, state.coordinates)},
+                          {"velocity", state.rigid ? rows_to_json(state.rigid_velocity, 6) : points_to_json(state.velocity, state.coordinates)}};
       if (state.rigid) all[state.key()]["template"] = "Rigid3d";
+      if (state.coordinates == 1) all[state.key()]["template"] = "Vec1d";
     }
   }
   if (simulation.constraints) {

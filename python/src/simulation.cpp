@@ -170,9 +170,12 @@ void bind_simulation(py::module_& m) {
           "states",
           [](SimulationCore& c) {
             py::dict out;
-            const auto copy = [](const std::vector<Vec3<double>>& points) {
-              PointArray<double> array(std::vector<py::ssize_t>{static_cast<py::ssize_t>(points.size()), 3});
-              for (std::size_t i = 0; i < points.size(); ++i) std::copy_n(points[i].data(), 3, array.mutable_data() + 3 * i);
+            // (n, 3) arrays, or (n, 1) for a Vec1 state (SofaPython3's shapes).
+            const auto copy = [](const std::vector<Vec3<double>>& points, int coordinates) {
+              PointArray<double> array(std::vector<py::ssize_t>{static_cast<py::ssize_t>(points.size()), coordinates});
+              for (std::size_t i = 0; i < points.size(); ++i) {
+                std::copy_n(points[i].data(), coordinates, array.mutable_data() + coordinates * static_cast<std::ptrdiff_t>(i));
+              }
               return array;
             };
             for (const auto& object : c.simulation().objects) {
@@ -191,8 +194,8 @@ void bind_simulation(py::module_& m) {
                   entry["position"] = rows(state.rigid_position, 7);
                   entry["velocity"] = rows(state.rigid_velocity, 6);
                 } else {
-                  entry["position"] = copy(state.position);
-                  entry["velocity"] = copy(state.velocity);
+                  entry["position"] = copy(state.position, state.coordinates);
+                  entry["velocity"] = copy(state.velocity, state.coordinates);
                 }
                 out[py::str(state.key())] = entry;
               }

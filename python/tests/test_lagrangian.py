@@ -130,3 +130,35 @@ def test_a_rigid_pair_constraint_reads_and_takes_six_numbers_per_rest_vector():
     with pytest.warns(UserWarning, match="no effect on a Rigid3"):
         root.tie.activate.value = False
     assert root.tie.activate.value is False or root.tie.activate.value == 0
+
+
+def test_an_inextensible_wire_as_a_script_writes_it():
+    # SOFA's inextensible pendulum, from Python: a DistanceMapping's Vec1 state of edge extensions,
+    # held at zero by a UniformLagrangianConstraint. SofaPython3 shows a Vec1 state as (n, 1) arrays;
+    # the wire swings down while its edges keep their lengths.
+    root = Sofa.Core.Node("root")
+    root.dt = DT
+    root.gravity = [0, -10, 0]
+    root.addObject("FreeMotionAnimationLoop", solveVelocityConstraintFirst=True)
+    root.addObject("BlockGaussSeidelConstraintSolver", tolerance=1e-12, maxIterations=1000)
+    root.addObject("EulerImplicitSolver")
+    root.addObject("SparseLDLSolver")
+    root.addObject("GenericConstraintCorrection")
+    root.addObject("EdgeSetTopologyContainer", name="edges", position=[[0, 0, 0], [0.5, 0, 0], [1, 0, 0], [1.5, 0, 0]],
+                   edges=[[0, 1], [1, 2], [2, 3]])
+    root.addObject("MechanicalObject", name="particles")
+    root.addObject("FixedProjectiveConstraint", indices=[0])
+    root.addObject("DiagonalMass", totalMass=0.01)
+    lengths = root.addChild("lengths")
+    lengths.addObject("MechanicalObject", name="extensions", template="Vec1")
+    lengths.addObject("DistanceMapping", topology="@../edges")
+    lengths.addObject("UniformLagrangianConstraint", template="Vec1", iterative=False)
+    Sofa.Simulation.init(root)
+    for _ in range(20):
+        Sofa.Simulation.animate(root, DT)
+    extensions = np.asarray(root.lengths.extensions.position.value)
+    assert extensions.shape == (3, 1)
+    x = np.asarray(root.particles.position.value)
+    np.testing.assert_allclose(np.linalg.norm(np.diff(x, axis=0), axis=1) - 0.5, extensions[:, 0], atol=1e-14)
+    assert np.abs(extensions).max() < 1e-3
+    assert x[3, 1] < -0.1

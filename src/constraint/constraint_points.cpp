@@ -1,6 +1,22 @@
 #include "fastcorot/constraint/constraint_points.h"
 
+#include "fastcorot/state/rigid3.h"
+
+#include <algorithm>
+
 namespace fastcorot {
+
+template <class Real>
+void PrescribedMotion<Real>::apply(double time, std::vector<Vec3<Real>>& points) {
+  movement.apply(time, state, frames.get());
+  if (!frames) {
+    points = state.position;
+    return;
+  }
+  const std::vector<RigidCoord<Real>> coords = frames->coords(state.position);
+  points.resize(local.size());
+  for (std::size_t i = 0; i < local.size(); ++i) points[i] = coords[rigid[i]].project_point(local[i]);
+}
 
 template <class Real>
 void ConstraintPoints<Real>::prepare(const MechanicalState<Real>& start, const MechanicalState<Real>& free, Real h) {
@@ -27,6 +43,7 @@ void ConstraintPoints<Real>::prepare(const MechanicalState<Real>& start, const M
 template <class Real>
 void ConstraintRows<Real>::add(int row, const ConstraintPoints<Real>& points, std::size_t i, const Vec3<Real>& c) {
   if (points.unsimulated) return;
+  if (points.constraint_force) kept_.push_back({row, points.constraint_force.get(), i, c});
   auto& entries = entries_[points.object];
   if (!points.mapping) {
     entries.push_back({row, points.blocks[i], c});
@@ -34,6 +51,20 @@ void ConstraintRows<Real>::add(int row, const ConstraintPoints<Real>& points, st
   }
   points.mapping->row_blocks(i, row_blocks_);
   for (const auto& [block, j] : row_blocks_) entries.push_back({row, block, j.transpose() * c});
+}
+
+template <class Real>
+void ConstraintRows<Real>::store_constraint_forces(const Real* lambda, Real h) const {
+  // SOFA: Hᵀλ on the state, then scaled by 1/h as the next step begins.
+  for (const KeptEntry& e : kept_) (*e.sink)[e.point] += e.value * lambda[e.row];
+  const Real inverse_h = Real(1) / h;
+  std::vector<std::vector<Vec3<Real>>*> sinks;
+  for (const KeptEntry& e : kept_) {
+    if (std::find(sinks.begin(), sinks.end(), e.sink) == sinks.end()) sinks.push_back(e.sink);
+  }
+  for (auto* sink : sinks) {
+    for (auto& f : *sink) f *= inverse_h;
+  }
 }
 
 template <class Real>
@@ -50,6 +81,8 @@ Eigen::SparseMatrix<Real> ConstraintRows<Real>::transposed(std::size_t o, Index 
   return ht;
 }
 
+template struct PrescribedMotion<float>;
+template struct PrescribedMotion<double>;
 template struct ConstraintPoints<float>;
 template struct ConstraintPoints<double>;
 template class ConstraintRows<float>;

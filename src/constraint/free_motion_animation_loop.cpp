@@ -47,7 +47,7 @@ FreeMotionAnimationLoop<Real>::FreeMotionAnimationLoop(Parameters parameters, st
 
 template <class Real>
 ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObject<Real>> objects,
-                                                        std::span<const MechanicalState<Real>> start, Real dt, double) {
+                                                        std::span<const MechanicalState<Real>> start, Real dt, double time) {
   ConstraintReport report;
   const ConstraintOrder order = this->order();
   if (order != ConstraintOrder::velocity) {
@@ -62,6 +62,8 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
   }
   for (auto& constraint : constraints) {
     for (ConstraintPoints<Real>* points : constraint->point_sets()) {
+      // Last step's constraint forces were read by the free motion: this solve's replace them.
+      if (points->constraint_force) points->constraint_force->assign(points->size(), Vec3<Real>::Zero());
       if (points->unsimulated) continue;
       points->prepare(start[points->object], objects[points->object].system.state, dt);
     }
@@ -123,6 +125,7 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
     report.converged = solved.converged;
     if (!problem_.f.allFinite()) throw make_error(solver_->name(), ": the constraint impulses are not finite");
     forces_ = problem_.f;
+    rows.store_constraint_forces(problem_.f.data(), dt);
     // Each object corrected for the impulses Hᵀλ on its blocks.
     std::vector<Vec3<Real>> impulse;
     for (std::size_t o = 0; o < objects.size(); ++o) {
@@ -135,6 +138,14 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
       for (auto& correction : corrections) {
         if (correction->object() == o) correction->correct(object, impulse, order, dt);
       }
+    }
+  }
+  // SOFA's end-of-step projection moves states no solver integrates (at the step's start time).
+  for (auto& constraint : constraints) {
+    for (ConstraintPoints<Real>* points : constraint->point_sets()) {
+      if (!points->unsimulated || !points->motion) continue;
+      points->motion->apply(time, points->position);
+      points->free_position = points->position;
     }
   }
   if (order == ConstraintOrder::velocity) {

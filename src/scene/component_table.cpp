@@ -134,8 +134,6 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
   static constexpr std::pair<std::string_view, std::string_view> kRefused[] = {
-      {"StopperLagrangianConstraint", "StopperLagrangianConstraint exists only on Vec1 states in SOFA, and fastcorot has no Vec1 states"},
-      {"UniformLagrangianConstraint", "UniformLagrangianConstraint exists only on Vec1 states in SOFA, and fastcorot has no Vec1 states"},
       {"UnilateralLagrangianConstraint", "UnilateralLagrangianConstraint is not simulated yet"},
       {"AugmentedLagrangianConstraint", "AugmentedLagrangianConstraint is not simulated yet"},
       {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},

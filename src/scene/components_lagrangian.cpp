@@ -143,6 +143,15 @@ std::vector<ComponentSpec> lagrangian_components() {
         {"axis_1", "int", "0", "one end of the segment, in object2"},
         {"axis_2", "int", "0", "the other end, in object2"},
         {"force", "vec3", "", "output in SOFA (Σ row direction × λ): accepted, not kept"}}},
+      {"UniformLagrangianConstraint", "lagrangian",
+       "Holds every value of a Vec1 state (a DistanceMapping's edge extensions: inextensible edges) at zero, or at its rest value, by Lagrange multipliers: one row per value; violation x_free (velocity order: v_free + x / dt), minus the rest value with constrainToRestPos.",
+       {{"iterative", "bool", "true", "one bilateral row at a time; false: all rows as one block, solved by an LDLᵀ of its part of W"},
+        {"constrainToRestPos", "bool", "false", "hold the values at the state's rest values rather than at zero"}}},
+      {"StopperLagrangianConstraint", "lagrangian",
+       "Keeps value `index` of a Vec1 state (a DistanceMapping's edge extension) within [min, max] by one Lagrange multiplier; violation the free value, in either constraint order (as SOFA).",
+       {{"index", "int", "0", "the value kept within bounds"},
+        {"min", "real", "-100", "lower bound"},
+        {"max", "real", "100", "upper bound"}}},
   };
 }
 

@@ -1,11 +1,16 @@
 #include "lagrangian_builder.h"
 #include "precomputed_correction_builder.h"
+#include "projective_constraints.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/constraint/rigid_lagrangian_constraints.h"
 #include "fastcorot/constraint/sliding_lagrangian_constraint.h"
+#include "fastcorot/constraint/vec1_lagrangian_constraints.h"
 #include "fastcorot/constraint/lcp_constraint_solver.h"
 #include "fastcorot/core/error.h"
+#include "fastcorot/state/rigid3.h"
+#include "fastcorot/mapping/distance_mapping.h"
+#include "distance_mapping_builder.h"
 
 #include <Eigen/LU>
 
@@ -25,8 +30,9 @@ constexpr std::array<std::string_view, 7> kSolvers = {"BlockGaussSeidelConstrain
                                                       "LCPConstraintSolver"};
 constexpr std::array<std::string_view, 4> kCorrections = {"LinearSolverConstraintCorrection", "GenericConstraintCorrection",
                                                           "UncoupledConstraintCorrection", "PrecomputedConstraintCorrection"};
-constexpr std::array<std::string_view, 3> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint",
-                                                          "SlidingLagrangianConstraint"};
+constexpr std::array<std::string_view, 5> kConstraints = {"FixedLagrangianConstraint", "BilateralLagrangianConstraint",
+                                                          "SlidingLagrangianConstraint", "UniformLagrangianConstraint",
+                                                          "StopperLagrangianConstraint"};
 
 template <std::size_t N>
 bool among(const std::array<std::string_view, N>& names, std::string_view type) {
@@ -198,6 +204,7 @@ class LoopBuilder {
     points.object = where.object;
     const auto& object = simulation_.objects[where.object];
     if (where.mapped) {
+      if (where.mapped->coordinates == 1) return vec1_points(*where.mapped, where.object);
       if (where.mapped->through) {
         throw make_error(state.where(), " is below a SubsetMultiMapping or follows several rigid bodies: "
                          "Lagrangian constraints on it are not supported");
@@ -218,9 +225,40 @@ class LoopBuilder {
     return points;
   }
 
+  // The points of a Vec1 state (a DistanceMapping's output): the mapping's own copy (it records
+  // its directions where the step starts), the state's constraint-force sink for the geometric
+  // stiffness, rest values zero (SOFA's mapped state keeps the zeros it was resized with).
+  static ConstraintPoints<double> vec1_points(const MappedState& mapped, std::size_t object) {
+    const auto distance = std::dynamic_pointer_cast<const DistanceMapping<double>>(mapped.through);
+    if (!distance) throw make_error("node ", mapped.node, ": a Vec1 state that is not a DistanceMapping's output");
+    ConstraintPoints<double> points;
+    points.object = object;
+    points.mapping = std::make_shared<DistanceMapping<double>>(*distance);
+    points.constraint_force = mapped.constraint_force;
+    points.rest_position.assign(distance->size(), Vec3<double>::Zero());
+    return points;
+  }
+
+  // A Vec1-only constraint (UniformLagrangianConstraint, StopperLagrangianConstraint) on its
+  // node's state: both that state and a written template must be Vec1 (SOFA registers no other).
+  ConstraintPoints<double> vec1_state_points(Component& c) {
+    Component& state = own_state(c);
+    const std::string written = data_.text(c, "template", "Vec1d");
+    if (!is_vec1_template(written)) throw make_error("template="", written, "": SOFA defines ", c.type(), " on Vec1 states only");
+    if (!is_vec1_template(data_.text(state, "template", "Vec3d"))) {
+      throw make_error(state.where(), " is a ", data_.text(state, "template", "Vec3d"), " state: SOFA defines ", c.type(),
+                       " on Vec1 states only (here: the output of a DistanceMapping)");
+    }
+    return points_of(state, c);
+  }
+
   // Whether c acts on Rigid3 states: its template when written, else its state's (SOFA's factory
   // takes the linked state's). Only Vec3 and Rigid3 are simulated; the two must agree.
   bool on_rigids(Component& c, Component& state) {
+    if (is_vec1_template(data_.text(state, "template", "Vec3d"))) {
+      throw make_error(state.where(), " is a Vec1 state: ", c.type(), " acts on Vec3 and Rigid3 states here (on Vec1 states: "
+                       "UniformLagrangianConstraint, StopperLagrangianConstraint)");
+    }
     const bool rigid_state = is_rigid_template(data_.text(state, "template", "Vec3d"));
     if (!c.has("template")) return rigid_state;
     const std::string written = data_.text(c, "template", "Vec3d");
@@ -316,19 +354,50 @@ class LoopBuilder {
     points.position = transformed(data_.points(state, "position"), data_.placement(state, "scale3d"),
                                   data_.placement(state, "rotation"), data_.placement(state, "translation"));
     if (points.position.empty()) throw make_error(state.where(), ": no position: ", user.type(), " has no point to act on");
-    carried_by_still_rigid(state, points.position);
-    warn_if_moved(state, user);
+    carried_by_still_rigid(state, points);
+    if (!points.motion) points.motion = own_movement(state, points.position);
+    if (points.motion) {
+      points.motion->apply(0.0, points.position);  // SOFA's init projects at time 0 (x0 recorded there)
+      info_.push_back(user.where() + ": " + state.where() + " is not simulated (no ODE solver): its LinearMovementProjectiveConstraint "
+                      "moves it at each step's end, as SOFA's FreeMotionAnimationLoop does");
+    } else {
+      warn_if_moved(state, user);
+    }
     points.free_position = points.position;
     points.free_velocity.assign(points.position.size(), Vec3<double>::Zero());
     points.rest_position = points.position;
-    info_.push_back(user.where() + ": " + state.where() + " is not simulated (no ODE solver): its points stay put, as in SOFA");
+    if (!points.motion) info_.push_back(user.where() + ": " + state.where() + " is not simulated (no ODE solver): its points stay put, as in SOFA");
     return points;
+  }
+
+  // The LinearMovementProjectiveConstraint in `node` acting on its state, if any.
+  static Component* linear_movement_in(const GraphNode& node) {
+    for (const auto& c : node.components) {
+      if (c->type() == "LinearMovementProjectiveConstraint") return c.get();
+    }
+    return nullptr;
+  }
+
+  // An unsimulated Vec3 state's own LinearMovementProjectiveConstraint (null when it has none).
+  std::shared_ptr<PrescribedMotion<double>> own_movement(Component& state, const std::vector<Vec3<double>>& positions) {
+    Component* c = linear_movement_in(*state.node);
+    if (!c) return nullptr;
+    auto motion = std::make_shared<PrescribedMotion<double>>();
+    try {
+      motion->movement = build_linear_movement(data_, *c, static_cast<Index>(positions.size()), false);
+    } catch (const Error& error) {
+      throw error_at(c->where(), error);
+    }
+    motion->state.position = positions;
+    motion->state.velocity.assign(positions.size(), Vec3<double>::Zero());
+    return motion;
   }
 
   // An unsimulated state under a RigidMapping from an unsimulated rigid (SOFA's example scenes
   // attach points to a still rigid frame): its positions are local coordinates in the rigid's frame
   // (SOFA's default) unless globalToLocalCoords. Other mappings from unsimulated states are refused.
-  void carried_by_still_rigid(Component& state, std::vector<Vec3<double>>& positions) {
+  void carried_by_still_rigid(Component& state, ConstraintPoints<double>& points) {
+    auto& positions = points.position;
     for (Component* m : state.node->of_category("visualmapping")) {
       if (m->has("output") && &data_.resolve_object(*m->node, m->object->attributes.at("output"), *m) != &state) continue;
       if (m->type() != "RigidMapping") {
@@ -364,14 +433,50 @@ class LoopBuilder {
       const double* pose = &poses[static_cast<std::size_t>(7 * index)];
       const Eigen::Quaterniond q(pose[6], pose[3], pose[4], pose[5]);
       const Vec3<double> centre(pose[0], pose[1], pose[2]);
-      if (data_.boolean(*m, "globalToLocalCoords", false)) return;  // already in the world
+      const bool world = data_.boolean(*m, "globalToLocalCoords", false);
+      if (Component* moving = linear_movement_in(*input.node)) {
+        points.motion = carried_motion(*moving, poses, static_cast<std::size_t>(index), positions, world);
+        return;
+      }
+      if (world) return;  // already in the world
       for (auto& x : positions) x = centre + q.normalized() * x;
       return;
     }
   }
 
+  // Points carried by rigid `index` of an unsimulated Rigid3 state (poses, 7 numbers each) that a
+  // LinearMovementProjectiveConstraint moves: the rigids' centres and orientations follow the
+  // movement, the points their rigid (local coordinates, or world ones brought into its frame).
+  std::shared_ptr<PrescribedMotion<double>> carried_motion(Component& moving, const Numbers& poses, std::size_t index,
+                                                           const std::vector<Vec3<double>>& positions, bool world) {
+    const std::size_t rigids = poses.size() / 7;
+    auto motion = std::make_shared<PrescribedMotion<double>>();
+    try {
+      motion->movement = build_linear_movement(data_, moving, static_cast<Index>(rigids), true);
+    } catch (const Error& error) {
+      throw error_at(moving.where(), error);
+    }
+    motion->frames = std::make_shared<RigidBlocks<double>>();
+    for (std::size_t k = 0; k < rigids; ++k) {
+      const double* pose = &poses[7 * k];
+      const Eigen::Quaterniond q = Eigen::Quaterniond(pose[6], pose[3], pose[4], pose[5]).normalized();
+      motion->state.position.insert(motion->state.position.end(), {Vec3<double>(pose[0], pose[1], pose[2]), Vec3<double>::Zero()});
+      motion->frames->block.push_back(static_cast<Index>(2 * k));
+      motion->frames->orientation.push_back(q);
+      motion->frames->rest_orientation.push_back(q);
+    }
+    motion->state.velocity.assign(motion->state.position.size(), Vec3<double>::Zero());
+    const RigidCoord<double> frame = motion->frames->coord(motion->state.position, index);
+    for (const auto& x : positions) {
+      motion->rigid.push_back(index);
+      motion->local.push_back(world ? frame.inverse_rotate(x - frame.center) : x);
+    }
+    return motion;
+  }
+
   // SOFA's FreeMotionAnimationLoop projects every state's positions at the end of a step, so a
-  // prescribed movement on a state no solver integrates moves it there; here such a state stays put.
+  // prescribed movement on a state no solver integrates moves it there; here only a
+  // LinearMovementProjectiveConstraint does (above), the others are warned.
   void warn_if_moved(Component& state, Component& user) {
     for (const GraphNode* node = state.node; node; node = node->parent) {
       for (const auto& c : node->components) {
@@ -410,6 +515,21 @@ class LoopBuilder {
   }
 
   void add_constraint(Component& c) {
+    if (c.type() == "UniformLagrangianConstraint") {
+      typename UniformLagrangianConstraint<double>::Parameters p;
+      p.iterative = data_.boolean(c, "iterative", true);
+      p.constrain_to_rest = data_.boolean(c, "constrainToRestPos", false);
+      loop_->constraints.push_back(std::make_unique<UniformLagrangianConstraint<double>>(c.where(), vec1_state_points(c), p));
+      return;
+    }
+    if (c.type() == "StopperLagrangianConstraint") {
+      typename StopperLagrangianConstraint<double>::Parameters p;
+      p.index = data_.whole_number(c, "index", 0);
+      p.min = data_.real(c, "min", -100.0);
+      p.max = data_.real(c, "max", 100.0);
+      loop_->constraints.push_back(std::make_unique<StopperLagrangianConstraint<double>>(c.where(), vec1_state_points(c), p));
+      return;
+    }
     if (c.type() == "SlidingLagrangianConstraint") {
       if (on_rigids(c, linked_state(c, "object1"))) throw make_error("SOFA defines SlidingLagrangianConstraint on Vec3 states only, not on Rigid3");
       add_sliding(c);

@@ -74,6 +74,12 @@ void check_foldable(const SimulatedObject<double>& child, std::size_t mapped_poi
     throw make_error(where, ": projective constraints on a mapped state are not supported (put them on the simulated object)");
   }
   if (!child.topology_scripts.empty()) throw make_error(where, ": scripted topological changes in a mapped node are not supported");
+  for (const MappedState& state : child.mapped_states) {
+    if (state.coordinates == 1) {
+      throw make_error(where, ": the DistanceMapping of ", state.node, " reads the points of a mapped state: only a DistanceMapping ",
+                       "on a simulated object's own points is supported");
+    }
+  }
 }
 
 // The child's force fields and constant loads acting on `parent` through mappings `make` gives

@@ -5,8 +5,43 @@
 #include "hexahedron_builders.h"
 
 #include <cmath>
+#include <limits>
 
 namespace fastcorot::scene_detail {
+
+namespace {
+
+// SOFA's DiagonalMass on an edge topology: each edge gives density × length / 2 to each end, at the
+// rest positions; from totalMass the density is totalMass over the sum with density 1.
+Mass<double> edge_mass(SceneData& data, Component& c, Component& topology, const Points<double>& rest) {
+  const std::vector<Index> flat = data.indices(topology, "edges");
+  if (flat.empty() || flat.size() % 2 != 0) throw make_error("its topology ", topology.where(), " has no edges (2 indices each)");
+  std::vector<double> masses(rest.size(), 0.0);
+  double sum = 0;
+  for (std::size_t e = 0; e + 1 < flat.size(); e += 2) {
+    for (Index v : {flat[e], flat[e + 1]}) {
+      if (v < 0 || static_cast<std::size_t>(v) >= rest.size()) {
+        throw make_error(topology.where(), ": edges: point ", v, " is out of range [0, ", rest.size(), ")");
+      }
+    }
+    const double half = (rest[static_cast<std::size_t>(flat[e])] - rest[static_cast<std::size_t>(flat[e + 1])]).norm() / 2.0;
+    for (Index v : {flat[e], flat[e + 1]}) {
+      masses[static_cast<std::size_t>(v)] += half;
+      sum += half;
+    }
+  }
+  double density = data.real(c, "massDensity", 1.0);
+  if (c.has("totalMass") || !c.has("massDensity")) {
+    const double total = data.real(c, "totalMass", 1.0);
+    if (!(total > 0)) throw make_error("totalMass must be > 0");
+    density = sum < std::numeric_limits<double>::epsilon() ? 1.0 : total / sum;
+  }
+  if (!(density > 0) || !std::isfinite(density)) throw make_error("massDensity = ", density, ": must be > 0");
+  for (double& m : masses) m *= density;
+  return Mass<double>::lumped(std::move(masses));
+}
+
+}  // namespace
 
 Mass<double> build_mass(SceneData& data, Component& c, const Points<double>& rest,
                         const std::function<std::shared_ptr<TetMesh>()>& tetrahedra) {
@@ -28,6 +63,10 @@ Mass<double> build_mass(SceneData& data, Component& c, const Points<double>& res
         throw make_error("neither vertexMass nor totalMass given");
       }
       return Mass<double>::lumped(std::vector<double>(static_cast<std::size_t>(n), vertex_mass));
+    }
+    if (type == "DiagonalMass") {
+      Component* topology = data.topology_of(c);
+      if (topology && topology->type() == "EdgeSetTopologyContainer") return edge_mass(data, c, *topology, rest);
     }
     const auto mesh = tetrahedra();
     double density = 1;

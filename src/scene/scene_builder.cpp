@@ -19,6 +19,7 @@
 #include "topology_change_processor.h"
 #include "mapped_mechanics.h"
 #include "subset_multi_mapping_builder.h"
+#include "distance_mapping_builder.h"
 #include "rigid_builder.h"
 #include "visual_surface_builder.h"
 
@@ -396,6 +397,10 @@ class Builder {
         system.gravity = node_vec3(*scope->scene, "gravity", simulation_.gravity);
         break;
       }
+    }
+    if (scene_detail::is_vec1_template(data_.text(state, "template", "Vec3d"))) {
+      throw make_error(state.where(), ": a Vec1 state with its own mechanics (an ODE solver, force fields or a mass on it) is ",
+                       "not supported: Vec1 states are the outputs of a DistanceMapping here, with Lagrangian constraints on them");
     }
     if (is_rigid_template(data_.text(state, "template", "Vec3d"))) {
       if (placed) throw make_error(state.where(), ": a Rigid3 state in a mapped node is not supported");

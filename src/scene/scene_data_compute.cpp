@@ -419,6 +419,11 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
       return values;
     }
     if (name == "position") {
+      const std::string tmpl = text(c, "template", "Vec3d");
+      if (tmpl == "Vec1" || tmpl == "Vec1d" || tmpl == "Vec1f") {
+        throw make_error(c.where(), ": the positions of a Vec1 state are asked for: Vec1 states are supported only as the output of a ",
+                         "DistanceMapping (with Lagrangian constraints on them), not with their own mechanics or positions");
+      }
       std::vector<Vec3<double>> base;
       if (auto given = written(c, "position")) {
         base = points_from(*given, c, "position");

@@ -1,4 +1,5 @@
 #include "visual_surface_builder.h"
+#include "distance_mapping_builder.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/io/surface_readers.h"
@@ -159,11 +160,18 @@ class VisualSurfaceBuilder {
       }
       if (!mapping) {
         info_.push_back(state->where() + ": the state of mapped node " + node.path +
-                        " has no mapping fastcorot follows (BarycentricMapping, IdentityMapping, SubsetMapping, RigidMapping): not in outputs");
+                        " has no mapping fastcorot follows (BarycentricMapping, IdentityMapping, SubsetMapping, RigidMapping, DistanceMapping): not in outputs");
         continue;
       }
       try {
-        MappedState mapped{node.path, state->sofa_name(), "", {}, {}};
+        MappedState mapped;
+        mapped.node = node.path;
+        mapped.name = state->sofa_name();
+        if (mapping->type() == "DistanceMapping") {
+          build_distance_mapped_state(data_, node, *state, *mapping, object, mapped);
+          object.mapped_states.push_back(std::move(mapped));
+          continue;
+        }
         if (mapping->type() == "RigidMapping") {
           mapped.rigid = RigidPoints<double>::from(
               object.system.rigids, build_rigid_mapping(data_, *mapping, object, data_.points(*state, "position"),

@@ -40,6 +40,7 @@ std::vector<StateSnapshot> state_snapshots(const SimulatedObject<double>& object
   for (const MappedState& mapped : object.mapped_states) {
     StateSnapshot snapshot{mapped.node, mapped.name, true, std::vector<Vec3<double>>(mapped.size()),
                            std::vector<Vec3<double>>(mapped.size())};
+    snapshot.coordinates = mapped.coordinates;
     if (mapped.rigid) {
       mapped.rigid->positions(state.position, snapshot.position);
       mapped.rigid->velocities(state.position, state.velocity, snapshot.velocity);

@@ -7,7 +7,9 @@
 
 #include "fastcorot/core/types.h"
 #include "fastcorot/mapping/mechanical_mapping.h"
+#include "fastcorot/sim/linear_movement.h"
 #include "fastcorot/sim/mechanical_state.h"
+#include "fastcorot/state/rigid_blocks.h"
 
 #include <Eigen/SparseCore>
 
@@ -16,6 +18,24 @@
 #include <vector>
 
 namespace fastcorot {
+
+// How the points of a state no ODE solver integrates move: SOFA's FreeMotionAnimationLoop projects
+// every state's positions at a step's end (at the step's start time, before time advances) and then
+// applies the mappings, so a LinearMovementProjectiveConstraint on such a state, or on the rigid
+// bodies that carry it, moves it. `state` holds the moved blocks (the points themselves, or each
+// rigid's centre and angular block, with `frames` their orientations); carried points are
+// `local` in rigid `rigid[i]`'s frame (SOFA's RigidMapping: centre + q.rotate(local)).
+template <class Real>
+struct PrescribedMotion {
+  LinearMovement<Real> movement;
+  MechanicalState<Real> state;
+  std::shared_ptr<RigidBlocks<Real>> frames;  // null: `state` is the points
+  std::vector<std::size_t> rigid;
+  std::vector<Vec3<Real>> local;
+
+  // Moves `state` to where the movement puts it at `time` and writes the points into `points`.
+  void apply(double time, std::vector<Vec3<Real>>& points);
+};
 
 template <class Real>
 struct ConstraintPoints {
@@ -29,6 +49,14 @@ struct ConstraintPoints {
   // it reach no correction): its points stay at `position` (= free_position, set when built, free
   // velocities zero); H gets no entries on it; `object` and `blocks` are unused.
   bool unsimulated = false;
+  // Unsimulated points that a prescribed movement moves (null: they stay put): the loop moves them
+  // at each step's end.
+  std::shared_ptr<PrescribedMotion<Real>> motion;
+  // Where the constraint forces on these points go after each solve, when something reads them
+  // (null otherwise): Σ_rows c λ / h per point, SOFA's λ vector on the state divided by the step as
+  // its next step starts, which a DistanceMapping's geometric stiffness reads. Shared by every
+  // constraint on the state; the loop zeroes it before adding each solve's forces.
+  std::shared_ptr<std::vector<Vec3<Real>>> constraint_force;
 
   // Filled each step by prepare(): where the points were when the step began, and where the free
   // motion takes them. Mapped points move as SOFA moves them: x + h J v_free, J at the step's start.
@@ -54,6 +82,9 @@ class ConstraintRows {
   // H(row, point i of `points`) += cᵀ: on the point's block, or through its mapping (Jᵀ c on each
   // parent block the point reads); nothing on unsimulated points.
   void add(int row, const ConstraintPoints<Real>& points, std::size_t i, const Vec3<Real>& c);
+  // constraint_force[i] += c λ_row / h for every row added on points that keep their constraint
+  // forces (the caller zeroes the sinks first, sized to their points).
+  void store_constraint_forces(const Real* lambda, Real h) const;
   // Whether object o has any entry.
   bool touches(std::size_t o) const { return !entries_[o].empty(); }
   // Hᵀ restricted to object o's blocks: (3 × points) × rows, column r = row r.
@@ -65,8 +96,15 @@ class ConstraintRows {
     Index block;
     Vec3<Real> value;
   };
+  struct KeptEntry {
+    int row;
+    std::vector<Vec3<Real>>* sink;
+    std::size_t point;
+    Vec3<Real> value;
+  };
   int rows_ = 0;
   std::vector<std::vector<Entry>> entries_;
+  std::vector<KeptEntry> kept_;
   mutable std::vector<std::pair<Index, Mat3<Real>>> row_blocks_;
 };
 

@@ -36,6 +36,12 @@ struct MappedState {
   // `through` gives (VisualSurface::through, through_offset).
   std::shared_ptr<const MechanicalMapping<double>> through;
   Index through_offset = 0;
+  // Coordinates per point: 3, or 1 for a Vec1 state (DistanceMapping's extensions, their value in
+  // x; `through` is then the DistanceMapping and `map` the identity).
+  int coordinates = 3;
+  // The constraint forces on the state that its mapping's geometric stiffness reads (null when
+  // none does): shared with the Lagrangian constraints on it (ConstraintPoints::constraint_force).
+  std::shared_ptr<std::vector<Vec3<double>>> constraint_force;
   std::size_t size() const { return rigid ? rigid->size() : map.size(); }
 };
 
@@ -52,6 +58,7 @@ struct StateSnapshot {
   bool rigid = false;
   std::vector<double> rigid_position;
   std::vector<double> rigid_velocity;
+  int coordinates = 3;  // 1 for a Vec1 state: its values are the x of `position` and `velocity`
 
   // "node path/object name": how dumps key the state.
   std::string key() const { return node + "/" + name; }
