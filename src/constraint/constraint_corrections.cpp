@@ -127,7 +127,7 @@ template <class Real>
 void UncoupledConstraintCorrection<Real>::add_compliance(SimulatedObject<Real>& object, const Eigen::SparseMatrix<Real>& ht,
                                                          ConstraintOrder order, Real dt, DenseMatrix<Real>& w) {
   Real factor = 1;
-  if (parameters_.use_ode_factors) {
+  if (parameters_.use_ode_factors && !this->unbuilt_) {
     const auto f = object.ode_solver->integration_factors(dt);
     if (!f) {
       throw make_error(this->where(), ": the ODE solver of ", object.path,

@@ -50,6 +50,10 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
                                                         std::span<const MechanicalState<Real>> start, Real dt, double time) {
   ConstraintReport report;
   const ConstraintOrder order = this->order();
+  // SOFA's free motion ends with projectResponse on the free velocities: points a movement holds
+  // (whose velocity its end-of-step projection set to the movement's rate) have none in the free
+  // motion, so their free positions stay where the step began.
+  for (auto& object : objects) object.system.project(object.system.state.velocity);
   if (order != ConstraintOrder::velocity) {
     // SOFA's free motion ends with x_free = x + dt v_free on every state (the same bits as the
     // ODE's own update, except where it damps the velocity after it: vdamping).
@@ -97,6 +101,7 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
       }
       for (auto& correction : corrections) {
         if (correction->object() != o) continue;
+        correction->set_unbuilt(solver_->unbuilt());
         correction->add_compliance(objects[o], ht[o], order, dt, problem_.w);
         corrected = true;
       }

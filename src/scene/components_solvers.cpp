@@ -178,12 +178,14 @@ std::vector<ComponentSpec> solver_components() {
          "the Krylov solver's operator is fastcorot's matrix-free product, and the matrix is assembled only for the "
          "preconditioner; false: the assembled matrix, every solve"}}},
       {"EigenSimplicialLDLT", "linearsolver",
-       "Sparse direct LDL^T solve of the assembled system; as a PCGLinearSolver's preconditioner, the factorisation it keeps for update_step solves. SOFA's other exact direct solvers (EigenSimplicialLLT, EigenSparseLU, EigenSparseQR, SVD; either template, CompressedRowSparseMatrixd or CompressedRowSparseMatrixMat3x3d) are read as this one and solved with the same block LDL^T: the same solution to round-off.",
+       "Sparse direct LDL^T solve of the assembled system; as a PCGLinearSolver's preconditioner, the factorisation it keeps for update_step solves. SOFA's other exact direct solvers (EigenSimplicialLLT, EigenSparseLU, EigenSparseQR, SVD; either template, CompressedRowSparseMatrixd or CompressedRowSparseMatrixMat3x3d; BTDLinearSolver, exact on the block-tridiagonal systems SOFA requires of it) are read as this one and solved with the same block LDL^T: the same solution to round-off.",
        {{"ordering", "string", "AMD", "accepted"},
+        {"subpartSolve", "bool", "false", "accepted (BTDLinearSolver)"},
+        {"showProblem", "bool", "false", "accepted (BTDLinearSolver)"},
         {"orderingMethod", "link", "", "accepted (an ordering component)"},
         {"linearSystem", "link", "", "a MatrixLinearSystem (accepted)"},
         {"verbose", "bool", "false", "accepted"}},
-       {"SparseLDLSolver", "SparseCholeskySolver", "EigenSimplicialLLT", "EigenSparseLU", "EigenSparseQR", "SVDLinearSolver"}}
+       {"SparseLDLSolver", "SparseCholeskySolver", "EigenSimplicialLLT", "EigenSparseLU", "EigenSparseQR", "SVDLinearSolver", "BTDLinearSolver"}}
   };
 }
 

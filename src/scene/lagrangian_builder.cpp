@@ -166,6 +166,8 @@ class LoopBuilder {
                                                         "another constraint solver, or solveVelocityConstraintFirst=\"0\""));
     }
     lcp_ = solver_component && solver_component->type() == "LCPConstraintSolver";
+    velocity_first_ = parameters.solve_velocity_constraint_first;
+    unbuilt_ = solver->unbuilt();
     loop_ = std::make_shared<FreeMotionAnimationLoop<double>>(parameters, std::move(solver));
     for (Component* c : components) {
       try {
@@ -612,6 +614,11 @@ class LoopBuilder {
                          "does): set useOdeSolverIntegrationFactors=\"0\"");
       }
       auto parameters = uncoupled(c, where);
+      if (unbuilt_ && parameters.use_ode_factors && !velocity_first_) {
+        data_.warn(c.where() + ": under an UnbuiltGaussSeidelConstraintSolver SOFA reads this correction's compliance without the "
+                   "ODE factor h (its unbuilt path), so each step closes only about h of a constraint's violation; reproduced as "
+                   "SOFA does it (a BlockGaussSeidelConstraintSolver gives the intended compliance)");
+      }
       covered_[o].push_back({parameters.offset, parameters.offset + static_cast<Index>(parameters.compliance.size())});
       loop_->corrections.push_back(std::make_unique<UncoupledConstraintCorrection<double>>(c.where(), o, std::move(parameters)));
       return;
@@ -777,6 +784,8 @@ class LoopBuilder {
   const std::vector<const GraphNode*>& solver_nodes_;
   const LocateState& locate_;
   bool lcp_ = false;  // the loop's solver is an LCPConstraintSolver
+  bool unbuilt_ = false;  // ... an unbuilt one (UnbuiltGaussSeidelConstraintSolver)
+  bool velocity_first_ = false;  // solveVelocityConstraintFirst
   std::shared_ptr<FreeMotionAnimationLoop<double>> loop_;
   std::map<std::size_t, std::string> kind_;  // the kind of correction of each corrected object
   std::map<std::size_t, std::vector<std::pair<Index, Index>>> covered_;  // blocks [first, end) with an uncoupled correction

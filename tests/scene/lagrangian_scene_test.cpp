@@ -133,6 +133,34 @@ TEST(LagrangianScene, UncoupledCorrectionsTieBeamsToTheSolversTolerance) {
   expect_tied(scene, 100, 1e-8, false, 2.0);
 }
 
+TEST(LagrangianScene, UnbuiltSolverReadsUncoupledComplianceWithoutTheOdeFactorAsSofa) {
+  // A point (mass 1, no gravity, compliance 0.5) one unit from a still target it is tied to. Built
+  // W = h c: one step closes the gap (x = 0). SOFA's unbuilt Gauss–Seidel reads c without h, so
+  // λ = -δ / c and the correction x_f + h c λ closes only h of it: x = 1 - h, v = -1.
+  const auto run = [](const std::string& solver, std::vector<std::string>* warnings) {
+    LoadedScene scene = build_scene_text(
+        "<FreeMotionAnimationLoop/>" + solver +
+            "<Node name=\"target\"><MechanicalObject name=\"point\" position=\"0 0 0\"/></Node>"
+            "<Node name=\"bob\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><CGLinearSolver/>"
+            "<MechanicalObject name=\"point\" position=\"1 0 0\"/><UniformMass totalMass=\"1\"/>"
+            "<UncoupledConstraintCorrection defaultCompliance=\"0.5\"/></Node>"
+            "<BilateralLagrangianConstraint object1=\"@target/point\" object2=\"@bob/point\" first_point=\"0\" second_point=\"0\"/>",
+        "dt=\"0.01\" gravity=\"0 0 0\"");
+    scene.simulation.step();
+    if (warnings) *warnings = scene.warnings;
+    return std::make_pair(scene.simulation.objects[0].system.state.position[0], scene.simulation.objects[0].system.state.velocity[0]);
+  };
+  const auto built = run("<BlockGaussSeidelConstraintSolver tolerance=\"1e-14\"/>", nullptr);
+  EXPECT_NEAR(built.first.x(), 0.0, 1e-12);
+  std::vector<std::string> warnings;
+  const auto unbuilt = run("<UnbuiltGaussSeidelConstraintSolver tolerance=\"1e-14\"/>", &warnings);
+  EXPECT_NEAR(unbuilt.first.x(), 1 - 0.01, 1e-12);
+  EXPECT_NEAR(unbuilt.second.x(), -1.0, 1e-12);
+  bool warned = false;
+  for (const auto& line : warnings) warned = warned || line.find("without the ODE factor h") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 TEST(LagrangianScene, OneAndTwoThreadsGiveTheSameBits) {
   const std::string body =
       tied_beams("<LinearSolverConstraintCorrection/>", "<BlockGaussSeidelConstraintSolver maxIterations=\"50\" tolerance=\"1e-6\"/>");

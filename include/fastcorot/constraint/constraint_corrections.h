@@ -28,6 +28,13 @@ class ConstraintCorrection {
                               Real dt, DenseMatrix<Real>& w) = 0;
   // Corrects the object (holding its free motion) for the impulses Hᵀλ on its blocks.
   virtual void correct(SimulatedObject<Real>& object, std::span<const Vec3<Real>> impulse, ConstraintOrder order, Real dt) = 0;
+  // Whether the problem goes to an unbuilt solver (SOFA's UnbuiltGaussSeidelConstraintSolver, which
+  // reads each correction's block-diagonal compliance and displacements instead of W; a correction
+  // whose unbuilt path differs from its W gives that compliance then).
+  void set_unbuilt(bool unbuilt) { unbuilt_ = unbuilt; }
+
+ protected:
+  bool unbuilt_ = false;
 
  private:
   std::string where_;
@@ -60,7 +67,9 @@ class LinearSolverConstraintCorrection final : public ConstraintCorrection<Real>
 // fixed compliance per point, no coupling between points. Points: c I₃ (`compliance` per point, or
 // `defaultCompliance`); rigid bodies: c₀ I₃ on the centre and a symmetric 3×3 on the rotation
 // (SOFA's 7 numbers: c₀, then the rotation's upper triangle). W_ij += factor Σ_points n_i·C n_j
-// with factor h (1 in velocity order), or 1 when not `use_ode_factors`; correction dx = C Hᵀλ,
+// with factor h (1 in velocity order), or 1 when not `use_ode_factors` and for an unbuilt solver
+// (SOFA's getBlockDiagonalCompliance and setConstraintDForce leave the ODE factor out, so its
+// unbuilt Gauss–Seidel sees W / h in position order; kept); correction dx = C Hᵀλ,
 // x += h dx and v += dx, or (not use_ode_factors) x += position_factor dx and
 // v += velocity_factor / dt dx.
 template <class Real>

@@ -43,6 +43,9 @@ class ConstraintSolver {
   // regularisation the solver adds).
   virtual ConstraintSolveReport solve(ConstraintProblem<Real>& problem) = 0;
   virtual const char* name() const = 0;
+  // Whether SOFA's version is unbuilt (reads the corrections' block-diagonal compliance and
+  // displacements rather than an assembled W: ConstraintCorrection::set_unbuilt).
+  virtual bool unbuilt() const { return false; }
   const ConstraintSolverParameters<Real>& parameters() const { return parameters_; }
 
  protected:
@@ -86,6 +89,7 @@ class UnbuiltGaussSeidelSolver final : public BlockGaussSeidelSolver<Real> {
     this->warm_start_ = false;
   }
   const char* name() const override { return "UnbuiltGaussSeidelConstraintSolver"; }
+  bool unbuilt() const override { return true; }
 };
 
 // SOFA's NNCGConstraintSolver (nonsmooth nonlinear conjugate gradient): Gauss–Seidel sweeps, each
