@@ -384,7 +384,7 @@ class Builder {
 
   // One object: `state` with the components of `nodes` and the visual models of `visuals`.
   // `placed` (a mapped state's object): the positions and velocities its mapping gives it, as SOFA's
-  // mapping sets them at init; its rest positions stay its own when it has one per mapped point.
+  // mapping sets them at init; its rest positions are its own (SOFA's, zero where it had none).
   SimulatedObject<double> build_part(Component& state, const std::vector<GraphNode*>& nodes,
                                      const std::vector<GraphNode*>& visuals, const MechanicalState<double>* placed = nullptr) {
     SimulatedObject<double> object;
@@ -411,7 +411,17 @@ class Builder {
     system.state.position = data_.points(state, "position");
     system.state.rest_position = data_.points(state, "rest_position");
     if (placed) {
-      if (system.state.rest_position.size() != placed->position.size()) system.state.rest_position = placed->position;
+      // SOFA's MechanicalObject stores its rest positions at its own init, before the mapping
+      // resizes it (new points at zero) and applies: a mapped state keeps the rest positions it
+      // had of its own (written, or its topology's), zero for the points it did not have.
+      if (system.state.rest_position.size() != placed->position.size()) {
+        if (system.state.rest_position.size() < placed->position.size()) {
+          info_.push_back(state.where() + ": " + std::to_string(placed->position.size() - system.state.rest_position.size()) +
+                          " of its points have no rest position of their own: zero, as SOFA leaves them (its mapping sets "
+                          "positions only); force fields there rest on them");
+        }
+        system.state.rest_position.resize(placed->position.size(), Vec3<double>::Zero());
+      }
       system.state.position = placed->position;
     }
     const Index n = system.size();

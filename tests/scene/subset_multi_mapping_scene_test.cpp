@@ -147,6 +147,29 @@ TEST(SubsetMultiMappingScene, AFreeRigidCarryingTheEndFallsWithTheRestUndeformed
   }
 }
 
+TEST(SubsetMultiMappingScene, AJoinedStateWithoutPositionsOfItsOwnRestsAtZeroAsSofa) {
+  // Two points (mass 1 each) a unit apart, joined by a SubsetMultiMapping into a state with no
+  // positions of its own and a spring on its edge (SOFA's NearestPointROI.scn fuses points so): SOFA
+  // stores that state's rest positions before the mapping fills it, all zero, so the spring's rest
+  // length is 0 and it pulls the points together. Implicit Euler, u'' = -ω² u with ω² = 2k/m: after
+  // one step from rest u = u0 / (1 + h² ω²).
+  const double k = 50, h = 0.01;
+  LoadedScene scene = build_scene_text(
+      "<EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><CGLinearSolver iterations=\"100\" tolerance=\"1e-30\" threshold=\"1e-30\"/>"
+      "<Node name=\"a\"><MechanicalObject name=\"point\" position=\"0 0 0\"/><UniformMass totalMass=\"1\"/></Node>"
+      "<Node name=\"b\"><MechanicalObject name=\"point\" position=\"1 0 0\"/><UniformMass totalMass=\"1\"/></Node>"
+      "<Node name=\"joined\"><MechanicalObject name=\"points\"/>"
+      "<SubsetMultiMapping input=\"@../a/point @../b/point\" output=\"@points\" indexPairs=\"0 0  1 0\"/>"
+      "<EdgeSetTopologyContainer edges=\"0 1\"/><MeshSpringForceField linesStiffness=\"50\" linesDamping=\"0\"/></Node>",
+      "dt=\"0.01\" gravity=\"0 0 0\"");
+  bool said = false;
+  for (const auto& line : scene.info) said = said || line.find("have no rest position of their own") != std::string::npos;
+  EXPECT_TRUE(said);
+  scene.simulation.step();
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  EXPECT_NEAR(x[1].x() - x[0].x(), 1.0 / (1.0 + h * h * 2 * k), 1e-12);
+}
+
 TEST(SubsetMultiMappingScene, OneAndTwoThreadsGiveTheSameBits) {
   const std::string scene = split(kCG, rigid_part(false));
   const auto one = run(build_scene_text(scene, "dt=\"0.01\""), 15, "joined", 1);
