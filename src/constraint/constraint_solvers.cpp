@@ -47,7 +47,7 @@ void ConstraintSolver<Real>::regularize(ConstraintProblem<Real>& problem) const 
     return;
   }
   using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
-  const Eigen::JacobiSVD<Matrix> svd(Matrix(problem.w), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::JacobiSVD<Matrix> svd(Matrix(problem.w), Eigen::ComputeFullV);  // U is not used (V and the values are the same bits)
   const auto& values = svd.singularValues();  // decreasing
   int null_begin = -1;
   for (int i = 0; i < n; ++i) {
