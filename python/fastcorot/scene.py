@@ -253,6 +253,17 @@ class Object:
                 raise ValueError(f"{self.location}: {self._label()}: {error}") from None
             self._data[name] = canonical
             return
+        if self._lagrangian is not None and self._type == "StopperLagrangianConstraint" and name in ("min", "max"):
+            core, index = self._lagrangian
+            self._check([name])
+            canonical = self._canonical(name, value)
+            live = from_text(self._kind(name), name, canonical, self.location) if isinstance(canonical, str) else canonical
+            try:
+                core.set_stopper(index, **{name: float(np.asarray(live, dtype=float).reshape(-1)[0])})
+            except (ValueError, TypeError) as error:
+                raise ValueError(f"{self.location}: {self._label()}: {error}") from None
+            self._data[name] = canonical
+            return
         if self._binding is not None and name in _STATE_VIEWS:
             core, k, start, stop = self._binding
             if name == "rest_position":

@@ -1,13 +1,15 @@
 // The constraint stage of a built scene (FreeMotionAnimationLoop) as Python sees it: the last
 // step's impulses and figures (the constraint solver's constraintForces, currentIterations,
 // currentError, currentNumConstraints) and the data scripts change between steps
-// (BilateralLagrangianConstraint's rest_vector, activate, load).
+// (BilateralLagrangianConstraint's rest_vector, activate, load; StopperLagrangianConstraint's min
+// and max).
 #include "arrays.h"
 #include "bindings.h"
 #include "simulation_core.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/constraint/rigid_lagrangian_constraints.h"
+#include "fastcorot/constraint/vec1_lagrangian_constraints.h"
 
 #include <pybind11/stl.h>
 
@@ -167,7 +169,31 @@ void bind_constraints(py::class_<SimulationCore>& core) {
               p.load = value;
             }
           },
-          py::arg("index"), py::arg("rest_vector") = py::none(), py::arg("activate") = py::none(), py::arg("load") = py::none());
+          py::arg("index"), py::arg("rest_vector") = py::none(), py::arg("activate") = py::none(), py::arg("load") = py::none())
+      .def(
+          "set_stopper",
+          [](SimulationCore& c, std::size_t index, py::object min, py::object max) {
+            std::lock_guard lock(c.stepping);
+            auto& constraint = constraint_at(c, index);
+            auto* stopper = dynamic_cast<StopperLagrangianConstraint<double>*>(&constraint);
+            if (!stopper) throw py::value_error(constraint.where() + " is not a StopperLagrangianConstraint");
+            auto p = stopper->parameters();
+            const auto number = [&](py::object value, const char* name) {
+              if (!py::isinstance<py::float_>(value) && !py::isinstance<py::int_>(value)) {
+                throw py::type_error(constraint.where() + ": " + name + ": expected a number");
+              }
+              const double v = value.cast<double>();
+              if (!std::isfinite(v)) throw py::value_error(constraint.where() + ": " + name + " is not finite");
+              return v;
+            };
+            if (!min.is_none()) p.min = number(min, "min");
+            if (!max.is_none()) p.max = number(max, "max");
+            if (p.min > p.max) {
+              throw py::value_error(constraint.where() + ": min = " + std::to_string(p.min) + " is above max = " + std::to_string(p.max));
+            }
+            stopper->parameters() = p;
+          },
+          py::arg("index"), py::arg("min") = py::none(), py::arg("max") = py::none());
 }
 
 }  // namespace fastcorot::python

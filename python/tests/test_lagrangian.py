@@ -162,3 +162,40 @@ def test_an_inextensible_wire_as_a_script_writes_it():
     np.testing.assert_allclose(np.linalg.norm(np.diff(x, axis=0), axis=1) - 0.5, extensions[:, 0], atol=1e-14)
     assert np.abs(extensions).max() < 1e-3
     assert x[3, 1] < -0.1
+
+
+def test_a_controller_moves_a_stoppers_bound():
+    # Two particles on a soft spring, the first fixed: a StopperLagrangianConstraint on the edge's
+    # extension (a DistanceMapping's Vec1 value) keeps it below `max`, which the script lowers.
+    root = Sofa.Core.Node("root")
+    root.dt = DT
+    root.gravity = [0, -10, 0]
+    root.addObject("FreeMotionAnimationLoop")
+    root.addObject("BlockGaussSeidelConstraintSolver", tolerance=1e-12, maxIterations=1000)
+    root.addObject("EulerImplicitSolver", rayleighMass=0, rayleighStiffness=0)
+    root.addObject("SparseLDLSolver")
+    root.addObject("GenericConstraintCorrection")
+    root.addObject("EdgeSetTopologyContainer", name="edges", position=[[0, 0, 0], [0, -1, 0]], edges=[[0, 1]])
+    root.addObject("MechanicalObject", name="particles")
+    root.addObject("FixedProjectiveConstraint", indices=[0])
+    root.addObject("UniformMass", totalMass=2)
+    root.addObject("MeshSpringForceField", linesStiffness=20, linesDamping=0)
+    lengths = root.addChild("lengths")
+    lengths.addObject("MechanicalObject", name="extensions", template="Vec1")
+    lengths.addObject("DistanceMapping", topology="@../edges")
+    lengths.addObject("StopperLagrangianConstraint", name="stop", template="Vec1", index=0, min=-1, max=0.2)
+    Sofa.Simulation.init(root)
+    for _ in range(60):
+        Sofa.Simulation.animate(root, DT)
+    assert abs(root.lengths.extensions.position.value[0][0] - 0.2) < 1e-3
+    root.lengths.stop.max.value = 0.1
+    assert root.lengths.stop.max.value == pytest.approx(0.1)
+    seen = []
+    for _ in range(60):
+        Sofa.Simulation.animate(root, DT)
+        seen.append(root.lengths.extensions.position.value[0][0])
+    # Pulled back to the new bound (it may bounce below it), never beyond it, and against it again.
+    assert max(seen) < 0.1 + 1e-3
+    assert max(seen[30:]) > 0.1 - 1e-3
+    with pytest.raises(ValueError, match="is above max"):
+        root.lengths.stop.min.value = 0.5
