@@ -1,0 +1,75 @@
+// AabbTree<Real>: a bounding-volume hierarchy of axis-aligned boxes over a collision model's
+// elements (one box per triangle, segment, point or sphere), for the narrow phase: which element
+// pairs of two models (or of one model with itself) have boxes that overlap within a margin.
+// Built once (median splits along the longest axis of each node's box, leaves of at most four
+// elements), then refitted each step (node boxes recomputed bottom-up from the new element boxes,
+// the structure kept), rebuilt when the element count changes (docs/collision.md, §2.3 and §7).
+// SOFA's tree decides cost only, never which pairs are found: the candidate pairs are exactly the
+// element pairs whose boxes overlap, and they come out sorted (first element, then second), so
+// results do not depend on the tree's shape.
+#pragma once
+
+#include "fastcorot/core/types.h"
+
+#include <limits>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+struct Aabb {
+  Vec3<Real> min = Vec3<Real>::Constant(std::numeric_limits<Real>::max());
+  Vec3<Real> max = Vec3<Real>::Constant(std::numeric_limits<Real>::lowest());
+
+  void extend(const Vec3<Real>& p) {
+    min = min.cwiseMin(p);
+    max = max.cwiseMax(p);
+  }
+  void extend(const Aabb& b) {
+    min = min.cwiseMin(b.min);
+    max = max.cwiseMax(b.max);
+  }
+  // Whether the gap between the two boxes is at most `margin` along every axis (boundaries
+  // included): one box widened by `margin` on every side meets the other.
+  bool overlaps(const Aabb& b, Real margin) const {
+    return (min.array() <= b.max.array() + margin).all() && (b.min.array() <= max.array() + margin).all();
+  }
+};
+
+template <class Real>
+class AabbTree {
+ public:
+  using Pair = std::pair<Index, Index>;
+
+  // Builds the tree over `boxes` (element i's box is boxes[i]). Throws fastcorot::Error for a box
+  // that is not finite or whose min exceeds its max.
+  void build(std::span<const Aabb<Real>> boxes);
+  // The same elements' new boxes; rebuilds when their number changed. Throws as build.
+  void refit(std::span<const Aabb<Real>> boxes);
+  std::size_t size() const { return order_.size(); }
+  const Aabb<Real>& bounds() const { return nodes_.front().box; }
+
+  // Element pairs (i in a, j in b) whose boxes overlap within `margin`, appended to `out` sorted by
+  // (i, j).
+  static void pairs(const AabbTree& a, const AabbTree& b, Real margin, std::vector<Pair>& out);
+  // Pairs (i, j), i < j, of this tree's elements whose boxes overlap within `margin`, sorted.
+  void self_pairs(Real margin, std::vector<Pair>& out) const;
+
+ private:
+  struct Node {
+    Aabb<Real> box;
+    Index first = 0, count = 0;  // a leaf: elements order_[first, first + count)
+    Index left = -1, right = -1;  // an inner node: its children
+  };
+  Index split(Index first, Index count);
+  void fit(Index node);
+  static void check(std::span<const Aabb<Real>> boxes);
+
+  std::vector<Node> nodes_;
+  std::vector<Index> order_;
+  std::vector<Aabb<Real>> boxes_;
+};
+
+}  // namespace fastcorot
