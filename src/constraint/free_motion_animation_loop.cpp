@@ -58,8 +58,13 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
     // SOFA's free motion ends with x_free = x + dt v_free on every state (the same bits as the
     // ODE's own update, except where it damps the velocity after it: vdamping).
     for (std::size_t o = 0; o < objects.size(); ++o) {
-      if (!objects[o].ode_solver->integration_factors(dt)) continue;  // a static or explicit solve keeps its own
       auto& x = objects[o].system.state.position;
+      if (!objects[o].ode_solver->integration_factors(dt)) {
+        // A static or explicit solve keeps its own free positions, but the points a movement holds
+        // have no free motion (their free velocity was just projected to zero).
+        for (Index i : objects[o].system.moving) x[static_cast<std::size_t>(i)] = start[o].position[static_cast<std::size_t>(i)];
+        continue;
+      }
       const auto& v = objects[o].system.state.velocity;
       for (std::size_t i = 0; i < x.size(); ++i) x[i] = start[o].position[i] + dt * v[i];
     }
@@ -130,7 +135,7 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
     report.converged = solved.converged;
     if (!problem_.f.allFinite()) throw make_error(solver_->name(), ": the constraint impulses are not finite");
     forces_ = problem_.f;
-    rows.store_constraint_forces(problem_.f.data(), dt);
+    if (solver_->stores_lambda()) rows.store_constraint_forces(problem_.f.data(), dt);
     // Each object corrected for the impulses Hᵀλ on its blocks.
     std::vector<Vec3<Real>> impulse;
     for (std::size_t o = 0; o < objects.size(); ++o) {

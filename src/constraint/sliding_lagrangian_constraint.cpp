@@ -102,7 +102,7 @@ void SlidingLagrangianConstraint<Real>::violation(ConstraintOrder, Real, Real* d
 template <class Real>
 void SlidingLagrangianConstraint<Real>::add_resolutions(ConstraintProblem<Real>& problem) {
   const int bilateral = collapsed() ? 3 : 2;
-  for (int k = 0; k < bilateral; ++k) problem.add_block(std::make_unique<BilateralResolutionN<Real>>(1));
+  for (int k = 0; k < bilateral; ++k) problem.add_block(std::make_unique<BilateralResolution1<Real>>());
   if (collapsed()) return;
   for (int k = 0; k < 2; ++k) problem.add_block(std::make_unique<UnilateralResolution<Real>>());
 }

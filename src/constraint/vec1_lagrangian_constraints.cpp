@@ -52,7 +52,7 @@ void UniformLagrangianConstraint<Real>::add_resolutions(ConstraintProblem<Real>&
     problem.add_block(std::make_unique<BilateralResolutionN<Real>>(this->rows_));
     return;
   }
-  for (int r = 0; r < this->rows_; ++r) problem.add_block(std::make_unique<BilateralResolutionN<Real>>(1));
+  for (int r = 0; r < this->rows_; ++r) problem.add_block(std::make_unique<BilateralResolution1<Real>>());
 }
 
 template <class Real>

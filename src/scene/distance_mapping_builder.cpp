@@ -56,6 +56,7 @@ void build_distance_mapped_state(SceneData& data, GraphNode& node, Component& st
   mapped.coordinates = 1;
   mapped.constraint_force = std::make_shared<std::vector<Vec3<double>>>(distance->size(), Vec3<double>::Zero());
   mapped.through = distance;
+  mapped.apply_rest_position = data.boolean(mapping, "applyRestPosition", false);
   const GeometricStiffnessMethod method = geometric_stiffness(data, mapping);
   if (method == GeometricStiffnessMethod::none) return;
   const auto points = std::make_shared<const TetMesh>(object.system.size(), std::vector<Tetrahedron>{});

@@ -1,5 +1,6 @@
 #include "lagrangian_builder.h"
 #include "precomputed_correction_builder.h"
+#include "unsimulated_points.h"
 #include "projective_constraints.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
@@ -200,13 +201,20 @@ class LoopBuilder {
     return *found;
   }
 
-  ConstraintPoints<double> points_of(Component& state, Component& user) {
+  // `vec1`: the caller is a constraint SOFA defines on Vec1 states (else a Vec1 state is refused).
+  ConstraintPoints<double> points_of(Component& state, Component& user, bool vec1 = false) {
     const StateLocation where = locate(state, user);
     ConstraintPoints<double> points;
     points.object = where.object;
     const auto& object = simulation_.objects[where.object];
     if (where.mapped) {
-      if (where.mapped->coordinates == 1) return vec1_points(*where.mapped, where.object);
+      if (where.mapped->coordinates == 1) {
+        if (!vec1) {
+          throw make_error(state.where(), " is a Vec1 state: ", user.type(), " acts on Vec3 and Rigid3 states here (on Vec1 states: "
+                           "UniformLagrangianConstraint, StopperLagrangianConstraint)");
+        }
+        return vec1_points(*where.mapped, where.object);
+      }
       if (where.mapped->through) {
         throw make_error(state.where(), " is below a SubsetMultiMapping or follows several rigid bodies: "
                          "Lagrangian constraints on it are not supported");
@@ -228,16 +236,22 @@ class LoopBuilder {
   }
 
   // The points of a Vec1 state (a DistanceMapping's output): the mapping's own copy (it records
-  // its directions where the step starts), the state's constraint-force sink for the geometric
-  // stiffness, rest values zero (SOFA's mapped state keeps the zeros it was resized with).
-  static ConstraintPoints<double> vec1_points(const MappedState& mapped, std::size_t object) {
+  // its directions where the step starts) on the state's points in the object, the state's
+  // constraint-force sink for the geometric stiffness, rest values zero (SOFA's mapped state keeps
+  // the zeros it was resized with) or, with applyRestPosition, the extensions at rest.
+  ConstraintPoints<double> vec1_points(const MappedState& mapped, std::size_t object) {
     const auto distance = std::dynamic_pointer_cast<const DistanceMapping<double>>(mapped.through);
     if (!distance) throw make_error("node ", mapped.node, ": a Vec1 state that is not a DistanceMapping's output");
     ConstraintPoints<double> points;
     points.object = object;
-    points.mapping = std::make_shared<DistanceMapping<double>>(*distance);
+    // The mapping reads its own MechanicalObject's points: where they start in the (merged) object.
+    std::vector<Edge> edges = distance->edges();
+    for (Edge& e : edges) e = {e[0] + mapped.through_offset, e[1] + mapped.through_offset};
+    points.mapping = std::make_shared<DistanceMapping<double>>(std::move(edges), simulation_.objects[object].system.state.position,
+                                                               distance->rest_lengths());
     points.constraint_force = mapped.constraint_force;
     points.rest_position.assign(distance->size(), Vec3<double>::Zero());
+    if (mapped.apply_rest_position) points.mapping->positions(simulation_.objects[object].system.state.rest_position, points.rest_position);
     return points;
   }
 
@@ -251,7 +265,7 @@ class LoopBuilder {
       throw make_error(state.where(), " is a ", data_.text(state, "template", "Vec3d"), " state: SOFA defines ", c.type(),
                        " on Vec1 states only (here: the output of a DistanceMapping)");
     }
-    return points_of(state, c);
+    return points_of(state, c, true);
   }
 
   // Whether c acts on Rigid3 states: its template when written, else its state's (SOFA's factory
@@ -344,158 +358,10 @@ class LoopBuilder {
     return c.has(name) ? data_.resolve_state(*c.node, c.object->attributes.at(name), c) : own_state(c);
   }
 
-  // A Vec3 MechanicalObject with no ODE solver at or above its node: SOFA integrates nothing there
-  // and its rows reach no correction, so its points stay where the scene puts them.
-  std::optional<ConstraintPoints<double>> unsimulated_points(Component& state, Component& user) {
-    for (const GraphNode* node = state.node; node; node = node->parent) {
-      if (!node->of_category("odesolver").empty()) return std::nullopt;
-    }
-    if (is_rigid_template(data_.text(state, "template", "Vec3d"))) return std::nullopt;
-    ConstraintPoints<double> points;
-    points.unsimulated = true;
-    points.position = transformed(data_.points(state, "position"), data_.placement(state, "scale3d"),
-                                  data_.placement(state, "rotation"), data_.placement(state, "translation"));
-    if (points.position.empty()) throw make_error(state.where(), ": no position: ", user.type(), " has no point to act on");
-    carried_by_still_rigid(state, points);
-    if (!points.motion) points.motion = own_movement(state, points.position);
-    if (points.motion) {
-      points.motion->apply(0.0, points.position);  // SOFA's init projects at time 0 (x0 recorded there)
-      info_.push_back(user.where() + ": " + state.where() + " is not simulated (no ODE solver): its LinearMovementProjectiveConstraint "
-                      "moves it at each step's end, as SOFA's FreeMotionAnimationLoop does");
-    } else {
-      warn_if_moved(state, user);
-    }
-    points.free_position = points.position;
-    points.free_velocity.assign(points.position.size(), Vec3<double>::Zero());
-    points.rest_position = points.position;
-    if (!points.motion) info_.push_back(user.where() + ": " + state.where() + " is not simulated (no ODE solver): its points stay put, as in SOFA");
-    return points;
-  }
-
-  // The LinearMovementProjectiveConstraint in `node` acting on its state, if any.
-  static Component* linear_movement_in(const GraphNode& node) {
-    for (const auto& c : node.components) {
-      if (c->type() == "LinearMovementProjectiveConstraint") return c.get();
-    }
-    return nullptr;
-  }
-
-  // An unsimulated Vec3 state's own LinearMovementProjectiveConstraint (null when it has none).
-  std::shared_ptr<PrescribedMotion<double>> own_movement(Component& state, const std::vector<Vec3<double>>& positions) {
-    Component* c = linear_movement_in(*state.node);
-    if (!c) return nullptr;
-    auto motion = std::make_shared<PrescribedMotion<double>>();
-    try {
-      motion->movement = build_linear_movement(data_, *c, static_cast<Index>(positions.size()), false);
-    } catch (const Error& error) {
-      throw error_at(c->where(), error);
-    }
-    motion->state.position = positions;
-    motion->state.velocity.assign(positions.size(), Vec3<double>::Zero());
-    return motion;
-  }
-
-  // An unsimulated state under a RigidMapping from an unsimulated rigid (SOFA's example scenes
-  // attach points to a still rigid frame): its positions are local coordinates in the rigid's frame
-  // (SOFA's default) unless globalToLocalCoords. Other mappings from unsimulated states are refused.
-  void carried_by_still_rigid(Component& state, ConstraintPoints<double>& points) {
-    auto& positions = points.position;
-    for (Component* m : state.node->of_category("visualmapping")) {
-      if (m->has("output") && &data_.resolve_object(*m->node, m->object->attributes.at("output"), *m) != &state) continue;
-      if (m->type() != "RigidMapping") {
-        throw make_error(state.where(), " is mapped by ", m->where(), " from a state no ODE solver integrates: only a "
-                         "RigidMapping is followed there");
-      }
-      for (const char* data : {"rigidIndexPerPoint", "indexFromEnd", "initialPoints", "useX0"}) {
-        if (m->has(data)) throw make_error(m->where(), ": ", data, " on a rigid no ODE solver integrates is not supported");
-      }
-      Component* parent = nullptr;
-      if (m->has("input")) {
-        parent = &data_.resolve_state(*m->node, m->object->attributes.at("input"), *m);
-      } else if (state.node->parent && !state.node->parent->of_category("state").empty()) {
-        parent = state.node->parent->of_category("state").front();
-      }
-      if (!parent || !is_rigid_template(data_.text(*parent, "template", "Vec3d"))) {
-        throw make_error(m->where(), ": its input is not a Rigid3 MechanicalObject");
-      }
-      for (const GraphNode* node = parent->node; node; node = node->parent) {
-        if (!node->of_category("odesolver").empty() || locate_(*parent)) {
-          // The rigid moves (SOFA's loop carries the point with it and Jᵀ gives the rigid the
-          // constraint's force); a point off a simulated rigid's own subtree is not followed here.
-          throw make_error(state.where(), " is carried by ", parent->where(), ", which an ODE solver moves, from outside that "
-                           "solver's node: Lagrangian constraints on it are not supported (put the mapped node under the rigid's)");
-        }
-      }
-      Component& input = *parent;
-      const Numbers poses = data_.data(input, "position");
-      const Index index = data_.whole_number(*m, "index", 0);
-      if (poses.size() % 7 != 0 || index < 0 || static_cast<std::size_t>(7 * index + 7) > poses.size()) {
-        throw make_error(m->where(), ": index ", index, " is not a rigid of ", input.where());
-      }
-      const double* pose = &poses[static_cast<std::size_t>(7 * index)];
-      const Eigen::Quaterniond q(pose[6], pose[3], pose[4], pose[5]);
-      const Vec3<double> centre(pose[0], pose[1], pose[2]);
-      const bool world = data_.boolean(*m, "globalToLocalCoords", false);
-      if (Component* moving = linear_movement_in(*input.node)) {
-        points.motion = carried_motion(*moving, poses, static_cast<std::size_t>(index), positions, world);
-        return;
-      }
-      if (world) return;  // already in the world
-      for (auto& x : positions) x = centre + q.normalized() * x;
-      return;
-    }
-  }
-
-  // Points carried by rigid `index` of an unsimulated Rigid3 state (poses, 7 numbers each) that a
-  // LinearMovementProjectiveConstraint moves: the rigids' centres and orientations follow the
-  // movement, the points their rigid (local coordinates, or world ones brought into its frame).
-  std::shared_ptr<PrescribedMotion<double>> carried_motion(Component& moving, const Numbers& poses, std::size_t index,
-                                                           const std::vector<Vec3<double>>& positions, bool world) {
-    const std::size_t rigids = poses.size() / 7;
-    auto motion = std::make_shared<PrescribedMotion<double>>();
-    try {
-      motion->movement = build_linear_movement(data_, moving, static_cast<Index>(rigids), true);
-    } catch (const Error& error) {
-      throw error_at(moving.where(), error);
-    }
-    motion->frames = std::make_shared<RigidBlocks<double>>();
-    for (std::size_t k = 0; k < rigids; ++k) {
-      const double* pose = &poses[7 * k];
-      const Eigen::Quaterniond q = Eigen::Quaterniond(pose[6], pose[3], pose[4], pose[5]).normalized();
-      motion->state.position.insert(motion->state.position.end(), {Vec3<double>(pose[0], pose[1], pose[2]), Vec3<double>::Zero()});
-      motion->frames->block.push_back(static_cast<Index>(2 * k));
-      motion->frames->orientation.push_back(q);
-      motion->frames->rest_orientation.push_back(q);
-    }
-    motion->state.velocity.assign(motion->state.position.size(), Vec3<double>::Zero());
-    const RigidCoord<double> frame = motion->frames->coord(motion->state.position, index);
-    for (const auto& x : positions) {
-      motion->rigid.push_back(index);
-      motion->local.push_back(world ? frame.inverse_rotate(x - frame.center) : x);
-    }
-    return motion;
-  }
-
-  // SOFA's FreeMotionAnimationLoop projects every state's positions at the end of a step, so a
-  // prescribed movement on a state no solver integrates moves it there; here only a
-  // LinearMovementProjectiveConstraint does (above), the others are warned.
-  void warn_if_moved(Component& state, Component& user) {
-    for (const GraphNode* node = state.node; node; node = node->parent) {
-      for (const auto& c : node->components) {
-        const std::string_view type = c->type();
-        if (type.find("Movement") != std::string_view::npos || type.find("Oscillator") != std::string_view::npos) {
-          data_.warn(user.where() + ": " + c->where() + " moves " + node->path + " in SOFA (its FreeMotionAnimationLoop "
-                     "projects every state), but no ODE solver integrates it here: it stays put");
-          return;
-        }
-      }
-    }
-  }
-
   // The points of a simulated state, or of one no ODE solver integrates (they stay put).
   ConstraintPoints<double> points_or_unsimulated(Component& state, Component& user) {
     if (!locate_(state)) {
-      if (auto still = unsimulated_points(state, user)) return std::move(*still);
+      if (auto still = UnsimulatedPoints(data_, info_, locate_).points(state, user)) return std::move(*still);
     }
     return points_of(state, user);  // throws, saying why, when neither
   }

@@ -16,27 +16,45 @@ namespace {
 Mass<double> edge_mass(SceneData& data, Component& c, Component& topology, const Points<double>& rest) {
   const std::vector<Index> flat = data.indices(topology, "edges");
   if (flat.empty() || flat.size() % 2 != 0) throw make_error("its topology ", topology.where(), " has no edges (2 indices each)");
-  std::vector<double> masses(rest.size(), 0.0);
-  double sum = 0;
-  for (std::size_t e = 0; e + 1 < flat.size(); e += 2) {
-    for (Index v : {flat[e], flat[e + 1]}) {
-      if (v < 0 || static_cast<std::size_t>(v) >= rest.size()) {
-        throw make_error(topology.where(), ": edges: point ", v, " is out of range [0, ", rest.size(), ")");
+  for (Index v : flat) {
+    if (v < 0 || static_cast<std::size_t>(v) >= rest.size()) {
+      throw make_error(topology.where(), ": edges: point ", v, " is out of range [0, ", rest.size(), ")");
+    }
+  }
+  // SOFA's order of precedence: totalMass, then massDensity, then vertexMass; totalMass 1 by default.
+  const bool from_total = c.has("totalMass") || (!c.has("massDensity") && !c.has("vertexMass"));
+  if (!from_total && !c.has("massDensity")) {
+    const Numbers& given = data.data(c, "vertexMass");
+    if (given.size() != rest.size()) throw make_error("vertexMass has ", given.size(), " values for ", rest.size(), " points");
+    for (double m : given) {
+      if (!(m >= 0) || !std::isfinite(m)) throw make_error("vertexMass: ", m, " is not a mass");
+    }
+    return Mass<double>::lumped(std::vector<double>(given.begin(), given.end()));
+  }
+  // SOFA's computeVertexMass(density): each edge gives density × length / 2 to each end.
+  const auto vertex_masses = [&](double density, double& sum) {
+    std::vector<double> masses(rest.size(), 0.0);
+    sum = 0;
+    for (std::size_t e = 0; e + 1 < flat.size(); e += 2) {
+      const double half = density * (rest[static_cast<std::size_t>(flat[e])] - rest[static_cast<std::size_t>(flat[e + 1])]).norm() / 2.0;
+      for (Index v : {flat[e], flat[e + 1]}) {
+        masses[static_cast<std::size_t>(v)] += half;
+        sum += half;
       }
     }
-    const double half = (rest[static_cast<std::size_t>(flat[e])] - rest[static_cast<std::size_t>(flat[e + 1])]).norm() / 2.0;
-    for (Index v : {flat[e], flat[e + 1]}) {
-      masses[static_cast<std::size_t>(v)] += half;
-      sum += half;
-    }
+    return masses;
+  };
+  double sum = 0;
+  if (!from_total) {
+    const double density = data.real(c, "massDensity", 1.0);
+    if (!(density > 0) || !std::isfinite(density)) throw make_error("massDensity = ", density, ": must be > 0");
+    return Mass<double>::lumped(vertex_masses(density, sum));
   }
-  double density = data.real(c, "massDensity", 1.0);
-  if (c.has("totalMass") || !c.has("massDensity")) {
-    const double total = data.real(c, "totalMass", 1.0);
-    if (!(total > 0)) throw make_error("totalMass must be > 0");
-    density = sum < std::numeric_limits<double>::epsilon() ? 1.0 : total / sum;
-  }
-  if (!(density > 0) || !std::isfinite(density)) throw make_error("massDensity = ", density, ": must be > 0");
+  // initFromTotalMass: the masses of density 1, scaled by totalMass over their sum.
+  std::vector<double> masses = vertex_masses(1.0, sum);
+  const double total = data.real(c, "totalMass", 1.0);
+  if (!(total > 0)) throw make_error("totalMass must be > 0");
+  const double density = sum < std::numeric_limits<double>::epsilon() ? 1.0 : total / sum;
   for (double& m : masses) m *= density;
   return Mass<double>::lumped(std::move(masses));
 }

@@ -133,6 +133,9 @@ void add_interaction_springs(SceneData& data, const std::vector<GraphNode*>& nod
           }
           for (const MappedState& mapped : object.mapped_states) {
             if (mapped.node != state.node->path || mapped.name != state.sofa_name()) continue;
+            if (mapped.coordinates == 1) {
+              throw make_error(name, " ", state.where(), " is a Vec1 state (a DistanceMapping's output): springs join Vec3 points");
+            }
             if (mapped.through) {
               throw make_error(name, " ", state.where(), " is below a SubsetMultiMapping or follows several rigid bodies: ",
                                "springs on it are not supported (put them in the mapped node, on its own points)");

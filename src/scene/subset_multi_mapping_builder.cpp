@@ -78,6 +78,7 @@ SubsetMultiMappingInputs read_subset_multi_mapping(SceneData& data, const GraphN
       for (std::size_t m = 0; m < object.mapped_states.size() && !found; ++m) {
         const MappedState& mapped = object.mapped_states[m];
         if (mapped.node != state.node->path || mapped.name != state.sofa_name()) continue;
+        if (mapped.coordinates == 1) throw make_error("input ", link, " is a Vec1 state (a DistanceMapping's output): not a Vec3 input");
         if (mapped.through) {
           throw make_error("input ", link, " is itself below a SubsetMultiMapping or follows several rigid bodies: not supported");
         }

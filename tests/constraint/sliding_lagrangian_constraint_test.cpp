@@ -80,8 +80,8 @@ TEST(SlidingLagrangianConstraint, RowsViolationsAndResolutionsAsWrittenByHand) {
   sliding.add_resolutions(problem);
   ASSERT_EQ(problem.resolutions.size(), 5u);
   for (std::size_t b = 1; b < 5; ++b) EXPECT_EQ(problem.resolutions[b]->lines(), 1);
-  EXPECT_NE(dynamic_cast<BilateralResolutionN<double>*>(problem.resolutions[1].get()), nullptr);
-  EXPECT_NE(dynamic_cast<BilateralResolutionN<double>*>(problem.resolutions[2].get()), nullptr);
+  EXPECT_NE(dynamic_cast<BilateralResolution1<double>*>(problem.resolutions[1].get()), nullptr);
+  EXPECT_NE(dynamic_cast<BilateralResolution1<double>*>(problem.resolutions[2].get()), nullptr);
   EXPECT_NE(dynamic_cast<UnilateralResolution<double>*>(problem.resolutions[3].get()), nullptr);
   EXPECT_NE(dynamic_cast<UnilateralResolution<double>*>(problem.resolutions[4].get()), nullptr);
   EXPECT_NO_THROW(problem.check_blocks());
@@ -140,7 +140,7 @@ TEST(SlidingLagrangianConstraint, EndsTogetherHoldThePointOnThem) {
   problem.clear(3);
   sliding.add_resolutions(problem);
   ASSERT_EQ(problem.resolutions.size(), 3u);
-  for (const auto& r : problem.resolutions) EXPECT_NE(dynamic_cast<BilateralResolutionN<double>*>(r.get()), nullptr);
+  for (const auto& r : problem.resolutions) EXPECT_NE(dynamic_cast<BilateralResolution1<double>*>(r.get()), nullptr);
 }
 
 TEST(SlidingLagrangianConstraint, UnsimulatedPointsGetNoEntries) {

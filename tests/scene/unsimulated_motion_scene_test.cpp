@@ -150,5 +150,38 @@ TEST(UnsimulatedMotion, RigidDrivenByAMovementPullsASoftCubeAsSofa) {
   }
 }
 
+TEST(UnsimulatedMotion, AStillStateIsPlacedOnceAndTwoMovementsAreRefused) {
+  // The target's translation (dx) applies once: the tied point is pulled to (0.5 + 0.25, 0.2, 0).
+  LoadedScene placed = build_scene_text(tied_to("<Node name=\"target\"><MechanicalObject name=\"points\" position=\"0.5 0.2 0\" dx=\"0.25\"/></Node>"),
+                                        "dt=\"0.01\" gravity=\"0 0 0\"");
+  placed.simulation.step();
+  EXPECT_NEAR(placed.simulation.objects[0].system.state.position[0].x(), 0.75, 1e-12);
+  const std::string two = tied_to("<Node name=\"target\"><MechanicalObject name=\"points\" position=\"0.5 0.2 0\"/>"
+                                  "<LinearMovementProjectiveConstraint indices=\"0\" keyTimes=\"0 1\" movements=\"0 0 0  1 0 0\"/>"
+                                  "<LinearMovementProjectiveConstraint indices=\"0\" keyTimes=\"0 1\" movements=\"0 0 0  0 1 0\"/></Node>");
+  EXPECT_NE(testing::scene_error(two).find("a second LinearMovementProjectiveConstraint"), std::string::npos) << testing::scene_error(two);
+}
+
+TEST(UnsimulatedMotion, AnExplicitlyIntegratedMovingPointHasNoFreeMotion) {
+  // The target is simulated by an explicit solver (no integration factors) and moved by a
+  // LinearMovement: its free velocity is projected to zero, so its free position is where the step
+  // began and the tied point follows one step behind, as with a still target.
+  LoadedScene scene = build_scene_text(
+      "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver tolerance=\"1e-15\" maxIterations=\"1000\"/>"
+      "<Node name=\"target\"><EulerExplicitSolver/><MechanicalObject name=\"points\" position=\"0.5 0.2 0\"/><UniformMass totalMass=\"1\"/>"
+      "<LinearMovementProjectiveConstraint indices=\"0\" keyTimes=\"0 1\" movements=\"0 0 0  1 2 0\"/>"
+      "<UncoupledConstraintCorrection defaultCompliance=\"1e-12\" useOdeSolverIntegrationFactors=\"0\"/></Node>"
+      "<Node name=\"bob\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+      "<MechanicalObject name=\"point\" position=\"0.5 0.2 0\"/><UniformMass totalMass=\"1\"/><LinearSolverConstraintCorrection/></Node>"
+      "<BilateralLagrangianConstraint object1=\"@bob/point\" object2=\"@target/points\" first_point=\"0\" second_point=\"0\"/>",
+      "dt=\"0.01\" gravity=\"0 0 0\"");
+  const auto& bob = scene.simulation.objects[1].system.state.position;
+  for (int k = 1; k <= 20; ++k) {
+    scene.simulation.step();
+    const double t = std::max(0, k - 2) * kDt;
+    ASSERT_NEAR(bob[0].x(), 0.5 + t, 1e-9) << "step " << k;
+  }
+}
+
 }  // namespace
 }  // namespace fastcorot

@@ -147,5 +147,99 @@ TEST(Vec1Scene, BadInputIsRefusedNamingTheComponent) {
             std::string::npos);
 }
 
+// Two wires of three particles under one solver (one merged object): the second one's edges are
+// held by a UniformLagrangianConstraint on its DistanceMapping, whose points start after the first
+// wire's in the object.
+std::string two_wires(const std::string& solver, const std::string& mapping_extra = "", const std::string& uniform = "") {
+  const auto wire = [](const std::string& name, const std::string& x, const std::string& inner) {
+    return "<Node name=\"" + name + "\"><EdgeSetTopologyContainer name=\"edges\" position=\"" + x + "\" edges=\"0 1  1 2\"/>"
+           "<MechanicalObject name=\"particles\"/><FixedProjectiveConstraint indices=\"0\"/><UniformMass totalMass=\"3\"/>"
+           "<MeshSpringForceField linesStiffness=\"5\" linesDamping=\"0\"/><GenericConstraintCorrection/>" + inner + "</Node>";
+  };
+  return "<FreeMotionAnimationLoop/>" + solver + "<EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>" +
+         wire("a", "0 0 0  1 0 0  2 0 0", "") +
+         wire("b", "0 0 1  1 0 1  2 0 1",
+              "<Node name=\"lengths\"><MechanicalObject name=\"extensions\" template=\"Vec1\"/><DistanceMapping topology=\"@../edges\" " +
+                  mapping_extra + "/><UniformLagrangianConstraint template=\"Vec1\" iterative=\"false\" " + uniform + "/></Node>");
+}
+
+double stretch(const LoadedScene& scene, std::size_t first) {
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  return std::max(std::abs((x[first + 1] - x[first]).norm() - 1.0), std::abs((x[first + 2] - x[first + 1]).norm() - 1.0));
+}
+
+TEST(Vec1Scene, AWireAfterAnotherInOneObjectKeepsItsOwnLengths) {
+  LoadedScene scene = build_scene_text(two_wires("<BlockGaussSeidelConstraintSolver tolerance=\"1e-14\" maxIterations=\"1000\"/>"),
+                                       "dt=\"0.01\" gravity=\"0 -10 0\"");
+  ASSERT_EQ(scene.simulation.objects.size(), 1u);
+  ASSERT_EQ(scene.simulation.objects[0].system.size(), 6);
+  for (int k = 0; k < 50; ++k) scene.simulation.step();
+  EXPECT_LT(stretch(scene, 3), 1e-3) << "wire b is held (its own points, 3..5)";
+  EXPECT_GT(stretch(scene, 0), 1e-2) << "wire a is only springs and stretches";
+}
+
+TEST(Vec1Scene, ApplyRestPositionHoldsTheRestLengthsWithConstrainToRestPos) {
+  // computeDistance: the values are the lengths; applyRestPosition: the rest values too, so
+  // constrainToRestPos holds the lengths at rest (without it the rest values are zero: collapse).
+  LoadedScene held = build_scene_text(two_wires("<BlockGaussSeidelConstraintSolver tolerance=\"1e-14\" maxIterations=\"1000\"/>",
+                                                "computeDistance=\"1\" applyRestPosition=\"1\"", "constrainToRestPos=\"1\""),
+                                      "dt=\"0.01\" gravity=\"0 -10 0\"");
+  for (int k = 0; k < 50; ++k) held.simulation.step();
+  EXPECT_LT(stretch(held, 3), 1e-3);
+  LoadedScene zero = build_scene_text(two_wires("<BlockGaussSeidelConstraintSolver tolerance=\"1e-14\" maxIterations=\"1000\"/>",
+                                                "computeDistance=\"1\"", "constrainToRestPos=\"1\""),
+                                      "dt=\"0.01\" gravity=\"0 -10 0\"");
+  for (int k = 0; k < 50; ++k) zero.simulation.step();
+  EXPECT_GT(stretch(zero, 3), 0.5) << "held at zero length";
+}
+
+TEST(Vec1Scene, UnderLcpTheConstraintForcesGiveNoGeometricStiffnessAsInSofa) {
+  // SOFA's LCPConstraintSolver stores no λ on the states, so the mapping's geometric stiffness reads
+  // nothing: Stabilized and None give the same trajectory.
+  const std::string lcp = "<LCPConstraintSolver tolerance=\"1e-12\" maxIt=\"1000\" mu=\"0\"/>";
+  LoadedScene stabilized = build_scene_text(two_wires(lcp), "dt=\"0.01\" gravity=\"0 -10 0\"");
+  LoadedScene none = build_scene_text(two_wires(lcp, "geometricStiffness=\"None\""), "dt=\"0.01\" gravity=\"0 -10 0\"");
+  for (int k = 0; k < 30; ++k) stabilized.simulation.step(), none.simulation.step();
+  EXPECT_EQ(stabilized.simulation.objects[0].system.state.position, none.simulation.objects[0].system.state.position);
+  // Under Gauss–Seidel they differ (the test above would see a stored λ).
+  const std::string gs = "<BlockGaussSeidelConstraintSolver tolerance=\"1e-14\" maxIterations=\"1000\"/>";
+  LoadedScene a = build_scene_text(two_wires(gs), "dt=\"0.01\" gravity=\"0 -10 0\"");
+  LoadedScene b = build_scene_text(two_wires(gs, "geometricStiffness=\"None\""), "dt=\"0.01\" gravity=\"0 -10 0\"");
+  for (int k = 0; k < 30; ++k) a.simulation.step(), b.simulation.step();
+  EXPECT_NE(a.simulation.objects[0].system.state.position, b.simulation.objects[0].system.state.position);
+}
+
+TEST(Vec1Scene, VecThreeConstraintsOnAVecOneStateAreRefused) {
+  // A SlidingLagrangianConstraint whose object2 is the Vec1 state.
+  const std::string text = hanging_wire("") +
+                           "<SlidingLagrangianConstraint object1=\"@particles\" object2=\"@lengths/extensions\" sliding_point=\"1\" "
+                           "axis_1=\"0\" axis_2=\"1\"/>";
+  EXPECT_NE(scene_error(text).find("is a Vec1 state"), std::string::npos) << scene_error(text);
+}
+
+TEST(Vec1Scene, DiagonalMassOnAWireTakesSofasPrecedence) {
+  // Edges of lengths 1 and 2: with massDensity ρ each end of an edge gets ρ l / 2; totalMass wins
+  // over it (scaled to the total); vertexMass alone gives each point its own.
+  const auto masses = [](const std::string& mass) {
+    LoadedScene scene = build_scene_text("<EulerImplicitSolver/><CGLinearSolver/><EdgeSetTopologyContainer position=\"0 0 0  1 0 0  3 0 0\" "
+                                         "edges=\"0 1  1 2\"/><MechanicalObject/>" + mass);
+    const auto m = scene.simulation.objects[0].system.mass.vertex_masses();
+    return std::vector<double>(m.begin(), m.end());
+  };
+  const auto density = masses("<DiagonalMass massDensity=\"2\"/>");
+  EXPECT_NEAR(density[0], 1.0, 1e-15);
+  EXPECT_NEAR(density[1], 1.0 + 2.0, 1e-15);
+  EXPECT_NEAR(density[2], 2.0, 1e-15);
+  const auto total = masses("<DiagonalMass totalMass=\"3\" massDensity=\"2\"/>");
+  EXPECT_NEAR(total[0] + total[1] + total[2], 3.0, 1e-14);
+  EXPECT_NEAR(total[1] / total[0], 3.0, 1e-14);
+  const auto given = masses("<DiagonalMass vertexMass=\"0.5 0.25 0.125\"/>");
+  EXPECT_EQ(given, (std::vector<double>{0.5, 0.25, 0.125}));
+  EXPECT_NE(scene_error("<EulerImplicitSolver/><CGLinearSolver/><EdgeSetTopologyContainer position=\"0 0 0  1 0 0\" edges=\"0 1\"/>"
+                        "<MechanicalObject/><DiagonalMass vertexMass=\"1\"/>")
+                .find("vertexMass has 1 values for 2 points"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace fastcorot

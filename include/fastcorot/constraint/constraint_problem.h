@@ -73,6 +73,15 @@ class BilateralResolutionN final : public ConstraintResolution<Real> {
   Eigen::LDLT<Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>> block_;
 };
 
+// One row held at zero violation (SOFA's BilateralConstraintResolution without a warm start):
+// λ -= d / W_jj.
+template <class Real>
+class BilateralResolution1 final : public ConstraintResolution<Real> {
+ public:
+  BilateralResolution1() : ConstraintResolution<Real>(1) {}
+  void resolve(int line, const DenseMatrix<Real>& w, const Real* d, Real* f, const Real*) override { f[line] -= d[line] / w(line, line); }
+};
+
 // One row that may only push (SOFA's UnilateralConstraintResolution): λ ← max(0, λ - d / W_jj).
 template <class Real>
 class UnilateralResolution final : public ConstraintResolution<Real> {

@@ -46,6 +46,10 @@ class ConstraintSolver {
   // Whether SOFA's version is unbuilt (reads the corrections' block-diagonal compliance and
   // displacements rather than an assembled W: ConstraintCorrection::set_unbuilt).
   virtual bool unbuilt() const { return false; }
+  // Whether SOFA's version stores λ on the states after its solve (GenericConstraintSolver's
+  // family does; LCPConstraintSolver does not): what a nonlinear mapping's geometric stiffness
+  // then reads.
+  virtual bool stores_lambda() const { return true; }
   const ConstraintSolverParameters<Real>& parameters() const { return parameters_; }
 
  protected:

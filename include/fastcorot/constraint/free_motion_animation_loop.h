@@ -1,10 +1,13 @@
 // FreeMotionAnimationLoop<Real>: SOFA's FreeMotionAnimationLoop after the free motion
 // (FreeMotionAnimationLoop.cpp, GenericConstraintSolver.cpp): the constraints' rows H at the step's
 // start, their violations on the free motion, W = Σ corrections' compliance, the constraint
-// solver, then each object corrected by its corrections. Objects that no row reaches keep their
-// free motion (with SOFA's x_free = x + dt v_free), so a scene without constraints runs as under
-// the default loop (except that a velocity damping then acts on the positions one step later, as
-// in SOFA). In velocity order every object ends at x = x_start + dt v, SOFA's rule for all states.
+// solver, then each object corrected by its corrections. The free velocities are first projected
+// (SOFA's projectResponse(v_free): points a movement holds have none) and the free positions are
+// SOFA's x_free = x + dt v_free. Objects that no row reaches keep that free motion, so a scene
+// without constraints runs as under the default loop, except that a velocity damping then acts on
+// the positions one step later and a projection applied twice (planes, lines) may differ in the
+// last bits, as in SOFA. In velocity order every object ends at x = x_start + dt v, SOFA's rule for
+// all states.
 // Design: docs/constraints.md.
 #pragma once
 

@@ -23,6 +23,7 @@ class LCPConstraintSolver final : public ConstraintSolver<Real> {
   LCPConstraintSolver(ConstraintSolverParameters<Real> parameters, Options options);
   ConstraintSolveReport solve(ConstraintProblem<Real>& problem) override;
   const char* name() const override { return "LCPConstraintSolver"; }
+  bool stores_lambda() const override { return false; }
 
  private:
   ConstraintSolveReport solve_with_friction(ConstraintProblem<Real>& problem) const;

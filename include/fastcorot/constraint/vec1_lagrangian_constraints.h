@@ -38,7 +38,8 @@ class UniformLagrangianConstraint final : public LagrangianConstraint<Real> {
 };
 
 // StopperLagrangianConstraint<Vec1>: point `index`'s value kept within [min, max]: one row, e_x on
-// the point; violation its free value x_f (in either order, as SOFA); the resolution starts from
+// the point; violation its free value x_f in either order (SOFA too, though in velocity order its
+// mapped free positions are stale: docs/constraints.md); the resolution starts from
 // λ = 0 each step and sets λ = (max - δ) / W_jj above max, (min - δ) / W_jj below min, else 0, δ
 // the row's violation without its own impulse.
 template <class Real>

@@ -39,9 +39,13 @@ struct MappedState {
   // Coordinates per point: 3, or 1 for a Vec1 state (DistanceMapping's extensions, their value in
   // x; `through` is then the DistanceMapping and `map` the identity).
   int coordinates = 3;
-  // The constraint forces on the state that its mapping's geometric stiffness reads (null when
-  // none does): shared with the Lagrangian constraints on it (ConstraintPoints::constraint_force).
+  // The constraint forces on the state, which its mapping's geometric stiffness reads (a Vec1
+  // state's; null otherwise): shared with the Lagrangian constraints on it
+  // (ConstraintPoints::constraint_force).
   std::shared_ptr<std::vector<Vec3<double>>> constraint_force;
+  // SOFA's applyRestPosition on its mapping: its rest positions are the mapping's image of the
+  // parent's (else its own: zero for a Vec1 state).
+  bool apply_rest_position = false;
   std::size_t size() const { return rigid ? rigid->size() : map.size(); }
 };
 
