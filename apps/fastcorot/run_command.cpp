@@ -314,6 +314,31 @@ struct ConstraintTally {
   }
 };
 
+// The collision stage's figures over a run: contacts per step and at the last step, the element
+// pairs tested, degenerate elements skipped, the time in detection.
+struct ContactTally {
+  long contacts = 0, last = 0, max_contacts = 0, element_pairs = 0, degenerate = 0;
+  double seconds = 0;
+
+  void add(const CollisionReport& r) {
+    contacts += r.contacts;
+    last = r.contacts;
+    max_contacts = std::max<long>(max_contacts, r.contacts);
+    element_pairs += r.element_pairs;
+    degenerate = std::max<long>(degenerate, r.degenerate_elements);
+    seconds += r.detection_seconds;
+  }
+
+  void summarise(std::ostream& out, long steps) const {
+    const double n = static_cast<double>(std::max<long>(steps, 1));
+    out << "contacts: " << std::setprecision(1) << static_cast<double>(contacts) / n << " per step (at most " << max_contacts
+        << ", last step " << last << "), " << static_cast<double>(element_pairs) / n << " element pairs tested per step, detection "
+        << std::setprecision(3) << seconds << " s";
+    if (degenerate > 0) out << "; " << degenerate << " degenerate element(s) skipped";
+    out << '\n';
+  }
+};
+
 // A dumped step: `steps` the positions of each simulated object under its path (the first format,
 // kept for the files written before velocities were dumped), `states` every MechanicalObject,
 // mapped ones included, under "node path/object name" in scene order (docs/cli.md); under
@@ -463,6 +488,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
   long solves = 0, iterations = 0;
   ConstraintTally constraints;
+  ContactTally contacts;
   double last_draw = -1;
   try {
     for (long step = first_step; step <= options.steps; ++step) {
@@ -475,6 +501,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       solves += report.linear_solves;
       iterations += report.linear_iterations;
       if (simulation.constraints) constraints.add(simulation, step, writer && !options.quiet ? &err : nullptr);
+      if (simulation.collisions) contacts.add(simulation.collision_report());
       const bool frame = (options.vtu || options.obj || !options.png_dir.empty()) &&
                          (step % options.every == 0 || step == options.steps);
       write_outputs(options.dump_steps.count(step) || (dump_last && step == options.steps), frame);
@@ -516,6 +543,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (distributed->active()) out << ", " << process_count() << " ranks";
     out << '\n';
     if (simulation.constraints) constraints.summarise(out, steps_run, simulation.constraints->solver_name());
+    if (simulation.collisions) contacts.summarise(out, steps_run);
   }
 }
 

@@ -25,5 +25,7 @@ std::vector<ComponentSpec> engine_components();
 std::vector<ComponentSpec> solver_components();
 // SOFA master's element FEM family: its force fields, FEMMass and NodalMassDensity.
 std::vector<ComponentSpec> element_fem_components();
+// Collision detection and penalty contact: the pipeline, MinProximityIntersection, the models.
+std::vector<ComponentSpec> collision_components();
 
 }  // namespace fastcorot::scene_detail

@@ -18,7 +18,8 @@ const std::vector<ComponentSpec>& table() {
     std::vector<ComponentSpec> all;
     for (auto family : {scene_detail::topology_components, scene_detail::visual_components,
                         scene_detail::mechanics_components, scene_detail::element_fem_components,
-                        scene_detail::constraint_components, scene_detail::lagrangian_components, scene_detail::engine_components, scene_detail::solver_components}) {
+                        scene_detail::constraint_components, scene_detail::lagrangian_components, scene_detail::engine_components, scene_detail::solver_components,
+                        scene_detail::collision_components}) {
       for (auto& spec : family()) all.push_back(std::move(spec));
     }
     return all;
@@ -221,10 +222,10 @@ std::string component_documentation() {
   for (auto name : kIgnored) {
     if (!is_collision_component(name)) out << " " << name;
   }
-  out << ".\n\nIgnored with a warning each, as they change SOFA's mechanics (collisions and contacts are not "
-         "simulated):";
+  out << ".\n\nIgnored with a warning each, as they change SOFA's mechanics (their scene's collisions and contacts "
+         "are then not simulated):";
   for (auto name : kIgnored) {
-    if (is_collision_component(name)) out << " " << name;
+    if (is_collision_component(name) && !find_component(name)) out << " " << name;
   }
   out << ".\n\nRefused, the scene with them, in one line saying what is missing:";
   for (const auto& [name, reason] : refused_components()) out << "\n- " << name << ": " << reason;

@@ -20,6 +20,7 @@
 #include "mapped_mechanics.h"
 #include "subset_multi_mapping_builder.h"
 #include "distance_mapping_builder.h"
+#include "collision_builder.h"
 #include "rigid_builder.h"
 #include "visual_surface_builder.h"
 
@@ -158,24 +159,29 @@ class Builder {
 
   // FreeMotionAnimationLoop and the Lagrangian components, on the objects built.
   void build_constraints() {
-    const scene_detail::LocateState locate = [&](const Component& state) -> std::optional<scene_detail::StateLocation> {
-      for (const auto& [object, part] : parts_) {
-        if (object != state.object) continue;
-        const auto& ranges = simulation_.objects[part.object].states;
-        bool rigid = false;
-        for (const StateRange& range : ranges) rigid = rigid || (range.offset == part.offset && range.rigid);
-        return scene_detail::StateLocation{part.object, part.offset, part.size, rigid, nullptr};
-      }
-      for (std::size_t o = 0; o < simulation_.objects.size(); ++o) {
-        for (const MappedState& mapped : simulation_.objects[o].mapped_states) {
-          if (mapped.node == state.node->path && mapped.name == state.sofa_name()) {
-            return scene_detail::StateLocation{o, 0, static_cast<Index>(mapped.size()), false, &mapped};
-          }
+    const scene_detail::LocateState locate = [this](const Component& state) { return locate_state(state); };
+    lagrangian_ = scene_detail::build_free_motion_loop(data_, info_, simulation_, solver_nodes_, locate);
+    scene_detail::build_collision_pipeline(data_, info_, simulation_, locate);
+  }
+
+  // Where a MechanicalObject's points are in the simulation: a simulated object's range, or one of
+  // its mapped states; nullopt for a state nothing simulates.
+  std::optional<scene_detail::StateLocation> locate_state(const Component& state) const {
+    for (const auto& [object, part] : parts_) {
+      if (object != state.object) continue;
+      const auto& ranges = simulation_.objects[part.object].states;
+      bool rigid = false;
+      for (const StateRange& range : ranges) rigid = rigid || (range.offset == part.offset && range.rigid);
+      return scene_detail::StateLocation{part.object, part.offset, part.size, rigid, nullptr};
+    }
+    for (std::size_t o = 0; o < simulation_.objects.size(); ++o) {
+      for (const MappedState& mapped : simulation_.objects[o].mapped_states) {
+        if (mapped.node == state.node->path && mapped.name == state.sofa_name()) {
+          return scene_detail::StateLocation{o, 0, static_cast<Index>(mapped.size()), false, &mapped};
         }
       }
-      return std::nullopt;
-    };
-    lagrangian_ = scene_detail::build_free_motion_loop(data_, info_, simulation_, solver_nodes_, locate);
+    }
+    return std::nullopt;
   }
 
   static void rank_objects(const SceneNode& node, std::map<const SceneObject*, std::size_t>& rank) {
@@ -284,6 +290,12 @@ class Builder {
     placed.velocity.resize(mapping.size());
     mapping.positions(from.position, placed.position);
     mapping.velocities(from.position, from.velocity, placed.velocity);
+    // SOFA's applyRestPosition: the mapping also maps the parent's rest positions.
+    for (Component* m : node.of_category("visualmapping")) {
+      if (!data_.boolean(*m, "applyRestPosition", false)) continue;
+      placed.rest_position.resize(mapping.size());
+      mapping.positions(from.rest_position, placed.rest_position);
+    }
     std::vector<GraphNode*> nodes{&node}, mapped;
     for (auto& child : node.children) collect(*child, nodes, mapped, false);
     SimulatedObject<double> object = build_part(state, nodes, mapped, &placed);
@@ -414,7 +426,9 @@ class Builder {
       // SOFA's MechanicalObject stores its rest positions at its own init, before the mapping
       // resizes it (new points at zero) and applies: a mapped state keeps the rest positions it
       // had of its own (written, or its topology's), zero for the points it did not have.
-      if (system.state.rest_position.size() != placed->position.size()) {
+      if (!placed->rest_position.empty()) {
+        system.state.rest_position = placed->rest_position;  // the mapping's applyRestPosition
+      } else if (system.state.rest_position.size() != placed->position.size()) {
         if (system.state.rest_position.size() < placed->position.size()) {
           info_.push_back(state.where() + ": " + std::to_string(placed->position.size() - system.state.rest_position.size()) +
                           " of its points have no rest position of their own: zero, as SOFA leaves them (its mapping sets "

@@ -155,6 +155,13 @@ template <class Real>
 StepReport Simulation<Real>::step() {
   const long step_number = steps_done_ + 1;
   apply_topology_changes(step_number, clock_);
+  if (collisions) {
+    try {
+      collision_report_ = collisions->begin_step(objects, dt, clock_);
+    } catch (const Error& error) {
+      throw Error(brief("at step ", step_number, " (t = ", clock_, "): ") + error.what());
+    }
+  }
   const Real size =
       divergence_factor > 0 && std::isfinite(divergence_factor) ? scene_size() : Real(0);
   const Real bound = divergence_factor * size;

@@ -210,9 +210,15 @@ TEST(SceneBuilder, CollisionComponentsAreWarnedAsNotSimulated) {
   const std::string text = "<Node name=\"root\">\n<CollisionPipeline/>\n<Node name=\"b\">" + kTet +
                            "\n<UniformMass totalMass=\"1\"/>\n<TriangleCollisionModel/>\n</Node>\n</Node>";
   const LoadedScene scene = build_scene(parse_scene_text(text, "c.scn"));
+  // A pipeline with no intersection method: each collision component says why nothing collides.
   ASSERT_EQ(scene.warnings.size(), 2u);
-  EXPECT_EQ(scene.warnings[0], "c.scn:2: CollisionPipeline ignored: collisions and contacts are not simulated by fastcorot");
-  EXPECT_NE(scene.warnings[1].find("TriangleCollisionModel ignored: collisions"), std::string::npos);
+  EXPECT_EQ(scene.warnings[0].rfind("c.scn:2: CollisionPipeline", 0), 0u) << scene.warnings[0];
+  EXPECT_NE(scene.warnings[0].find("ignored: collisions and contacts are not simulated by fastcorot here: the scene has no "
+                                   "intersection method fastcorot simulates (MinProximityIntersection)"),
+            std::string::npos)
+      << scene.warnings[0];
+  EXPECT_NE(scene.warnings[1].find("TriangleCollisionModel"), std::string::npos);
+  EXPECT_NE(scene.warnings[1].find("ignored: collisions"), std::string::npos);
   EXPECT_THROW(build_scene(parse_scene_text(text, "c.scn"), SceneOptions{true}), Error);
 }
 

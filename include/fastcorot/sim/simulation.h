@@ -6,6 +6,7 @@
 // the vertex.
 #pragma once
 
+#include "fastcorot/sim/collision_stage.h"
 #include "fastcorot/sim/constraint_stage.h"
 #include "fastcorot/sim/linear_solver.h"
 #include "fastcorot/sim/mapped_state.h"
@@ -82,6 +83,9 @@ class Simulation {
   // SOFA's FreeMotionAnimationLoop (null: its DefaultAnimationLoop): after every object's free
   // motion, the Lagrangian constraints are solved and the objects corrected (sim/constraint_stage.h).
   std::shared_ptr<ConstraintStage<Real>> constraints;
+  // SOFA's collision pipeline (null: none): contacts found at each step's start, their responses
+  // felt during it (sim/collision_stage.h).
+  std::shared_ptr<CollisionStage<Real>> collisions;
 
   // Advances every object by dt: first the scripted topological changes due at the current time,
   // then the integration. Throws fastcorot::Error "diverged at step N (t = T): OBJECT vertex V
@@ -97,6 +101,8 @@ class Simulation {
   long steps_done() const { return steps_done_; }
   // What the constraint stage did in the last step (all zero without one).
   const ConstraintReport& constraint_report() const { return constraint_report_; }
+  // What the collision stage did in the last step (all zero without one).
+  const CollisionReport& collision_report() const { return collision_report_; }
   Real time() const { return static_cast<Real>(steps_done_) * dt; }
   // Sets the step counter (and so the time): for resuming from a checkpoint. Throws for steps < 0.
   void set_steps_done(long steps);
@@ -110,6 +116,7 @@ class Simulation {
 
   long steps_done_ = 0;
   ConstraintReport constraint_report_;
+  CollisionReport collision_report_;
   // SOFA's context time: dt added once per step, rounding included (0.01 ten times is
   // 0.09999999999999999). Scripted topological changes compare their times with it, as SOFA's
   // TopologicalChangeProcessor does, so that they fire at the very step they fire in SOFA.

@@ -1,0 +1,83 @@
+// SOFA's collision models (Sofa/Component/Collision/Geometry: PointCollisionModel,
+// LineCollisionModel, TriangleCollisionModel) over the points of a MechanicalObject: CollisionPoints
+// says where those points come from (a simulated object's own blocks, a state mapped from one, or
+// a MechanicalObject no solver moves), CollisionModel holds a model's elements, flags and tree.
+// Design: docs/collision.md (§2.1, §4).
+#pragma once
+
+#include "fastcorot/collision/aabb_tree.h"
+#include "fastcorot/mapping/mechanical_mapping.h"
+#include "fastcorot/sim/simulation.h"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+class CollisionPoints {
+ public:
+  // Blocks `blocks` of simulated object `object`.
+  static CollisionPoints own(std::size_t object, std::vector<Index> blocks);
+  // The points `mapping` gives from simulated object `object`'s blocks.
+  static CollisionPoints mapped(std::size_t object, std::shared_ptr<MechanicalMapping<Real>> mapping);
+  // Points that nothing moves (an obstacle: a MechanicalObject no ODE solver integrates).
+  static CollisionPoints still(std::vector<Vec3<Real>> points);
+
+  bool is_still() const { return still_; }
+  std::size_t object() const { return object_; }
+  std::size_t size() const { return x_.size(); }
+  const std::vector<Vec3<Real>>& positions() const { return x_; }
+  // The positions at the objects' current state (a nonlinear mapping records its J there).
+  void update(std::span<const SimulatedObject<Real>> objects);
+  // out += weight × J's row blocks of point i on the object's blocks (nothing for still points).
+  void add_row_blocks(std::size_t i, Real weight, std::vector<std::pair<Index, Mat3<Real>>>& out) const;
+
+ private:
+  std::size_t object_ = 0;
+  bool still_ = false;
+  std::vector<Index> blocks_;
+  std::shared_ptr<MechanicalMapping<Real>> mapping_;
+  std::vector<Vec3<Real>> x_;
+  mutable std::vector<std::pair<Index, Mat3<Real>>> scratch_;
+};
+
+enum class CollisionElements { points, lines, triangles };
+
+template <class Real>
+struct CollisionModel {
+  std::string where;  // the component, for messages
+  std::string node;   // its node's path: two models of one node collide only with selfCollision
+  CollisionElements kind = CollisionElements::points;
+  bool simulated = true;
+  bool moving = true;
+  bool self_collision = false;
+  std::vector<int> groups;  // two models sharing a group never collide
+  Real contact_distance = 0;
+  Real contact_stiffness = 10;
+  std::shared_ptr<CollisionPoints<Real>> points;  // shared by the models of one node
+  std::vector<Edge> edges;                        // lines
+  std::vector<Triangle> triangles;                // triangles
+
+  // Elements: the points, the edges or the triangles.
+  std::size_t size() const;
+  // The elements' boxes at the points' positions, widened by contact_distance, into the tree (built
+  // the first time, then refitted; a model that does not move keeps its first tree). Returns the
+  // number of elements with no extent (a triangle without area, a segment without length).
+  int update_tree();
+  const AabbTree<Real>& tree() const { return tree_; }
+
+ private:
+  AabbTree<Real> tree_;
+  bool built_ = false;
+  std::vector<Aabb<Real>> boxes_;
+  std::vector<char> degenerate_;
+};
+
+// Whether SOFA's broad phase pairs the two models: at least one simulated, not of one node (SOFA
+// pairs those only with selfCollision, which is not simulated here), no group in common.
+template <class Real>
+bool can_collide(const CollisionModel<Real>& a, const CollisionModel<Real>& b);
+
+}  // namespace fastcorot

@@ -1,0 +1,69 @@
+// ContactPipeline<Real>: SOFA's collision pipeline (CollisionPipeline, BruteForceBroadPhase,
+// BVHNarrowPhase, CollisionResponse) with MinProximityIntersection and the PenalityContactForceField
+// response, as a CollisionStage: at each step's start every model's points and tree are updated;
+// the broad phase pairs the models in scene order (each with every earlier one it can collide with,
+// their root boxes within the alarm distance); the narrow phase hands every element pair whose
+// boxes pass to MinProximity's rule (collision/intersections.h), in canonical order (model pairs in
+// broad-phase order, element pairs sorted), so results do not depend on trees or threads; each model
+// pair's outputs are merged by id (the smallest value kept, the first on ties) and become contacts of
+// the penalty force field of the object they act on: implicit, in that object's step (SOFA's
+// placement against an obstacle, or for two models of one object). Design: docs/collision.md.
+#pragma once
+
+#include "fastcorot/collision/collision_model.h"
+#include "fastcorot/collision/intersections.h"
+#include "fastcorot/collision/penalty_contact_force_field.h"
+#include "fastcorot/sim/collision_stage.h"
+
+#include <map>
+#include <memory>
+#include <vector>
+
+namespace fastcorot {
+
+template <class Real>
+class ContactPipeline final : public CollisionStage<Real> {
+ public:
+  struct Parameters {
+    Real alarm_distance = 1;    // MinProximityIntersection's alarmDistance
+    Real contact_distance = 0.5;  // its contactDistance
+    bool use_point_point = true, use_line_point = true, use_line_line = true;
+    bool use_surface_normals = false;
+  };
+  // `penalties[o]`: object o's penalty field (null for an object no contact can reach). Throws
+  // fastcorot::Error for a model pair whose contact would join two different simulated objects
+  // (SOFA's explicit body–body penalty, not simulated yet), or a model without points.
+  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                  std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties);
+
+  CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) override;
+
+  // The last step's contacts, per object with a penalty field (for drawing and outputs).
+  const std::vector<CollisionModel<Real>>& models() const { return models_; }
+
+  // Outputs of one model pair as the narrow phase finds them: element pairs, each rule's output.
+  struct Output {
+    Index first = 0, second = 0;  // elements of the pair's first and second model
+    Index id = 0;
+    ProximityOutput<Real> proximity;
+  };
+  struct ModelPair {
+    std::size_t first = 0, second = 0;  // models, in the rule's order (Triangle before Point, ...)
+  };
+  // The model pairs the rules cover, in broad-phase order, for `models` (static: tests).
+  static std::vector<ModelPair> rule_pairs(const std::vector<CollisionModel<Real>>& models, const Parameters& parameters);
+
+ private:
+  std::vector<Output> narrow_phase(const ModelPair& pair, CollisionReport& report) const;
+  PenaltyContact<Real> contact(const ModelPair& pair, const Output& output) const;
+  // Weights of `p` (a point of element e of model m) on the element's points.
+  void add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,
+                std::vector<std::pair<Index, Mat3<Real>>>& out) const;
+
+  Parameters parameters_;
+  std::vector<CollisionModel<Real>> models_;
+  std::vector<ModelPair> pairs_;
+  std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties_;
+};
+
+}  // namespace fastcorot

@@ -1,0 +1,33 @@
+// CollisionStage<Real>: what SOFA's collision pipeline adds to a time step. Before any object
+// moves, the stage finds the contacts at the positions the step starts from and turns them into
+// responses the objects then feel (a penalty force field's contacts for this step). The stage
+// itself lives in the collision layer (include/fastcorot/collision/, design: docs/collision.md);
+// Simulation only calls it.
+#pragma once
+
+#include <span>
+
+namespace fastcorot {
+
+template <class Real>
+struct SimulatedObject;
+
+// What the collision part of one step did, for summaries and --json.
+struct CollisionReport {
+  int contacts = 0;              // detection outputs kept by the responses (after merging)
+  int model_pairs = 0;           // collision-model pairs the broad phase kept
+  long element_pairs = 0;        // element pairs whose boxes passed (the pair rules' calls)
+  int degenerate_elements = 0;   // triangles or segments with no extent, skipped (SOFA makes NaN)
+  double detection_seconds = 0;  // trees, broad and narrow phases
+};
+
+template <class Real>
+class CollisionStage {
+ public:
+  virtual ~CollisionStage() = default;
+  // At the start of a step (after scripted topological changes, before any integration): detection
+  // on the objects' current positions and the responses for this step. `time` is the step's start.
+  virtual CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) = 0;
+};
+
+}  // namespace fastcorot

@@ -1,0 +1,119 @@
+#include "fastcorot/collision/collision_model.h"
+
+#include "fastcorot/collision/intersections.h"
+#include "fastcorot/core/error.h"
+
+#include <algorithm>
+
+namespace fastcorot {
+
+template <class Real>
+CollisionPoints<Real> CollisionPoints<Real>::own(std::size_t object, std::vector<Index> blocks) {
+  CollisionPoints p;
+  p.object_ = object;
+  p.blocks_ = std::move(blocks);
+  p.x_.assign(p.blocks_.size(), Vec3<Real>::Zero());
+  return p;
+}
+
+template <class Real>
+CollisionPoints<Real> CollisionPoints<Real>::mapped(std::size_t object, std::shared_ptr<MechanicalMapping<Real>> mapping) {
+  if (!mapping) throw make_error("CollisionPoints: no mapping");
+  CollisionPoints p;
+  p.object_ = object;
+  p.mapping_ = std::move(mapping);
+  p.x_.assign(p.mapping_->size(), Vec3<Real>::Zero());
+  return p;
+}
+
+template <class Real>
+CollisionPoints<Real> CollisionPoints<Real>::still(std::vector<Vec3<Real>> points) {
+  CollisionPoints p;
+  p.still_ = true;
+  p.x_ = std::move(points);
+  return p;
+}
+
+template <class Real>
+void CollisionPoints<Real>::update(std::span<const SimulatedObject<Real>> objects) {
+  if (still_) return;
+  const auto& x = objects[object_].system.state.position;
+  if (mapping_) {
+    mapping_->apply(x, x_);
+    return;
+  }
+  for (std::size_t i = 0; i < blocks_.size(); ++i) x_[i] = x[static_cast<std::size_t>(blocks_[i])];
+}
+
+template <class Real>
+void CollisionPoints<Real>::add_row_blocks(std::size_t i, Real weight, std::vector<std::pair<Index, Mat3<Real>>>& out) const {
+  if (still_ || weight == 0) return;
+  if (!mapping_) {
+    out.emplace_back(blocks_[i], weight * Mat3<Real>::Identity());
+    return;
+  }
+  mapping_->row_blocks(i, scratch_);
+  for (const auto& [block, j] : scratch_) out.emplace_back(block, weight * j);
+}
+
+template <class Real>
+std::size_t CollisionModel<Real>::size() const {
+  switch (kind) {
+    case CollisionElements::lines: return edges.size();
+    case CollisionElements::triangles: return triangles.size();
+    default: return points->size();
+  }
+}
+
+template <class Real>
+int CollisionModel<Real>::update_tree() {
+  const auto& x = points->positions();
+  const std::size_t n = size();
+  if (built_ && (!moving || points->is_still()) && tree_.size() == n) {
+    return static_cast<int>(std::count(degenerate_.begin(), degenerate_.end(), char(1)));
+  }
+  boxes_.resize(n);
+  degenerate_.assign(n, 0);
+  const auto at = [&](Index p) -> const Vec3<Real>& { return x[static_cast<std::size_t>(p)]; };
+  for (std::size_t e = 0; e < n; ++e) {
+    Aabb<Real> box;
+    switch (kind) {
+      case CollisionElements::points: box.extend(x[e]); break;
+      case CollisionElements::lines:
+        box.extend(at(edges[e][0]));
+        box.extend(at(edges[e][1]));
+        degenerate_[e] = at(edges[e][0]) == at(edges[e][1]);
+        break;
+      case CollisionElements::triangles:
+        for (Index p : triangles[e]) box.extend(at(p));
+        degenerate_[e] = degenerate_triangle(at(triangles[e][0]), at(triangles[e][1]), at(triangles[e][2]));
+        break;
+    }
+    box.min.array() -= contact_distance;
+    box.max.array() += contact_distance;
+    boxes_[e] = box;
+  }
+  if (built_ && tree_.size() == n) {
+    tree_.refit(boxes_);
+  } else {
+    tree_.build(boxes_);
+    built_ = true;
+  }
+  return static_cast<int>(std::count(degenerate_.begin(), degenerate_.end(), char(1)));
+}
+
+template <class Real>
+bool can_collide(const CollisionModel<Real>& a, const CollisionModel<Real>& b) {
+  if (!a.simulated && !b.simulated) return false;
+  if (a.node == b.node) return false;
+  for (int g : a.groups) {
+    if (std::find(b.groups.begin(), b.groups.end(), g) != b.groups.end()) return false;
+  }
+  return true;
+}
+
+template class CollisionPoints<double>;
+template struct CollisionModel<double>;
+template bool can_collide(const CollisionModel<double>&, const CollisionModel<double>&);
+
+}  // namespace fastcorot

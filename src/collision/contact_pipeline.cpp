@@ -1,0 +1,191 @@
+#include "fastcorot/collision/contact_pipeline.h"
+
+#include "fastcorot/core/error.h"
+
+#include <chrono>
+
+namespace fastcorot {
+
+namespace {
+
+// SOFA's intersector order: Triangle before Line before Point.
+int rank(CollisionElements kind) {
+  switch (kind) {
+    case CollisionElements::triangles: return 2;
+    case CollisionElements::lines: return 1;
+    default: return 0;
+  }
+}
+
+}  // namespace
+
+template <class Real>
+std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::rule_pairs(const std::vector<CollisionModel<Real>>& models,
+                                                                                         const Parameters& p) {
+  std::vector<ModelPair> pairs;
+  for (std::size_t later = 0; later < models.size(); ++later) {
+    for (std::size_t earlier = 0; earlier < later; ++earlier) {
+      if (!can_collide(models[earlier], models[later])) continue;
+      ModelPair pair{earlier, later};
+      if (rank(models[later].kind) > rank(models[earlier].kind)) std::swap(pair.first, pair.second);
+      const auto a = models[pair.first].kind, b = models[pair.second].kind;
+      using E = CollisionElements;
+      const bool covered = (a == E::triangles && b == E::points) || (a == E::lines && b == E::points && p.use_line_point) ||
+                           (a == E::lines && b == E::lines && p.use_line_line) || (a == E::points && b == E::points && p.use_point_point);
+      if (covered) pairs.push_back(pair);
+    }
+  }
+  return pairs;
+}
+
+template <class Real>
+ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                                       std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties)
+    : parameters_(parameters), models_(std::move(models)), penalties_(std::move(penalties)) {
+  for (const auto& m : models_) {
+    if (!m.points) throw make_error(m.where, ": a collision model without points");
+  }
+  pairs_ = rule_pairs(models_, parameters_);
+  for (const auto& pair : pairs_) {
+    const auto& a = *models_[pair.first].points;
+    const auto& b = *models_[pair.second].points;
+    const auto object_of = [&](const CollisionPoints<Real>& p) -> std::size_t { return p.object(); };
+    if (!a.is_still() && !b.is_still() && object_of(a) != object_of(b)) {
+      throw make_error(models_[pair.first].where, " and ", models_[pair.second].where,
+                       " are on two bodies each integrated by its own ODE solver: SOFA's explicit body–body penalty "
+                       "contact is not simulated yet (put both under one solver, or one of them still)");
+    }
+    for (const auto* side : {&a, &b}) {
+      if (!side->is_still() && (side->object() >= penalties_.size() || !penalties_[side->object()])) {
+        throw make_error(models_[pair.first].where, ": no penalty force field on its object");
+      }
+    }
+  }
+}
+
+template <class Real>
+std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narrow_phase(const ModelPair& pair, CollisionReport& report) const {
+  const auto& m1 = models_[pair.first];
+  const auto& m2 = models_[pair.second];
+  const ProximityDistances<Real> d{parameters_.alarm_distance + m1.contact_distance + m2.contact_distance,
+                                   parameters_.contact_distance + m1.contact_distance + m2.contact_distance};
+  std::vector<std::pair<Index, Index>> candidates;
+  AabbTree<Real>::pairs(m1.tree(), m2.tree(), d.alarm, candidates);
+  if (!candidates.empty()) ++report.model_pairs;
+  report.element_pairs += static_cast<long>(candidates.size());
+  const auto& x1 = m1.points->positions();
+  const auto& x2 = m2.points->positions();
+  const auto at1 = [&](Index p) -> const Vec3<Real>& { return x1[static_cast<std::size_t>(p)]; };
+  const auto at2 = [&](Index p) -> const Vec3<Real>& { return x2[static_cast<std::size_t>(p)]; };
+  const bool first_larger = m1.size() > m2.size();
+  std::vector<Output> outputs;
+  for (const auto& [e1, e2] : candidates) {
+    std::optional<ProximityOutput<Real>> found;
+    Index id = first_larger ? e1 : e2;
+    using E = CollisionElements;
+    if (m1.kind == E::triangles) {
+      const Triangle& t = m1.triangles[static_cast<std::size_t>(e1)];
+      Vec3<Real> normal;
+      if (parameters_.use_surface_normals) normal = (at1(t[1]) - at1(t[0])).cross(at1(t[2]) - at1(t[0])).normalized();
+      found = min_proximity_triangle_point(at1(t[0]), at1(t[1]), at1(t[2]), at2(e2), d, parameters_.use_surface_normals ? &normal : nullptr);
+      id = e2;
+    } else if (m1.kind == E::lines && m2.kind == E::points) {
+      const Edge& s = m1.edges[static_cast<std::size_t>(e1)];
+      found = min_proximity_line_point(at1(s[0]), at1(s[1]), at2(e2), d);
+      id = e2;
+    } else if (m1.kind == E::lines) {
+      const Edge& s = m1.edges[static_cast<std::size_t>(e1)];
+      const Edge& r = m2.edges[static_cast<std::size_t>(e2)];
+      found = min_proximity_line_line(at1(s[0]), at1(s[1]), at2(r[0]), at2(r[1]), d);
+    } else {
+      found = min_proximity_point_point(at1(e1), at2(e2), d);
+    }
+    if (found) outputs.push_back({e1, e2, id, *found});
+  }
+  return outputs;
+}
+
+template <class Real>
+void ContactPipeline<Real>::add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,
+                                     std::vector<std::pair<Index, Mat3<Real>>>& out) const {
+  const auto& x = model.points->positions();
+  const auto e = static_cast<std::size_t>(element);
+  switch (model.kind) {
+    case CollisionElements::points: model.points->add_row_blocks(e, Real(1), out); break;
+    case CollisionElements::lines: {
+      const Edge& s = model.edges[e];
+      const Vec3<Real> ab = x[static_cast<std::size_t>(s[1])] - x[static_cast<std::size_t>(s[0])];
+      const Real length2 = ab.dot(ab);
+      const Real alpha = length2 > 0 ? (p - x[static_cast<std::size_t>(s[0])]).dot(ab) / length2 : Real(0);
+      model.points->add_row_blocks(static_cast<std::size_t>(s[0]), 1 - alpha, out);
+      model.points->add_row_blocks(static_cast<std::size_t>(s[1]), alpha, out);
+      break;
+    }
+    case CollisionElements::triangles: {
+      const Triangle& t = model.triangles[e];
+      const Vec3<Real> a = x[static_cast<std::size_t>(t[0])], ab = x[static_cast<std::size_t>(t[1])] - a,
+                       ac = x[static_cast<std::size_t>(t[2])] - a, ap = p - a;
+      const Real a00 = ab.dot(ab), a11 = ac.dot(ac), a01 = ab.dot(ac), det = a00 * a11 - a01 * a01;
+      const Real alpha = (ap.dot(ab) * a11 - ap.dot(ac) * a01) / det, beta = (ap.dot(ac) * a00 - ap.dot(ab) * a01) / det;
+      model.points->add_row_blocks(static_cast<std::size_t>(t[0]), 1 - alpha - beta, out);
+      model.points->add_row_blocks(static_cast<std::size_t>(t[1]), alpha, out);
+      model.points->add_row_blocks(static_cast<std::size_t>(t[2]), beta, out);
+      break;
+    }
+  }
+}
+
+template <class Real>
+PenaltyContact<Real> ContactPipeline<Real>::contact(const ModelPair& pair, const Output& output) const {
+  const auto& m1 = models_[pair.first];
+  const auto& m2 = models_[pair.second];
+  PenaltyContact<Real> c;
+  add_side(m1, output.first, output.proximity.point[0], c.side1);
+  add_side(m2, output.second, output.proximity.point[1], c.side2);
+  c.y1 = output.proximity.point[0];
+  c.y2 = output.proximity.point[1];
+  c.normal = output.proximity.normal;
+  // SOFA's BarycentricPenalityContact: d = contactDistance + cd₁ + cd₂, k = ks₁ ks₂ / d.
+  c.distance = parameters_.contact_distance + m1.contact_distance + m2.contact_distance;
+  const Real ks = m1.contact_stiffness * m2.contact_stiffness;
+  c.stiffness = c.distance != 0 ? ks / c.distance : ks;
+  return c;
+}
+
+template <class Real>
+CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real>> objects, Real, double) {
+  const auto start = std::chrono::steady_clock::now();
+  CollisionReport report;
+  for (auto& m : models_) {
+    m.points->update(objects);
+  }
+  for (auto& m : models_) report.degenerate_elements += m.update_tree();
+  std::vector<std::vector<PenaltyContact<Real>>> contacts(penalties_.size());
+  for (const auto& pair : pairs_) {
+    const std::vector<Output> outputs = narrow_phase(pair, report);
+    // SOFA's penalty response keeps one output per id: the smallest value, the first on ties.
+    std::map<Index, std::size_t> kept;
+    std::vector<std::size_t> order;
+    for (std::size_t k = 0; k < outputs.size(); ++k) {
+      const auto [it, inserted] = kept.emplace(outputs[k].id, k);
+      if (inserted) {
+        order.push_back(outputs[k].id);
+      } else if (outputs[k].proximity.value < outputs[it->second].proximity.value) {
+        it->second = k;
+      }
+    }
+    const auto& a = *models_[pair.first].points;
+    const std::size_t object = a.is_still() ? models_[pair.second].points->object() : a.object();
+    for (const std::size_t id : order) contacts[object].push_back(contact(pair, outputs[kept.at(static_cast<Index>(id))]));
+    report.contacts += static_cast<int>(order.size());
+  }
+  for (std::size_t o = 0; o < penalties_.size(); ++o) {
+    if (penalties_[o]) penalties_[o]->set_contacts(std::move(contacts[o]), objects[o].system.state.position);
+  }
+  report.detection_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+template class ContactPipeline<double>;
+
+}  // namespace fastcorot

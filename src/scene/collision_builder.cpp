@@ -1,0 +1,262 @@
+#include "collision_builder.h"
+
+#include "fastcorot/collision/contact_pipeline.h"
+#include "fastcorot/core/error.h"
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+
+namespace fastcorot::scene_detail {
+
+namespace {
+
+// Why the scene's collisions cannot be simulated (thrown inside the builder, turned into warnings).
+struct NotSimulated {
+  std::string reason;
+};
+
+void collect(GraphNode& node, std::vector<Component*>& spec, std::vector<Component*>& other, bool& free_motion) {
+  for (const auto& c : node.components) {
+    if (c->type() == "FreeMotionAnimationLoop") free_motion = true;
+    if (c->spec && c->spec->category == "collision") {
+      spec.push_back(c.get());
+    } else if (!c->spec && is_collision_component(c->type())) {
+      other.push_back(c.get());
+    }
+  }
+  for (const auto& child : node.children) collect(*child, spec, other, free_motion);
+}
+
+// SOFA's MeshTopology edges from its surface: each triangle's (t[j+1], t[j+2]) as oriented, then
+// each quad's sorted, the first occurrence of each pair kept.
+std::vector<Edge> surface_edges(const std::vector<Triangle>& triangles, const std::vector<std::array<Index, 4>>& quads) {
+  std::vector<Edge> edges;
+  std::set<std::pair<Index, Index>> seen;
+  const auto add = [&](Index a, Index b, bool sorted) {
+    if (!seen.insert({std::min(a, b), std::max(a, b)}).second) return;
+    edges.push_back(sorted ? Edge{std::min(a, b), std::max(a, b)} : Edge{a, b});
+  };
+  for (const auto& t : triangles) {
+    for (int j = 0; j < 3; ++j) add(t[static_cast<std::size_t>((j + 1) % 3)], t[static_cast<std::size_t>((j + 2) % 3)], false);
+  }
+  for (const auto& q : quads) {
+    for (int j = 0; j < 4; ++j) add(q[static_cast<std::size_t>((j + 1) % 4)], q[static_cast<std::size_t>((j + 2) % 4)], true);
+  }
+  return edges;
+}
+
+template <std::size_t N>
+std::vector<std::array<Index, N>> tuples(SceneData& data, Component& topology, const char* name) {
+  const std::vector<Index> flat = data.indices(topology, name);
+  if (flat.size() % N != 0) throw make_error(topology.where(), ": ", name, " needs ", N, " indices each");
+  std::vector<std::array<Index, N>> out(flat.size() / N);
+  for (std::size_t e = 0; e < out.size(); ++e) {
+    for (std::size_t j = 0; j < N; ++j) out[e][j] = flat[N * e + j];
+  }
+  return out;
+}
+
+class CollisionBuilder {
+ public:
+  CollisionBuilder(SceneData& data, Simulation<double>& simulation, const LocateState& locate)
+      : data_(data), simulation_(simulation), locate_(locate) {}
+
+  std::shared_ptr<ContactPipeline<double>> build(const std::vector<Component*>& components) {
+    Component* intersection = nullptr;
+    Component* response = nullptr;
+    for (Component* c : components) {
+      const std::string_view type = c->type();
+      if (type == "MinProximityIntersection") intersection = intersection ? intersection : c;
+      if (type == "CollisionResponse") response = response ? response : c;
+    }
+    if (!intersection) throw NotSimulated{"the scene has no intersection method fastcorot simulates (MinProximityIntersection)"};
+    typename ContactPipeline<double>::Parameters p;
+    p.alarm_distance = data_.real(*intersection, "alarmDistance", 1.0);
+    p.contact_distance = data_.real(*intersection, "contactDistance", 0.5);
+    if (!(p.alarm_distance >= 0) || !(p.contact_distance >= 0)) {
+      throw error_at(intersection->where(), make_error("alarmDistance and contactDistance must be ≥ 0"));
+    }
+    if (p.alarm_distance < p.contact_distance) {
+      data_.warn(intersection->where() + ": alarmDistance " + std::to_string(p.alarm_distance) + " is below contactDistance " +
+                 std::to_string(p.contact_distance) + ": contacts are found only once the bodies are already closer than the distance kept");
+    }
+    p.use_point_point = data_.boolean(*intersection, "usePointPoint", true);
+    p.use_line_point = data_.boolean(*intersection, "useLinePoint", true);
+    p.use_line_line = data_.boolean(*intersection, "useLineLine", true);
+    p.use_surface_normals = data_.boolean(*intersection, "useSurfaceNormals", false);
+    const std::string answer = response ? data_.text(*response, "response", "PenalityContactForceField") : "PenalityContactForceField";
+    if (answer != "PenalityContactForceField") throw NotSimulated{"the response " + answer + " is not simulated yet (PenalityContactForceField is)"};
+    std::vector<CollisionModel<double>> models;
+    for (Component* c : components) {
+      const std::string_view type = c->type();
+      if (type != "TriangleCollisionModel" && type != "LineCollisionModel" && type != "PointCollisionModel") continue;
+      if (!data_.boolean(*c, "active", true)) continue;
+      models.push_back(model(*c));
+    }
+    std::vector<std::shared_ptr<PenaltyContactForceField<double>>> penalties(simulation_.objects.size());
+    for (const auto& pair : ContactPipeline<double>::rule_pairs(models, p)) {
+      for (const std::size_t m : {pair.first, pair.second}) {
+        if (models[m].points->is_still()) continue;
+        const std::size_t o = models[m].points->object();
+        if (penalties[o]) continue;
+        auto& object = simulation_.objects[o];
+        penalties[o] = std::make_shared<PenaltyContactForceField<double>>(
+            std::make_shared<const TetMesh>(object.system.size(), std::vector<Tetrahedron>{}));
+      }
+    }
+    std::shared_ptr<ContactPipeline<double>> pipeline;
+    try {
+      pipeline = std::make_shared<ContactPipeline<double>>(p, std::move(models), penalties);
+    } catch (const Error& error) {
+      throw NotSimulated{error.what()};
+    }
+    for (std::size_t o = 0; o < penalties.size(); ++o) {
+      if (!penalties[o]) continue;
+      simulation_.objects[o].system.force_fields.push_back(penalties[o]);
+      simulation_.objects[o].force_field_drawing.push_back({});
+    }
+    return pipeline;
+  }
+
+ private:
+  CollisionModel<double> model(Component& c) {
+    CollisionModel<double> m;
+    m.where = c.where();
+    m.node = c.node->path;
+    const std::string_view type = c.type();
+    m.kind = type == "TriangleCollisionModel" ? CollisionElements::triangles
+             : type == "LineCollisionModel"   ? CollisionElements::lines
+                                              : CollisionElements::points;
+    m.simulated = data_.boolean(c, "simulated", true);
+    m.moving = data_.boolean(c, "moving", true);
+    if (data_.boolean(c, "selfCollision", false)) throw NotSimulated{c.where() + " asks for selfCollision, which is not simulated yet"};
+    const std::string reply = data_.text(c, "contactResponse", "");
+    if (!reply.empty() && reply != "PenalityContactForceField") throw NotSimulated{c.where() + " asks for the response " + reply};
+    m.contact_distance = data_.real(c, c.has("proximity") && !c.has("contactDistance") ? "proximity" : "contactDistance", 0.0);
+    m.contact_stiffness = data_.real(c, "contactStiffness", 10.0);
+    if (!(m.contact_distance >= 0) || !(m.contact_stiffness >= 0)) {
+      throw error_at(c.where(), make_error("contactDistance and contactStiffness must be ≥ 0"));
+    }
+    for (const double g : data_.data(c, "group")) m.groups.push_back(static_cast<int>(g));
+    Component& state = state_of(c);
+    m.points = points_of(state, c);
+    if (m.kind == CollisionElements::points) return m;
+    Component* topology = data_.topology_of(c);
+    if (!topology) throw error_at(c.where(), make_error("no topology in its node or above to take its elements from"));
+    std::vector<Triangle> triangles = tuples<3>(data_, *topology, "triangles");
+    const auto quads = tuples<4>(data_, *topology, "quads");
+    if (m.kind == CollisionElements::triangles) {
+      // SOFA's TriangleCollisionModel: the triangles, then each quad as (1, 2, 0) and (3, 0, 2).
+      for (const auto& q : quads) {
+        triangles.push_back({q[1], q[2], q[0]});
+        triangles.push_back({q[3], q[0], q[2]});
+      }
+      m.triangles = std::move(triangles);
+    } else {
+      const auto given = tuples<2>(data_, *topology, "edges");
+      m.edges = given.empty() ? surface_edges(triangles, quads) : given;
+    }
+    const auto n = static_cast<Index>(m.points->size());
+    const auto check = [&](const auto& elements, const char* what) {
+      for (std::size_t e = 0; e < elements.size(); ++e) {
+        for (Index v : elements[e]) {
+          if (v < 0 || v >= n) {
+            throw error_at(c.where(), make_error(what, " ", e, " of ", topology->where(), " names point ", v, ", outside the ", n,
+                                                 " points of its MechanicalObject"));
+          }
+        }
+      }
+    };
+    check(m.triangles, "triangle");
+    check(m.edges, "edge");
+    return m;
+  }
+
+  // SOFA's context state: the first MechanicalObject of the node or of the nearest ancestor.
+  Component& state_of(Component& c) {
+    for (const GraphNode* node = c.node; node; node = node->parent) {
+      const auto states = node->of_category("state");
+      if (!states.empty()) return *states.front();
+    }
+    throw error_at(c.where(), make_error("no MechanicalObject in its node or above"));
+  }
+
+  std::shared_ptr<CollisionPoints<double>> points_of(Component& state, Component& user) {
+    if (const auto it = points_.find(&state); it != points_.end()) return it->second;
+    std::shared_ptr<CollisionPoints<double>> points;
+    if (const auto where = locate_(state)) {
+      const auto& object = simulation_.objects[where->object];
+      if (where->mapped) {
+        if (where->mapped->through || where->mapped->coordinates != 3) {
+          throw NotSimulated{user.where() + ": its state " + state.where() + " is below a SubsetMultiMapping, several rigid bodies or a DistanceMapping"};
+        }
+        points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::mapped(
+            where->object, std::shared_ptr<MechanicalMapping<double>>(mechanical_mapping(where->mapped->map, where->mapped->rigid))));
+      } else {
+        if (where->rigid) throw NotSimulated{user.where() + ": a collision model on a Rigid3 state (its points: under a RigidMapping)"};
+        std::vector<Index> blocks;
+        for (Index i = 0; i < where->size; ++i) blocks.push_back(where->offset + i);
+        points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::own(where->object, std::move(blocks)));
+      }
+      static_cast<void>(object);
+    } else {
+      for (const GraphNode* node = state.node; node; node = node->parent) {
+        if (!node->of_category("odesolver").empty()) {
+          throw NotSimulated{user.where() + ": its state " + state.where() + " is under an ODE solver but not one fastcorot follows"};
+        }
+      }
+      for (Component* m : state.node->of_category("visualmapping")) {
+        throw NotSimulated{user.where() + ": its still state " + state.where() + " is filled by " + m->where()};
+      }
+      if (is_rigid_template(data_.text(state, "template", "Vec3d"))) throw NotSimulated{user.where() + ": a collision model on a Rigid3 state"};
+      auto x = data_.points(state, "position");  // placed as the state places them
+      if (x.empty()) throw error_at(user.where(), make_error("its MechanicalObject ", state.where(), " has no points"));
+      points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::still(std::move(x)));
+    }
+    points_.emplace(&state, points);
+    return points;
+  }
+
+  SceneData& data_;
+  Simulation<double>& simulation_;
+  const LocateState& locate_;
+  std::map<const Component*, std::shared_ptr<CollisionPoints<double>>> points_;
+};
+
+}  // namespace
+
+void build_collision_pipeline(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
+                              const LocateState& locate) {
+  std::vector<Component*> components, others;
+  bool free_motion = false;
+  collect(data.root(), components, others, free_motion);
+  if (components.empty() && others.empty()) return;
+  Component* pipeline_component = nullptr;
+  for (Component* c : components) {
+    if (c->type() == "CollisionPipeline" && !pipeline_component) pipeline_component = c;
+  }
+  std::string reason;
+  if (!others.empty()) {
+    reason = std::string(others.front()->type()) + " is not simulated yet";
+  } else if (!pipeline_component) {
+    info.push_back(components.front()->where() + ": collision models without a CollisionPipeline: no contacts, as in SOFA");
+    return;
+  } else if (free_motion) {
+    reason = "penalty contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)";
+  }
+  if (reason.empty()) {
+    try {
+      simulation.collisions = CollisionBuilder(data, simulation, locate).build(components);
+      return;
+    } catch (const NotSimulated& why) {
+      reason = why.reason;
+    }
+  }
+  for (Component* c : components) {
+    data.warn(c->where() + " ignored: collisions and contacts are not simulated by fastcorot here: " + reason);
+  }
+}
+
+}  // namespace fastcorot::scene_detail

@@ -1,0 +1,114 @@
+// Collision and penalty contact through the scene builder: a soft cube falling on a still floor
+// against SOFA's own trajectory (tests/data/sofa_reference/cube_on_floor*), contacts counted as
+// SOFA counts them; a point mass resting on a triangle at the closed-form height d − m g / k for
+// 10,000 steps; what is not simulated yet warned in one line per component; bad input refused.
+#include "fastcorot/scene/scene_builder.h"
+#include "fastcorot/scene/scene_graph.h"
+
+#include "../support/scene_text.h"
+#include "support/sofa_reference.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_scene_text;
+using testing::scene_error;
+
+TEST(CollisionScene, SoftCubeFallsOnAFloorAsInSofa) {
+  LoadedScene scene = load_scene_file(testing::sofa_reference_path("cube_on_floor.scn"));
+  std::ifstream in(testing::sofa_reference_path("cube_on_floor_trajectory.json"));
+  const auto reference = nlohmann::json::parse(in);
+  auto& simulation = scene.simulation;
+  ASSERT_TRUE(simulation.collisions);
+  ASSERT_EQ(simulation.objects.size(), 1u);
+  const auto& x = simulation.objects[0].system.state.position;
+  const auto rest = testing::json_points(reference["steps"]["0"]["points"]);
+  std::vector<long> steps;
+  for (const auto& item : reference["steps"].items()) steps.push_back(std::stol(item.key()));
+  std::sort(steps.begin(), steps.end());
+  for (const long step : steps) {
+    while (simulation.steps_done() < step) simulation.step();
+    const auto& frame = reference["steps"][std::to_string(step)];
+    const auto expected = testing::json_points(frame["points"]);
+    double difference = 0, displacement = 0;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      difference = std::max(difference, (x[i] - expected[i]).norm());
+      displacement = std::max(displacement, (expected[i] - rest[i]).norm());
+    }
+    EXPECT_LE(difference, 1e-9 * displacement + 1e-15) << "step " << step;
+    // SOFA counts its detection outputs; the penalty keeps one per point here, so the two agree.
+    if (step > 0) EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << "step " << step;
+  }
+  const double lowest = std::min_element(x.begin(), x.end(), [](const auto& a, const auto& b) { return a.y() < b.y(); })->y();
+  EXPECT_GT(lowest, -0.3) << "resting on the floor, not through it";
+}
+
+// A point of mass m above a still triangle in the plane y = 0; contact distance d, stiffnesses
+// ks₁ = ks₂ = s, so k = s² / d.
+std::string point_over_floor(double height, const std::string& extra = "") {
+  return "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+         "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/><CollisionResponse/>"
+         "<Node name=\"ball\"><EulerImplicitSolver rayleighMass=\"2\" rayleighStiffness=\"0\"/><CGLinearSolver iterations=\"100\" "
+         "tolerance=\"1e-30\" threshold=\"1e-30\"/><MechanicalObject name=\"point\" position=\"0.1 " + std::to_string(height) +
+         " 0.2\"/><UniformMass totalMass=\"0.5\"/><PointCollisionModel contactStiffness=\"20\"/>" + extra + "</Node>"
+         "<Node name=\"floor\"><MeshTopology position=\"-1 0 -1  1 0 -1  0 0 2\" triangles=\"0 2 1\"/><MechanicalObject/>"
+         "<TriangleCollisionModel simulated=\"0\" moving=\"0\" contactStiffness=\"20\"/></Node>";
+}
+
+TEST(CollisionScene, APointMassRestsAtTheClosedFormHeightAndNeverSinks) {
+  LoadedScene scene = build_scene_text(point_over_floor(0.4), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  ASSERT_TRUE(scene.simulation.collisions);
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  const double d = 0.2, k = 20.0 * 20.0 / d, expected = d - 0.5 * 9.81 / k;
+  double lowest = 1;
+  for (int step = 0; step < 10000; ++step) {
+    scene.simulation.step();
+    lowest = std::min(lowest, x[0].y());
+  }
+  EXPECT_NEAR(x[0].y(), expected, 1e-9);
+  EXPECT_NEAR(x[0].x(), 0.1, 1e-12);
+  EXPECT_GT(lowest, 0.0) << "never through the floor";
+  EXPECT_EQ(scene.simulation.collision_report().contacts, 1);
+}
+
+TEST(CollisionScene, WhatIsNotSimulatedYetIsWarnedPerComponent) {
+  // Another intersection method: the scene loads, its collisions ignored, each component saying why.
+  std::string text = point_over_floor(0.4);
+  text.replace(text.find("<MinProximityIntersection"), std::string("<MinProximityIntersection").size(), "<NewProximityIntersection");
+  LoadedScene scene = build_scene_text(text, "dt=\"0.01\"");
+  EXPECT_FALSE(scene.simulation.collisions);
+  int said = 0;
+  for (const auto& line : scene.warnings) said += line.find("NewProximityIntersection is not simulated yet") != std::string::npos;
+  EXPECT_GE(said, 5) << "the pipeline's components and both models";
+  // Two bodies each under its own solver (SOFA's explicit penalty).
+  std::string bodies = point_over_floor(0.4);
+  bodies.replace(bodies.find("<Node name=\"floor\">"), std::string("<Node name=\"floor\">").size(),
+                 "<Node name=\"floor\"><EulerImplicitSolver/><CGLinearSolver/>");
+  LoadedScene two = build_scene_text(bodies, "dt=\"0.01\"");
+  EXPECT_FALSE(two.simulation.collisions);
+  bool explicit_said = false;
+  for (const auto& line : two.warnings) explicit_said = explicit_said || line.find("explicit body–body penalty") != std::string::npos;
+  EXPECT_TRUE(explicit_said);
+  // A collision model without a pipeline: no contacts, as in SOFA (an info line).
+  LoadedScene alone = build_scene_text("<Node name=\"b\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"0 0 0\"/>"
+                                       "<UniformMass totalMass=\"1\"/><PointCollisionModel/></Node>");
+  EXPECT_FALSE(alone.simulation.collisions);
+}
+
+TEST(CollisionScene, BadInputIsRefusedNamingTheComponent) {
+  std::string negative = point_over_floor(0.4);
+  negative.replace(negative.find("<PointCollisionModel contactStiffness=\"20\"/>"), std::string("<PointCollisionModel contactStiffness=\"20\"/>").size(),
+                   "<PointCollisionModel contactDistance=\"-1\"/>");
+  EXPECT_NE(scene_error(negative).find("contactDistance and contactStiffness must be ≥ 0"), std::string::npos) << scene_error(negative);
+  std::string outside = point_over_floor(0.4);
+  outside.replace(outside.find("triangles=\"0 2 1\""), std::string("triangles=\"0 2 1\"").size(), "triangles=\"0 2 7\"");
+  EXPECT_NE(scene_error(outside).find("names point 7, outside the 3 points"), std::string::npos) << scene_error(outside);
+}
+
+}  // namespace
+}  // namespace fastcorot
