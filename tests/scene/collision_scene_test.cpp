@@ -21,26 +21,17 @@ using testing::scene_error;
 
 TEST(CollisionScene, SoftCubeFallsOnAFloorAsInSofa) {
   LoadedScene scene = load_scene_file(testing::sofa_reference_path("cube_on_floor.scn"));
-  std::ifstream in(testing::sofa_reference_path("cube_on_floor_trajectory.json"));
-  const auto reference = nlohmann::json::parse(in);
+  const auto reference = testing::load_sofa_trajectory("cube_on_floor_trajectory.json");
   auto& simulation = scene.simulation;
   ASSERT_TRUE(simulation.collisions);
   ASSERT_EQ(simulation.objects.size(), 1u);
   const auto& x = simulation.objects[0].system.state.position;
   const auto rest = testing::json_points(reference["steps"]["0"]["points"]);
-  std::vector<long> steps;
-  for (const auto& item : reference["steps"].items()) steps.push_back(std::stol(item.key()));
-  std::sort(steps.begin(), steps.end());
-  for (const long step : steps) {
+  for (const long step : testing::dumped_steps(reference)) {
     while (simulation.steps_done() < step) simulation.step();
     const auto& frame = reference["steps"][std::to_string(step)];
-    const auto expected = testing::json_points(frame["points"]);
-    double difference = 0, displacement = 0;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      difference = std::max(difference, (x[i] - expected[i]).norm());
-      displacement = std::max(displacement, (expected[i] - rest[i]).norm());
-    }
-    EXPECT_LE(difference, 1e-9 * displacement + 1e-15) << "step " << step;
+    const auto d = testing::compare_points(x, testing::json_points(frame["points"]), rest);
+    EXPECT_LE(d.difference, 1e-9 * d.displacement + 1e-15) << "step " << step;
     // SOFA counts its detection outputs; the penalty keeps one per point here, so the two agree.
     if (step > 0) EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << "step " << step;
   }

@@ -94,27 +94,18 @@ TEST(UnsimulatedMotion, AStillStateStaysPutAndOtherMovementsAreWarned) {
 
 TEST(UnsimulatedMotion, BeamTiedToAMovingFrameFollowsSofaFor300Steps) {
   LoadedScene scene = load_scene_file(testing::sofa_reference_path("moving_target_beam.scn"));
-  std::ifstream in(testing::sofa_reference_path("moving_target_beam_trajectory.json"));
-  const auto reference = nlohmann::json::parse(in);
+  const auto reference = testing::load_sofa_trajectory("moving_target_beam_trajectory.json");
   auto& simulation = scene.simulation;
   ASSERT_EQ(simulation.objects.size(), 1u);
   const auto& x = simulation.objects[0].system.state.position;
   const auto rest = testing::json_points(reference["steps"]["0"]);
   ASSERT_EQ(x.size(), rest.size());
-  std::vector<long> steps;
-  for (const auto& item : reference["steps"].items()) steps.push_back(std::stol(item.key()));
-  std::sort(steps.begin(), steps.end());
-  for (const long step : steps) {
+  for (const long step : testing::dumped_steps(reference)) {
     while (simulation.steps_done() < step) simulation.step();
-    const auto expected = testing::json_points(reference["steps"][std::to_string(step)]);
-    double difference = 0, displacement = 0;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      difference = std::max(difference, (x[i] - expected[i]).norm());
-      displacement = std::max(displacement, (expected[i] - rest[i]).norm());
-    }
+    const auto d = testing::compare_points(x, testing::json_points(reference["steps"][std::to_string(step)]), rest);
     // SOFA's solve stops at its tolerance (1e-4 per row) after two sweeps, and so does this one,
     // on the same sweeps: the two agree to rounding.
-    EXPECT_LE(difference, 1e-9 * displacement + 1e-15) << "step " << step;
+    EXPECT_LE(d.difference, 1e-9 * d.displacement + 1e-15) << "step " << step;
   }
   EXPECT_EQ(simulation.constraint_report().rows, 36);
 }
@@ -124,26 +115,17 @@ TEST(UnsimulatedMotion, RigidDrivenByAMovementPullsASoftCubeAsSofa) {
   // projects its free velocity to zero (projectResponse), so the cube tied to it is pulled by the
   // movement's positions, not by the rate its velocity holds (tests/data/sofa_reference).
   LoadedScene scene = load_scene_file(testing::sofa_reference_path("moving_rigid_attachment.scn"));
-  std::ifstream in(testing::sofa_reference_path("moving_rigid_attachment_trajectory.json"));
-  const auto reference = nlohmann::json::parse(in);
+  const auto reference = testing::load_sofa_trajectory("moving_rigid_attachment_trajectory.json");
   auto& simulation = scene.simulation;
   ASSERT_EQ(simulation.objects.size(), 2u);
   const auto rest = testing::json_points(reference["steps"]["0"]["cube"]);
-  std::vector<long> steps;
-  for (const auto& item : reference["steps"].items()) steps.push_back(std::stol(item.key()));
-  std::sort(steps.begin(), steps.end());
-  for (const long step : steps) {
+  for (const long step : testing::dumped_steps(reference)) {
     while (simulation.steps_done() < step) simulation.step();
     const auto& frame = reference["steps"][std::to_string(step)];
     const auto expected = testing::json_points(frame["cube"]);
-    const auto& x = simulation.objects[0].system.state.position;
-    ASSERT_EQ(x.size(), expected.size());
-    double difference = 0, displacement = 0;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-      difference = std::max(difference, (x[i] - expected[i]).norm());
-      displacement = std::max(displacement, (expected[i] - rest[i]).norm());
-    }
-    EXPECT_LE(difference, 1e-9 * displacement + 1e-15) << "step " << step;
+    ASSERT_EQ(simulation.objects[0].system.state.position.size(), expected.size());
+    const auto d = testing::compare_points(simulation.objects[0].system.state.position, expected, rest);
+    EXPECT_LE(d.difference, 1e-9 * d.displacement + 1e-15) << "step " << step;
     const auto& centre = frame["frame"][0];
     EXPECT_NEAR((simulation.objects[1].system.state.position[0] - Vec3<double>(centre[0], centre[1], centre[2])).norm(), 0.0, 1e-12)
         << "step " << step;

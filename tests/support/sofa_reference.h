@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -29,6 +30,34 @@ inline std::vector<Vec3<double>> json_points(const nlohmann::json& list) {
   std::vector<Vec3<double>> points;
   for (const auto& p : list) points.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
   return points;
+}
+
+// A trajectory SOFA dumped (sofaContactRun, tests/data/sofa_reference/*_trajectory.json).
+inline nlohmann::json load_sofa_trajectory(const std::string& file) {
+  std::ifstream in(sofa_reference_path(file));
+  return nlohmann::json::parse(in);
+}
+
+// The dumped steps (the keys of reference["steps"]) in numeric order.
+inline std::vector<long> dumped_steps(const nlohmann::json& reference) {
+  std::vector<long> steps;
+  for (const auto& item : reference["steps"].items()) steps.push_back(std::stol(item.key()));
+  std::sort(steps.begin(), steps.end());
+  return steps;
+}
+
+// The largest distance between x and SOFA's points, and SOFA's largest displacement from `rest`.
+struct TrajectoryDifference {
+  double difference = 0, displacement = 0;
+};
+inline TrajectoryDifference compare_points(const std::vector<Vec3<double>>& x, const std::vector<Vec3<double>>& expected,
+                                           const std::vector<Vec3<double>>& rest) {
+  TrajectoryDifference d;
+  for (std::size_t i = 0; i < expected.size() && i < x.size(); ++i) {
+    d.difference = std::max(d.difference, (x[i] - expected[i]).norm());
+    d.displacement = std::max(d.displacement, (expected[i] - rest[i]).norm());
+  }
+  return d;
 }
 
 inline SofaSingleTetCase load_sofa_single_tet(const std::string& method) {
