@@ -38,6 +38,12 @@ template <class Real>
 void CollisionPoints<Real>::update(std::span<const SimulatedObject<Real>> objects) {
   if (still_) return;
   const auto& x = objects[object_].system.state.position;
+  const Index extent = mapping_ ? mapping_->parent_extent()
+                                : (blocks_.empty() ? 0 : *std::max_element(blocks_.begin(), blocks_.end()) + 1);
+  if (extent > static_cast<Index>(x.size())) {
+    throw make_error(objects[object_].path, " lost points that a collision model reads (cut while running): contacts on a changing ",
+                     "topology are not simulated yet");
+  }
   if (mapping_) {
     mapping_->apply(x, x_);
     return;

@@ -96,6 +96,12 @@ class CollisionBuilder {
       models.push_back(model(*c));
     }
     std::vector<std::shared_ptr<PenaltyContactForceField<double>>> penalties(simulation_.objects.size());
+    for (const auto& model : models) {
+      if (!model.points->is_still() && !simulation_.objects[model.points->object()].topology_scripts.empty()) {
+        throw NotSimulated{model.where + " is on " + simulation_.objects[model.points->object()].path +
+                           ", whose topology a TopologicalChangeProcessor changes: contacts on a changing topology are not simulated yet"};
+      }
+    }
     for (const auto& pair : ContactPipeline<double>::rule_pairs(models, p)) {
       for (const std::size_t m : {pair.first, pair.second}) {
         if (models[m].points->is_still()) continue;

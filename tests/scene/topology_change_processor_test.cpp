@@ -103,6 +103,20 @@ TEST(TopologicalChangeProcessor, BeamCutInTwoFreeHalfFallsFixedHalfHangs) {
   EXPECT_GT(fixed_half_sag, 0.0);
 }
 
+TEST(TopologicalChangeProcessor, ContactsOnTheChangingBodyAreNotSimulatedYetAndSaySo) {
+  // The beam's points as a collision model against a still floor: the pipeline is left out, warned.
+  const std::string collision = R"(<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/><MinProximityIntersection/><CollisionResponse/>
+    <Node name="floor"><MeshTopology position="-5 -2 -5  15 -2 -5  5 -2 15" triangles="0 2 1"/><MechanicalObject/>
+    <TriangleCollisionModel simulated="0" moving="0"/></Node>)";
+  std::string text = beam(R"(<TopologicalChangeProcessor useDataInputs="true" timeToRemove="0.1" tetrahedraToRemove="@cut.tetrahedronIndices"/>
+    <PointCollisionModel/>)");
+  LoadedScene scene = build(collision + text);
+  EXPECT_FALSE(scene.simulation.collisions);
+  bool said = false;
+  for (const auto& line : scene.warnings) said = said || line.find("whose topology a TopologicalChangeProcessor changes") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST(TopologicalChangeProcessor, FileOfTimedRemovalsAndAdditions) {
   const fs::path dir = fs::temp_directory_path() / "fastcorot_topology_change_test";
   fs::create_directories(dir);
