@@ -11,6 +11,10 @@ DistributedRun::DistributedRun(Simulation<double>& simulation) {
     throw make_error("a FreeMotionAnimationLoop scene runs in one process: its constraints couple whole objects "
                      "(run it without mpirun)");
   }
+  if (simulation.collisions) {
+    throw make_error("a scene with collision detection runs in one process: its contacts join points across the "
+                     "object (run it without mpirun)");
+  }
   fingerprints_ = scene_fingerprints(simulation);
   for (auto& object : simulation.objects) distributions_.push_back(distribute(object));
 }

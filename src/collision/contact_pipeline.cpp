@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace fastcorot {
@@ -26,8 +27,11 @@ std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::ru
   for (std::size_t later = 0; later < models.size(); ++later) {
     for (std::size_t earlier = 0; earlier < later; ++earlier) {
       if (!can_collide(models[earlier], models[later])) continue;
-      ModelPair pair{earlier, later};
-      if (rank(models[later].kind) > rank(models[earlier].kind)) std::swap(pair.first, pair.second);
+      if (models[earlier].points->is_still() && models[later].points->is_still()) continue;  // nothing can move
+      // SOFA's broad phase asks for the intersector of (new model, earlier one) and swaps them into
+      // the intersector's order (Triangle before Line before Point).
+      ModelPair pair{later, earlier};
+      if (rank(models[earlier].kind) > rank(models[later].kind)) std::swap(pair.first, pair.second);
       const auto a = models[pair.first].kind, b = models[pair.second].kind;
       using E = CollisionElements;
       const bool covered = (a == E::triangles && b == E::points) || (a == E::lines && b == E::points && p.use_line_point) ||
@@ -106,33 +110,34 @@ std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narro
 }
 
 template <class Real>
-void ContactPipeline<Real>::add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,
-                                     std::vector<std::pair<Index, Mat3<Real>>>& out) const {
+Vec3<Real> ContactPipeline<Real>::add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,
+                                           std::vector<std::pair<Index, Mat3<Real>>>& out) const {
   const auto& x = model.points->positions();
   const auto e = static_cast<std::size_t>(element);
+  const auto at = [&](Index i) -> const Vec3<Real>& { return x[static_cast<std::size_t>(i)]; };
   switch (model.kind) {
-    case CollisionElements::points: model.points->add_row_blocks(e, Real(1), out); break;
+    case CollisionElements::points: model.points->add_row_blocks(e, Real(1), out); return x[e];
     case CollisionElements::lines: {
       const Edge& s = model.edges[e];
-      const Vec3<Real> ab = x[static_cast<std::size_t>(s[1])] - x[static_cast<std::size_t>(s[0])];
+      const Vec3<Real> ab = at(s[1]) - at(s[0]);
       const Real length2 = ab.dot(ab);
-      const Real alpha = length2 > 0 ? (p - x[static_cast<std::size_t>(s[0])]).dot(ab) / length2 : Real(0);
+      const Real alpha = length2 > 0 ? (p - at(s[0])).dot(ab) / length2 : Real(0);
       model.points->add_row_blocks(static_cast<std::size_t>(s[0]), 1 - alpha, out);
       model.points->add_row_blocks(static_cast<std::size_t>(s[1]), alpha, out);
-      break;
+      return at(s[0]) * (1 - alpha) + at(s[1]) * alpha;
     }
     case CollisionElements::triangles: {
       const Triangle& t = model.triangles[e];
-      const Vec3<Real> a = x[static_cast<std::size_t>(t[0])], ab = x[static_cast<std::size_t>(t[1])] - a,
-                       ac = x[static_cast<std::size_t>(t[2])] - a, ap = p - a;
+      const Vec3<Real> ab = at(t[1]) - at(t[0]), ac = at(t[2]) - at(t[0]), ap = p - at(t[0]);
       const Real a00 = ab.dot(ab), a11 = ac.dot(ac), a01 = ab.dot(ac), det = a00 * a11 - a01 * a01;
       const Real alpha = (ap.dot(ab) * a11 - ap.dot(ac) * a01) / det, beta = (ap.dot(ac) * a00 - ap.dot(ab) * a01) / det;
       model.points->add_row_blocks(static_cast<std::size_t>(t[0]), 1 - alpha - beta, out);
       model.points->add_row_blocks(static_cast<std::size_t>(t[1]), alpha, out);
       model.points->add_row_blocks(static_cast<std::size_t>(t[2]), beta, out);
-      break;
+      return at(t[0]) * (1 - alpha - beta) + at(t[1]) * alpha + at(t[2]) * beta;
     }
   }
+  return p;
 }
 
 template <class Real>
@@ -140,10 +145,9 @@ PenaltyContact<Real> ContactPipeline<Real>::contact(const ModelPair& pair, const
   const auto& m1 = models_[pair.first];
   const auto& m2 = models_[pair.second];
   PenaltyContact<Real> c;
-  add_side(m1, output.first, output.proximity.point[0], c.side1);
-  add_side(m2, output.second, output.proximity.point[1], c.side2);
-  c.y1 = output.proximity.point[0];
-  c.y2 = output.proximity.point[1];
+  // The contact points as SOFA's mappers place them: weights in the element, applied to its points.
+  c.y1 = add_side(m1, output.first, output.proximity.point[0], c.side1);
+  c.y2 = add_side(m2, output.second, output.proximity.point[1], c.side2);
   c.normal = output.proximity.normal;
   // SOFA's BarycentricPenalityContact: d = contactDistance + cd₁ + cd₂, k = ks₁ ks₂ / d.
   c.distance = parameters_.contact_distance + m1.contact_distance + m2.contact_distance;
@@ -159,24 +163,29 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
   for (auto& m : models_) {
     m.points->update(objects);
   }
-  for (auto& m : models_) report.degenerate_elements += m.update_tree();
+  for (auto& m : models_) {
+    try {
+      report.degenerate_elements += m.update_tree();
+    } catch (const Error& error) {
+      throw error_at(m.where, error);
+    }
+  }
   std::vector<std::vector<PenaltyContact<Real>>> contacts(penalties_.size());
   for (const auto& pair : pairs_) {
     const std::vector<Output> outputs = narrow_phase(pair, report);
-    // SOFA's penalty response keeps one output per id: the smallest value, the first on ties.
+    // SOFA's penalty response keeps one output per id: the smallest value, the first on ties; the
+    // contacts follow the kept outputs' order.
     std::map<Index, std::size_t> kept;
-    std::vector<std::size_t> order;
     for (std::size_t k = 0; k < outputs.size(); ++k) {
       const auto [it, inserted] = kept.emplace(outputs[k].id, k);
-      if (inserted) {
-        order.push_back(outputs[k].id);
-      } else if (outputs[k].proximity.value < outputs[it->second].proximity.value) {
-        it->second = k;
-      }
+      if (!inserted && outputs[k].proximity.value < outputs[it->second].proximity.value) it->second = k;
     }
+    std::vector<std::size_t> order;
+    for (const auto& [id, k] : kept) order.push_back(k);
+    std::sort(order.begin(), order.end());
     const auto& a = *models_[pair.first].points;
     const std::size_t object = a.is_still() ? models_[pair.second].points->object() : a.object();
-    for (const std::size_t id : order) contacts[object].push_back(contact(pair, outputs[kept.at(static_cast<Index>(id))]));
+    for (const std::size_t k : order) contacts[object].push_back(contact(pair, outputs[k]));
     report.contacts += static_cast<int>(order.size());
   }
   for (std::size_t o = 0; o < penalties_.size(); ++o) {

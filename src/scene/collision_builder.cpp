@@ -1,8 +1,10 @@
 #include "collision_builder.h"
+#include "hexahedron_builders.h"
 
 #include "fastcorot/collision/contact_pipeline.h"
 #include "fastcorot/core/error.h"
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -60,8 +62,9 @@ std::vector<std::array<Index, N>> tuples(SceneData& data, Component& topology, c
 
 class CollisionBuilder {
  public:
-  CollisionBuilder(SceneData& data, Simulation<double>& simulation, const LocateState& locate)
-      : data_(data), simulation_(simulation), locate_(locate) {}
+  CollisionBuilder(SceneData& data, Simulation<double>& simulation, const LocateState& locate,
+                   const std::vector<const GraphNode*>& solver_nodes, const GraphNode& pipeline_node)
+      : data_(data), simulation_(simulation), locate_(locate), solver_nodes_(solver_nodes), pipeline_node_(pipeline_node) {}
 
   std::shared_ptr<ContactPipeline<double>> build(const std::vector<Component*>& components) {
     Component* intersection = nullptr;
@@ -70,6 +73,7 @@ class CollisionBuilder {
       const std::string_view type = c->type();
       if (type == "MinProximityIntersection") intersection = intersection ? intersection : c;
       if (type == "CollisionResponse") response = response ? response : c;
+      if (type == "BruteForceBroadPhase" && c->has("box")) throw NotSimulated{c->where() + ": its box (a region of interest) is not simulated yet"};
     }
     if (!intersection) throw NotSimulated{"the scene has no intersection method fastcorot simulates (MinProximityIntersection)"};
     typename ContactPipeline<double>::Parameters p;
@@ -86,14 +90,19 @@ class CollisionBuilder {
     p.use_line_point = data_.boolean(*intersection, "useLinePoint", true);
     p.use_line_line = data_.boolean(*intersection, "useLineLine", true);
     p.use_surface_normals = data_.boolean(*intersection, "useSurfaceNormals", false);
-    const std::string answer = response ? data_.text(*response, "response", "PenalityContactForceField") : "PenalityContactForceField";
+    const std::string answer = data_.text(*response, "response", "PenalityContactForceField");
     if (answer != "PenalityContactForceField") throw NotSimulated{"the response " + answer + " is not simulated yet (PenalityContactForceField is)"};
     std::vector<CollisionModel<double>> models;
+    std::vector<const GraphNode*> nodes;
     for (Component* c : components) {
       const std::string_view type = c->type();
       if (type != "TriangleCollisionModel" && type != "LineCollisionModel" && type != "PointCollisionModel") continue;
       if (!data_.boolean(*c, "active", true)) continue;
       models.push_back(model(*c));
+      nodes.push_back(c->node);
+      if (models.back().kind != CollisionElements::points && models.back().size() == 0) {
+        data_.warn(c->where() + ": its topology gives it no elements: it takes part in no contact");
+      }
     }
     std::vector<std::shared_ptr<PenaltyContactForceField<double>>> penalties(simulation_.objects.size());
     for (const auto& model : models) {
@@ -103,6 +112,7 @@ class CollisionBuilder {
       }
     }
     for (const auto& pair : ContactPipeline<double>::rule_pairs(models, p)) {
+      check_placement(models, nodes, pair);
       for (const std::size_t m : {pair.first, pair.second}) {
         if (models[m].points->is_still()) continue;
         const std::size_t o = models[m].points->object();
@@ -127,10 +137,39 @@ class CollisionBuilder {
   }
 
  private:
+  // SOFA's placement of a model pair's response (SubCollisionPipeline::computeCollisionResponse): in
+  // the node of the simulated model when the other is not simulated, else in the pipeline's node.
+  // Its penalty is implicit in the body's step only when that node is at or below the body's ODE
+  // solver; elsewhere SOFA evaluates it once, explicitly (or not at all), which is not simulated yet.
+  void check_placement(const std::vector<CollisionModel<double>>& models, const std::vector<const GraphNode*>& nodes,
+                       const typename ContactPipeline<double>::ModelPair& pair) const {
+    const auto& a = models[pair.first];
+    const auto& b = models[pair.second];
+    const GraphNode* node = !a.simulated ? nodes[pair.second] : !b.simulated ? nodes[pair.first] : &pipeline_node_;
+    for (const auto* side : {&a, &b}) {
+      if (side->points->is_still()) continue;
+      const std::size_t o = side->points->object();
+      const GraphNode* solver = o < solver_nodes_.size() ? solver_nodes_[o] : nullptr;
+      bool below = false;
+      for (const GraphNode* n = node; n && !below; n = n->parent) below = n == solver;
+      if (!below) {
+        throw NotSimulated{a.where + " and " + b.where + ": SOFA places their penalty response in node " + node->path +
+                           ", outside the ODE solver of " + simulation_.objects[o].path + ", and evaluates it explicitly: not "
+                           "simulated yet (an obstacle's models set simulated=\"0\" to have it implicit in the body's step)"};
+      }
+      if (solver) {
+        for (const auto& c : solver->components) {
+          if (c->type() == "PETScLinearSolver") throw NotSimulated{simulation_.objects[o].path + " is solved by PETScLinearSolver, whose matrix pattern does not follow contacts yet"};
+        }
+      }
+    }
+  }
+
   CollisionModel<double> model(Component& c) {
     CollisionModel<double> m;
     m.where = c.where();
-    m.node = c.node->path;
+    // Node identity (two sibling nodes may share a name).
+    m.node = c.node->path + "#" + std::to_string(reinterpret_cast<std::uintptr_t>(c.node));
     const std::string_view type = c.type();
     m.kind = type == "TriangleCollisionModel" ? CollisionElements::triangles
              : type == "LineCollisionModel"   ? CollisionElements::lines
@@ -151,8 +190,18 @@ class CollisionBuilder {
     if (m.kind == CollisionElements::points) return m;
     Component* topology = data_.topology_of(c);
     if (!topology) throw error_at(c.where(), make_error("no topology in its node or above to take its elements from"));
+    // SOFA takes a grid's faces, and a volume's edges and faces, from its cells: not made here.
+    if (is_grid_topology(topology->type()) || !data_.indices(*topology, "tetrahedra").empty() ||
+        topology->type() == "HexahedronSetTopologyContainer") {
+      throw NotSimulated{c.where() + ": its topology " + topology->where() + " is a grid or a volume, whose surface elements SOFA "
+                         "derives from its cells: not made here yet (give it a surface topology)"};
+    }
     std::vector<Triangle> triangles = tuples<3>(data_, *topology, "triangles");
     const auto quads = tuples<4>(data_, *topology, "quads");
+    if (m.kind == CollisionElements::triangles && !quads.empty() && !m.points->is_still()) {
+      throw NotSimulated{c.where() + ": quads on a moving surface (SOFA maps their contact points bilinearly over the quad) are not "
+                         "simulated yet"};
+    }
     if (m.kind == CollisionElements::triangles) {
       // SOFA's TriangleCollisionModel: the triangles, then each quad as (1, 2, 0) and (3, 0, 2).
       for (const auto& q : quads) {
@@ -216,6 +265,13 @@ class CollisionBuilder {
       for (Component* m : state.node->of_category("visualmapping")) {
         throw NotSimulated{user.where() + ": its still state " + state.where() + " is filled by " + m->where()};
       }
+      for (const auto& c : state.node->components) {
+        const std::string_view type = c->type();
+        if (type.find("Movement") != std::string_view::npos || type.find("Oscillator") != std::string_view::npos) {
+          throw NotSimulated{user.where() + ": its state " + state.where() + " is moved by " + c->where() +
+                             " (SOFA projects it every step): moving obstacles are not simulated yet"};
+        }
+      }
       if (is_rigid_template(data_.text(state, "template", "Vec3d"))) throw NotSimulated{user.where() + ": a collision model on a Rigid3 state"};
       auto x = data_.points(state, "position");  // placed as the state places them
       if (x.empty()) throw error_at(user.where(), make_error("its MechanicalObject ", state.where(), " has no points"));
@@ -228,13 +284,15 @@ class CollisionBuilder {
   SceneData& data_;
   Simulation<double>& simulation_;
   const LocateState& locate_;
+  const std::vector<const GraphNode*>& solver_nodes_;
+  const GraphNode& pipeline_node_;
   std::map<const Component*, std::shared_ptr<CollisionPoints<double>>> points_;
 };
 
 }  // namespace
 
 void build_collision_pipeline(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
-                              const LocateState& locate) {
+                              const LocateState& locate, const std::vector<const GraphNode*>& solver_nodes) {
   std::vector<Component*> components, others;
   bool free_motion = false;
   collect(data.root(), components, others, free_motion);
@@ -249,12 +307,28 @@ void build_collision_pipeline(SceneData& data, std::vector<std::string>& info, S
   } else if (!pipeline_component) {
     info.push_back(components.front()->where() + ": collision models without a CollisionPipeline: no contacts, as in SOFA");
     return;
-  } else if (free_motion) {
+  }
+  if (reason.empty() && pipeline_component) {
+    // SOFA's pipeline does nothing without its phases and a contact manager with a response.
+    bool broad = false, narrow = false, manager = false;
+    for (Component* c : components) {
+      const std::string_view type = c->type();
+      broad = broad || type == "BruteForceBroadPhase" || (type == "BVHNarrowPhase" && c->object->type == "BruteForceDetection");
+      narrow = narrow || type == "BVHNarrowPhase";
+      manager = manager || (type == "CollisionResponse" && c->has("response"));
+    }
+    if (!broad || !narrow || !manager) {
+      data.warn(pipeline_component->where() + ": no " + std::string(!broad ? "broad phase" : !narrow ? "narrow phase" : "CollisionResponse with a response") +
+                ": SOFA's pipeline makes no contact without it, nor does fastcorot's");
+      return;
+    }
+  }
+  if (reason.empty() && free_motion) {
     reason = "penalty contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)";
   }
   if (reason.empty()) {
     try {
-      simulation.collisions = CollisionBuilder(data, simulation, locate).build(components);
+      simulation.collisions = CollisionBuilder(data, simulation, locate, solver_nodes, *pipeline_component->node).build(components);
       return;
     } catch (const NotSimulated& why) {
       reason = why.reason;

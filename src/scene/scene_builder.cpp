@@ -161,7 +161,7 @@ class Builder {
   void build_constraints() {
     const scene_detail::LocateState locate = [this](const Component& state) { return locate_state(state); };
     lagrangian_ = scene_detail::build_free_motion_loop(data_, info_, simulation_, solver_nodes_, locate);
-    scene_detail::build_collision_pipeline(data_, info_, simulation_, locate);
+    scene_detail::build_collision_pipeline(data_, info_, simulation_, locate, solver_nodes_);
   }
 
   // Where a MechanicalObject's points are in the simulation: a simulated object's range, or one of

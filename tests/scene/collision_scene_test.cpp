@@ -43,7 +43,7 @@ TEST(CollisionScene, SoftCubeFallsOnAFloorAsInSofa) {
 // ks₁ = ks₂ = s, so k = s² / d.
 std::string point_over_floor(double height, const std::string& extra = "") {
   return "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
-         "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/><CollisionResponse/>"
+         "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/><CollisionResponse response=\"PenalityContactForceField\"/>"
          "<Node name=\"ball\"><EulerImplicitSolver rayleighMass=\"2\" rayleighStiffness=\"0\"/><CGLinearSolver iterations=\"100\" "
          "tolerance=\"1e-30\" threshold=\"1e-30\"/><MechanicalObject name=\"point\" position=\"0.1 " + std::to_string(height) +
          " 0.2\"/><UniformMass totalMass=\"0.5\"/><PointCollisionModel contactStiffness=\"20\"/>" + extra + "</Node>"
@@ -83,8 +83,17 @@ TEST(CollisionScene, WhatIsNotSimulatedYetIsWarnedPerComponent) {
   LoadedScene two = build_scene_text(bodies, "dt=\"0.01\"");
   EXPECT_FALSE(two.simulation.collisions);
   bool explicit_said = false;
-  for (const auto& line : two.warnings) explicit_said = explicit_said || line.find("explicit body–body penalty") != std::string::npos;
+  for (const auto& line : two.warnings) explicit_said = explicit_said || line.find("evaluates it explicitly") != std::string::npos;
   EXPECT_TRUE(explicit_said);
+  // An obstacle whose models keep simulated="1": SOFA puts the response at the pipeline's node (the
+  // root, no solver) and applies it explicitly.
+  std::string simulated_floor = point_over_floor(0.4);
+  simulated_floor.replace(simulated_floor.find("simulated=\"0\" "), std::string("simulated=\"0\" ").size(), "");
+  LoadedScene root_placed = build_scene_text(simulated_floor, "dt=\"0.01\"");
+  EXPECT_FALSE(root_placed.simulation.collisions);
+  bool root_said = false;
+  for (const auto& line : root_placed.warnings) root_said = root_said || line.find("penalty response in node root") != std::string::npos;
+  EXPECT_TRUE(root_said);
   // A collision model without a pipeline: no contacts, as in SOFA (an info line).
   LoadedScene alone = build_scene_text("<Node name=\"b\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"0 0 0\"/>"
                                        "<UniformMass totalMass=\"1\"/><PointCollisionModel/></Node>");

@@ -210,15 +210,22 @@ TEST(SceneBuilder, CollisionComponentsAreWarnedAsNotSimulated) {
   const std::string text = "<Node name=\"root\">\n<CollisionPipeline/>\n<Node name=\"b\">" + kTet +
                            "\n<UniformMass totalMass=\"1\"/>\n<TriangleCollisionModel/>\n</Node>\n</Node>";
   const LoadedScene scene = build_scene(parse_scene_text(text, "c.scn"));
-  // A pipeline with no intersection method: each collision component says why nothing collides.
-  ASSERT_EQ(scene.warnings.size(), 2u);
+  // A pipeline without its phases makes no contact in SOFA either: one warning saying so.
+  ASSERT_EQ(scene.warnings.size(), 1u);
   EXPECT_EQ(scene.warnings[0].rfind("c.scn:2: CollisionPipeline", 0), 0u) << scene.warnings[0];
-  EXPECT_NE(scene.warnings[0].find("ignored: collisions and contacts are not simulated by fastcorot here: the scene has no "
-                                   "intersection method fastcorot simulates (MinProximityIntersection)"),
-            std::string::npos)
-      << scene.warnings[0];
-  EXPECT_NE(scene.warnings[1].find("TriangleCollisionModel"), std::string::npos);
-  EXPECT_NE(scene.warnings[1].find("ignored: collisions"), std::string::npos);
+  EXPECT_NE(scene.warnings[0].find("no broad phase: SOFA's pipeline makes no contact without it"), std::string::npos) << scene.warnings[0];
+  // With its phases but no intersection method: each collision component says why nothing collides.
+  const std::string phases = "<Node name=\"root\">\n<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+                             "<CollisionResponse response=\"PenalityContactForceField\"/>\n<Node name=\"b\">" + kTet +
+                             "\n<UniformMass totalMass=\"1\"/>\n<TriangleCollisionModel/>\n</Node>\n</Node>";
+  const LoadedScene without = build_scene(parse_scene_text(phases, "c.scn"));
+  ASSERT_EQ(without.warnings.size(), 5u);
+  for (const auto& line : without.warnings) {
+    EXPECT_NE(line.find("ignored: collisions and contacts are not simulated by fastcorot here: the scene has no intersection "
+                        "method fastcorot simulates (MinProximityIntersection)"),
+              std::string::npos)
+        << line;
+  }
   EXPECT_THROW(build_scene(parse_scene_text(text, "c.scn"), SceneOptions{true}), Error);
 }
 

@@ -105,7 +105,7 @@ TEST(TopologicalChangeProcessor, BeamCutInTwoFreeHalfFallsFixedHalfHangs) {
 
 TEST(TopologicalChangeProcessor, ContactsOnTheChangingBodyAreNotSimulatedYetAndSaySo) {
   // The beam's points as a collision model against a still floor: the pipeline is left out, warned.
-  const std::string collision = R"(<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/><MinProximityIntersection/><CollisionResponse/>
+  const std::string collision = R"(<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/><MinProximityIntersection/><CollisionResponse response="PenalityContactForceField"/>
     <Node name="floor"><MeshTopology position="-5 -2 -5  15 -2 -5  5 -2 15" triangles="0 2 1"/><MechanicalObject/>
     <TriangleCollisionModel simulated="0" moving="0"/></Node>)";
   std::string text = beam(R"(<TopologicalChangeProcessor useDataInputs="true" timeToRemove="0.1" tetrahedraToRemove="@cut.tetrahedronIndices"/>

@@ -7,7 +7,8 @@
 // broad-phase order, element pairs sorted), so results do not depend on trees or threads; each model
 // pair's outputs are merged by id (the smallest value kept, the first on ties) and become contacts of
 // the penalty force field of the object they act on: implicit, in that object's step (SOFA's
-// placement against an obstacle, or for two models of one object). Design: docs/collision.md.
+// placement when its response node is under the body's solver; the scene builder checks that).
+// Design: docs/collision.md.
 #pragma once
 
 #include "fastcorot/collision/collision_model.h"
@@ -56,9 +57,10 @@ class ContactPipeline final : public CollisionStage<Real> {
  private:
   std::vector<Output> narrow_phase(const ModelPair& pair, CollisionReport& report) const;
   PenaltyContact<Real> contact(const ModelPair& pair, const Output& output) const;
-  // Weights of `p` (a point of element e of model m) on the element's points.
-  void add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,
-                std::vector<std::pair<Index, Mat3<Real>>>& out) const;
+  // The weights of `p` (a point of element `element` of `model`) on the element's points, their J
+  // row blocks into `out`; returns the weighted point (SOFA's contact mapper's position).
+  Vec3<Real> add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,
+                      std::vector<std::pair<Index, Mat3<Real>>>& out) const;
 
   Parameters parameters_;
   std::vector<CollisionModel<Real>> models_;

@@ -54,7 +54,8 @@ class PenaltyContactForceField final : public ForceField<Real> {
   std::vector<Mat3<Real>> rotations() const override { return {}; }
   void check_new_tetrahedra(std::span<const Tetrahedron>) const override {}
   void apply(const TopologyChange&) override {}
-  std::string unsaved_state() const override { return contacts_.empty() ? "" : "the contacts of the step in progress"; }
+  // Contacts are found again from the positions at every step's start: nothing to save.
+  std::string unsaved_state() const override { return {}; }
   std::vector<double> model_values() const override { return {}; }
   void set_threads(int threads) override { threads_ = threads; }
   int threads() const override { return threads_; }
