@@ -53,8 +53,7 @@ ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<Collis
   for (const auto& pair : pairs_) {
     const auto& a = *models_[pair.first].points;
     const auto& b = *models_[pair.second].points;
-    const auto object_of = [&](const CollisionPoints<Real>& p) -> std::size_t { return p.object(); };
-    if (!a.is_still() && !b.is_still() && object_of(a) != object_of(b)) {
+    if (!a.is_still() && !b.is_still() && a.object() != b.object()) {
       throw make_error(models_[pair.first].where, " and ", models_[pair.second].where,
                        " are on two bodies each integrated by its own ODE solver: SOFA's explicit body–body penalty "
                        "contact is not simulated yet (put both under one solver, or one of them still)");
@@ -64,6 +63,19 @@ ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<Collis
         throw make_error(models_[pair.first].where, ": no penalty force field on its object");
       }
     }
+  }
+}
+
+template <class Real>
+ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                                       std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints)
+    : parameters_(parameters), models_(std::move(models)), constraints_(std::move(constraints)) {
+  for (const auto& m : models_) {
+    if (!m.points) throw make_error(m.where, ": a collision model without points");
+  }
+  pairs_ = rule_pairs(models_, parameters_);
+  if (constraints_.size() != pairs_.size()) {
+    throw make_error("the collision pipeline has ", pairs_.size(), " model pairs but ", constraints_.size(), " contact constraints");
   }
 }
 
@@ -150,10 +162,75 @@ PenaltyContact<Real> ContactPipeline<Real>::contact(const ModelPair& pair, const
   c.y2 = add_side(m2, output.second, output.proximity.point[1], c.side2);
   c.normal = output.proximity.normal;
   // SOFA's BarycentricPenalityContact: d = contactDistance + cd₁ + cd₂, k = ks₁ ks₂ / d.
-  c.distance = parameters_.contact_distance + m1.contact_distance + m2.contact_distance;
+  c.distance = contact_distance(pair);
   const Real ks = m1.contact_stiffness * m2.contact_stiffness;
   c.stiffness = c.distance != 0 ? ks / c.distance : ks;
   return c;
+}
+
+template <class Real>
+Real ContactPipeline<Real>::contact_distance(const ModelPair& pair) const {
+  return parameters_.contact_distance + models_[pair.first].contact_distance + models_[pair.second].contact_distance;
+}
+
+template <class Real>
+int ContactPipeline<Real>::penalty_response(const ModelPair& pair, const std::vector<Output>& outputs,
+                                            std::vector<std::vector<PenaltyContact<Real>>>& contacts) {
+  // SOFA's penalty response keeps one output per id: the smallest value, the first on ties; the
+  // contacts follow the kept outputs' order.
+  std::map<Index, std::size_t> kept;
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    const auto [it, inserted] = kept.emplace(outputs[k].id, k);
+    if (!inserted && outputs[k].proximity.value < outputs[it->second].proximity.value) it->second = k;
+  }
+  std::vector<std::size_t> order;
+  for (const auto& [id, k] : kept) order.push_back(k);
+  std::sort(order.begin(), order.end());
+  const auto& a = *models_[pair.first].points;
+  const std::size_t object = a.is_still() ? models_[pair.second].points->object() : a.object();
+  for (const std::size_t k : order) {
+    contacts[object].push_back(contact(pair, outputs[k]));
+    const auto& p = outputs[k].proximity;
+    detected_.push_back({{p.point[0], p.point[1]}, p.normal});
+  }
+  return static_cast<int>(order.size());
+}
+
+template <class Real>
+int ContactPipeline<Real>::friction_response(std::size_t k, const std::vector<Output>& outputs) {
+  if (!constraints_[k]) return 0;
+  const ModelPair& pair = pairs_[k];
+  // SOFA's BaseUnilateralContactResponse drops an output whose two points are both near a kept
+  // one's: |Δp₀|² + |Δp₁|² below 1e-8 (a float constant, widened).
+  const Real near = static_cast<Real>(static_cast<double>(0.00000001f));
+  std::vector<const Output*> kept;
+  for (const Output& o : outputs) {
+    bool duplicate = false;
+    for (std::size_t i = 0; i < kept.size() && !duplicate; ++i) {
+      duplicate = (o.proximity.point[0] - kept[i]->proximity.point[0]).squaredNorm() +
+                      (o.proximity.point[1] - kept[i]->proximity.point[1]).squaredNorm() <
+                  near;
+    }
+    if (!duplicate) kept.push_back(&o);
+  }
+  const auto& m1 = models_[pair.first];
+  const auto& m2 = models_[pair.second];
+  std::vector<UnilateralContact<Real>> contacts(kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const Output& o = *kept[i];
+    UnilateralContact<Real>& c = contacts[i];
+    c.first.still = m1.points->is_still();
+    c.first.object = c.first.still ? 0 : m1.points->object();
+    c.second.still = m2.points->is_still();
+    c.second.object = c.second.still ? 0 : m2.points->object();
+    c.first.position = add_side(m1, o.first, o.proximity.point[0], c.first.blocks);
+    c.second.position = add_side(m2, o.second, o.proximity.point[1], c.second.blocks);
+    c.normal = o.proximity.normal;
+    c.distance = contact_distance(pair);
+    detected_.push_back({{o.proximity.point[0], o.proximity.point[1]}, o.proximity.normal});
+  }
+  constraints_[k]->set_contacts(std::move(contacts));
+  return static_cast<int>(kept.size());
 }
 
 template <class Real>
@@ -171,22 +248,10 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
     }
   }
   std::vector<std::vector<PenaltyContact<Real>>> contacts(penalties_.size());
-  for (const auto& pair : pairs_) {
-    const std::vector<Output> outputs = narrow_phase(pair, report);
-    // SOFA's penalty response keeps one output per id: the smallest value, the first on ties; the
-    // contacts follow the kept outputs' order.
-    std::map<Index, std::size_t> kept;
-    for (std::size_t k = 0; k < outputs.size(); ++k) {
-      const auto [it, inserted] = kept.emplace(outputs[k].id, k);
-      if (!inserted && outputs[k].proximity.value < outputs[it->second].proximity.value) it->second = k;
-    }
-    std::vector<std::size_t> order;
-    for (const auto& [id, k] : kept) order.push_back(k);
-    std::sort(order.begin(), order.end());
-    const auto& a = *models_[pair.first].points;
-    const std::size_t object = a.is_still() ? models_[pair.second].points->object() : a.object();
-    for (const std::size_t k : order) contacts[object].push_back(contact(pair, outputs[k]));
-    report.contacts += static_cast<int>(order.size());
+  detected_.clear();
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::vector<Output> outputs = narrow_phase(pairs_[k], report);
+    report.contacts += constraints_.empty() ? penalty_response(pairs_[k], outputs, contacts) : friction_response(k, outputs);
   }
   for (std::size_t o = 0; o < penalties_.size(); ++o) {
     if (penalties_[o]) penalties_[o]->set_contacts(std::move(contacts[o]), objects[o].system.state.position);

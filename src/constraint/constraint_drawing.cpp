@@ -6,6 +6,7 @@
 #include "fastcorot/constraint/constraint_drawing.h"
 #include "fastcorot/constraint/rigid_lagrangian_constraints.h"
 #include "fastcorot/constraint/sliding_lagrangian_constraint.h"
+#include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/sim/simulation.h"
@@ -37,6 +38,11 @@ std::size_t ConstraintDrawer<Real>::point(const ConstraintPoints<Real>& points, 
   } else {
     position = points.position[i];  // points of no simulated object: they stay where they were put
   }
+  return point_at(position, active);
+}
+
+template <class Real>
+std::size_t ConstraintDrawer<Real>::point_at(const Vec3<Real>& position, bool active) {
   ConstraintDrawing::Point p;
   p.position = position.template cast<double>();
   p.constraint = drawing_.constraints.empty() ? 0 : drawing_.constraints.size() - 1;
@@ -139,6 +145,26 @@ void RigidBilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& draw
 }
 
 template <class Real>
+void UnilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  const int per_contact = rows_per_contact();
+  const bool built = this->rows_ == per_contact * static_cast<int>(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const auto& c = contacts_[k];
+    const std::size_t q = drawer.point_at(c.first.position);
+    const std::size_t p = drawer.point_at(c.second.position);
+    drawer.pair(q, p);
+    if (!built) continue;
+    Vec3<Real> axes[3] = {c.normal, Vec3<Real>::Zero(), Vec3<Real>::Zero()};
+    if (per_contact == 3) tangents(c.normal, axes[1], axes[2]);
+    for (int a = 0; a < per_contact; ++a) {
+      const int row = this->first_row_ + per_contact * static_cast<int>(k) + a;
+      drawer.force(q, row, -axes[a]);
+      drawer.force(p, row, axes[a]);
+    }
+  }
+}
+
+template <class Real>
 void FreeMotionAnimationLoop<Real>::draw(std::span<const SimulatedObject<Real>> objects, Real dt,
                                          ConstraintDrawing& drawing) const {
   ConstraintDrawer<Real> drawer(objects, constraint_forces(), dt, drawing);
@@ -160,6 +186,7 @@ template void RigidFixedLagrangianConstraint<float>::draw(ConstraintDrawer<float
 template void RigidFixedLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void RigidBilateralLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
 template void RigidBilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
+template void UnilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void FreeMotionAnimationLoop<float>::draw(std::span<const SimulatedObject<float>>, float, ConstraintDrawing&) const;
 template void FreeMotionAnimationLoop<double>::draw(std::span<const SimulatedObject<double>>, double, ConstraintDrawing&) const;
 

@@ -77,6 +77,7 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
       points->prepare(start[points->object], objects[points->object].system.state, dt);
     }
   }
+  for (auto& constraint : constraints) constraint->prepare(objects, dt);
   ConstraintRows<Real> rows(objects.size());
   for (auto& constraint : constraints) constraint->build(rows);
   const int n = rows.size();

@@ -2,7 +2,10 @@
 #include "hexahedron_builders.h"
 
 #include "fastcorot/collision/contact_pipeline.h"
+#include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/core/error.h"
+
+#include <stdexcept>
 
 #include <cstdint>
 #include <map>
@@ -64,7 +67,9 @@ class CollisionBuilder {
  public:
   CollisionBuilder(SceneData& data, Simulation<double>& simulation, const LocateState& locate,
                    const std::vector<const GraphNode*>& solver_nodes, const GraphNode& pipeline_node)
-      : data_(data), simulation_(simulation), locate_(locate), solver_nodes_(solver_nodes), pipeline_node_(pipeline_node) {}
+      : data_(data), simulation_(simulation), locate_(locate), solver_nodes_(solver_nodes), pipeline_node_(pipeline_node) {
+    loop_ = dynamic_cast<FreeMotionAnimationLoop<double>*>(simulation.constraints.get());
+  }
 
   std::shared_ptr<ContactPipeline<double>> build(const std::vector<Component*>& components) {
     Component* intersection = nullptr;
@@ -90,8 +95,16 @@ class CollisionBuilder {
     p.use_line_point = data_.boolean(*intersection, "useLinePoint", true);
     p.use_line_line = data_.boolean(*intersection, "useLineLine", true);
     p.use_surface_normals = data_.boolean(*intersection, "useSurfaceNormals", false);
-    const std::string answer = data_.text(*response, "response", "PenalityContactForceField");
-    if (answer != "PenalityContactForceField") throw NotSimulated{"the response " + answer + " is not simulated yet (PenalityContactForceField is)"};
+    response_name_ = data_.text(*response, "response", "PenalityContactForceField");
+    const bool friction = response_name_ == "FrictionContactConstraint";
+    if (!friction && response_name_ != "PenalityContactForceField") {
+      throw NotSimulated{"the response " + response_name_ + " is not simulated yet (PenalityContactForceField and FrictionContactConstraint are)"};
+    }
+    if (friction && !loop_) {
+      throw NotSimulated{response->where() + ": FrictionContactConstraint makes Lagrangian constraints, which only a "
+                         "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
+    }
+    if (!friction && loop_) throw NotSimulated{"penalty contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
     std::vector<CollisionModel<double>> models;
     std::vector<const GraphNode*> nodes;
     for (Component* c : components) {
@@ -111,6 +124,7 @@ class CollisionBuilder {
                            ", whose topology a TopologicalChangeProcessor changes: contacts on a changing topology are not simulated yet"};
       }
     }
+    if (friction) return friction_pipeline(*response, p, std::move(models), nodes);
     for (const auto& pair : ContactPipeline<double>::rule_pairs(models, p)) {
       check_placement(models, nodes, pair);
       for (const std::size_t m : {pair.first, pair.second}) {
@@ -137,6 +151,88 @@ class CollisionBuilder {
   }
 
  private:
+  // SOFA's FrictionContactConstraint response: one UnilateralLagrangianConstraint per model pair,
+  // its rows placed as SOFA's graph places the response (the simulated model's node against a
+  // still one, else the pipeline's node: nodes in depth-first order, pairs in broad-phase order
+  // within a node), after the scene's own Lagrangian constraints.
+  std::shared_ptr<ContactPipeline<double>> friction_pipeline(Component& response, const typename ContactPipeline<double>::Parameters& p,
+                                                             std::vector<CollisionModel<double>> models,
+                                                             const std::vector<const GraphNode*>& nodes) {
+    typename UnilateralLagrangianConstraint<double>::Parameters parameters;
+    parse_response_parameters(response, parameters);
+    std::set<std::size_t> corrected;
+    for (const auto& correction : loop_->corrections) corrected.insert(correction->object());
+    std::map<const GraphNode*, int> depth_first;
+    number_nodes(data_.root(), depth_first);
+    const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
+    std::vector<std::shared_ptr<UnilateralLagrangianConstraint<double>>> constraints(pairs.size());
+    std::vector<std::pair<int, std::size_t>> placed;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const auto& a = models[pairs[k].first];
+      const auto& b = models[pairs[k].second];
+      if (a.contact_stiffness == 0 || b.contact_stiffness == 0) {
+        data_.warn(response.where() + ": " + a.where + " and " + b.where + ": a contactStiffness of 0 disables their "
+                   "FrictionContactConstraint response, as in SOFA (no contacts between them)");
+        continue;
+      }
+      for (const auto* side : {&a, &b}) {
+        if (side->points->is_still() || corrected.count(side->points->object())) continue;
+        throw error_at(side->where, make_error("its object ", simulation_.objects[side->points->object()].path,
+                                               " has no constraint correction, which its contacts (FrictionContactConstraint) "
+                                               "need: add a LinearSolverConstraintCorrection or an UncoupledConstraintCorrection"));
+      }
+      constraints[k] = std::make_shared<UnilateralLagrangianConstraint<double>>(
+          response.where() + ": contacts of " + a.where + " and " + b.where, parameters);
+      const GraphNode* node = !a.simulated ? nodes[pairs[k].second] : !b.simulated ? nodes[pairs[k].first] : &pipeline_node_;
+      placed.emplace_back(depth_first.at(node), k);
+    }
+    std::stable_sort(placed.begin(), placed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [order, k] : placed) loop_->constraints.push_back(constraints[k]);
+    try {
+      return std::make_shared<ContactPipeline<double>>(p, std::move(models), std::move(constraints));
+    } catch (const Error& error) {
+      throw NotSimulated{error.what()};
+    }
+  }
+
+  // SOFA's responseParams: "name=value" pairs joined by '&' (mu, tol); other names warned.
+  void parse_response_parameters(Component& response, typename UnilateralLagrangianConstraint<double>::Parameters& parameters) {
+    const std::string text = data_.text(response, "responseParams", "");
+    std::size_t start = 0;
+    while (start < text.size()) {
+      const std::size_t end = std::min(text.find('&', start), text.size());
+      const std::string item = text.substr(start, end - start);
+      start = end + 1;
+      if (item.empty()) continue;
+      const std::size_t equal = item.find('=');
+      const std::string name = item.substr(0, equal);
+      double value = 0;
+      try {
+        std::size_t used = 0;
+        if (equal == std::string::npos) throw std::invalid_argument("no value");
+        value = std::stod(item.substr(equal + 1), &used);
+        if (used != item.size() - equal - 1) throw std::invalid_argument("trailing text");
+      } catch (const std::exception&) {
+        throw error_at(response.where(), make_error("responseParams: '", item, "' is not name=number"));
+      }
+      if (name == "mu") {
+        parameters.mu = value;
+      } else if (name == "tol") {
+        parameters.tolerance = value;
+      } else {
+        data_.warn(response.where() + ": responseParams: '" + name + "' is not a parameter of FrictionContactConstraint (mu, tol): ignored");
+      }
+    }
+    if (!(parameters.mu >= 0) || !(parameters.tolerance >= 0)) {
+      throw error_at(response.where(), make_error("responseParams: mu and tol must be ≥ 0"));
+    }
+  }
+
+  static void number_nodes(const GraphNode& node, std::map<const GraphNode*, int>& order) {
+    order.emplace(&node, static_cast<int>(order.size()));
+    for (const auto& child : node.children) number_nodes(*child, order);
+  }
+
   // SOFA's placement of a model pair's response (SubCollisionPipeline::computeCollisionResponse): in
   // the node of the simulated model when the other is not simulated, else in the pipeline's node.
   // Its penalty is implicit in the body's step only when that node is at or below the body's ODE
@@ -178,7 +274,10 @@ class CollisionBuilder {
     m.moving = data_.boolean(c, "moving", true);
     if (data_.boolean(c, "selfCollision", false)) throw NotSimulated{c.where() + " asks for selfCollision, which is not simulated yet"};
     const std::string reply = data_.text(c, "contactResponse", "");
-    if (!reply.empty() && reply != "PenalityContactForceField") throw NotSimulated{c.where() + " asks for the response " + reply};
+    if (!reply.empty() && reply != response_name_) {
+      throw NotSimulated{c.where() + " asks for the response " + reply + ", the pipeline's is " + response_name_ +
+                         " (a model's own response is not simulated yet)"};
+    }
     m.contact_distance = data_.real(c, c.has("proximity") && !c.has("contactDistance") ? "proximity" : "contactDistance", 0.0);
     m.contact_stiffness = data_.real(c, "contactStiffness", 10.0);
     if (!(m.contact_distance >= 0) || !(m.contact_stiffness >= 0)) {
@@ -286,6 +385,8 @@ class CollisionBuilder {
   const LocateState& locate_;
   const std::vector<const GraphNode*>& solver_nodes_;
   const GraphNode& pipeline_node_;
+  FreeMotionAnimationLoop<double>* loop_ = nullptr;
+  std::string response_name_ = "PenalityContactForceField";
   std::map<const Component*, std::shared_ptr<CollisionPoints<double>>> points_;
 };
 
@@ -322,9 +423,6 @@ void build_collision_pipeline(SceneData& data, std::vector<std::string>& info, S
                 ": SOFA's pipeline makes no contact without it, nor does fastcorot's");
       return;
     }
-  }
-  if (reason.empty() && free_motion) {
-    reason = "penalty contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)";
   }
   if (reason.empty()) {
     try {

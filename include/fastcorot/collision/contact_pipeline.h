@@ -14,6 +14,7 @@
 #include "fastcorot/collision/collision_model.h"
 #include "fastcorot/collision/intersections.h"
 #include "fastcorot/collision/penalty_contact_force_field.h"
+#include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 #include "fastcorot/sim/collision_stage.h"
 
 #include <map>
@@ -36,8 +37,15 @@ class ContactPipeline final : public CollisionStage<Real> {
   // (SOFA's explicit body–body penalty, not simulated yet), or a model without points.
   ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
                   std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties);
+  // SOFA's FrictionContactConstraint response (with FreeMotionAnimationLoop): rule pair k (in
+  // rule_pairs' order) gives its contacts to `constraints[k]` (null: the pair makes none, SOFA's
+  // response disabled by a zero contactStiffness), after SOFA's removal of duplicates (an output
+  // whose two points' squared distances to a kept output's sum below 1e-8).
+  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                  std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints);
 
   CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) override;
+  std::span<const DetectedContact<Real>> contacts() const override { return detected_; }
 
   // The last step's contacts, per object with a penalty field (for drawing and outputs).
   const std::vector<CollisionModel<Real>>& models() const { return models_; }
@@ -57,6 +65,12 @@ class ContactPipeline final : public CollisionStage<Real> {
  private:
   std::vector<Output> narrow_phase(const ModelPair& pair, CollisionReport& report) const;
   PenaltyContact<Real> contact(const ModelPair& pair, const Output& output) const;
+  // The penalty response of one pair's outputs into its objects' lists; the friction one into its
+  // constraint. Both return the contacts kept.
+  int penalty_response(const ModelPair& pair, const std::vector<Output>& outputs,
+                       std::vector<std::vector<PenaltyContact<Real>>>& contacts);
+  int friction_response(std::size_t k, const std::vector<Output>& outputs);
+  Real contact_distance(const ModelPair& pair) const;
   // The weights of `p` (a point of element `element` of `model`) on the element's points, their J
   // row blocks into `out`; returns the weighted point (SOFA's contact mapper's position).
   Vec3<Real> add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,
@@ -66,6 +80,8 @@ class ContactPipeline final : public CollisionStage<Real> {
   std::vector<CollisionModel<Real>> models_;
   std::vector<ModelPair> pairs_;
   std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties_;
+  std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints_;
+  std::vector<DetectedContact<Real>> detected_;
 };
 
 }  // namespace fastcorot

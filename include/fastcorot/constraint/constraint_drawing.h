@@ -26,6 +26,8 @@ class ConstraintDrawer {
   void begin(const std::string& where);
   // Adds point i of `points` where it is now; returns its index in the drawing.
   std::size_t point(const ConstraintPoints<Real>& points, std::size_t i, bool active = true);
+  // Adds a point at `position` (one the constraint placed itself, as a contact's).
+  std::size_t point_at(const Vec3<Real>& position, bool active = true);
   // Drawn point p gets row `row`'s force, c λ_row / dt (nothing for a row the last step did not have).
   void force(std::size_t p, int row, const Vec3<Real>& c);
   // Drawn points a and b are tied (a segment joins them).

@@ -82,6 +82,11 @@ class ConstraintRows {
   // H(row, point i of `points`) += cᵀ: on the point's block, or through its mapping (Jᵀ c on each
   // parent block the point reads); nothing on unsimulated points.
   void add(int row, const ConstraintPoints<Real>& points, std::size_t i, const Vec3<Real>& c);
+  // H(row, b) += Mᵀ c for each (b, M) of `blocks`: a point of simulated object `object` whose rows of
+  // J on the object's blocks are given (a contact point on a collision model).
+  void add_blocks(int row, std::size_t object, std::span<const std::pair<Index, Mat3<Real>>> blocks, const Vec3<Real>& c) {
+    for (const auto& [block, m] : blocks) entries_[object].push_back({row, block, m.transpose() * c});
+  }
   // constraint_force[i] += c λ_row / h for every row added on points that keep their constraint
   // forces (the caller zeroes the sinks first, sized to their points).
   void store_constraint_forces(const Real* lambda, Real h) const;

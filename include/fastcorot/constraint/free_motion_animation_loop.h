@@ -31,7 +31,7 @@ class FreeMotionAnimationLoop final : public ConstraintStage<Real> {
   FreeMotionAnimationLoop(Parameters parameters, std::unique_ptr<ConstraintSolver<Real>> solver);
 
   // In row order (SOFA's scene-graph order).
-  std::vector<std::unique_ptr<LagrangianConstraint<Real>>> constraints;
+  std::vector<std::shared_ptr<LagrangianConstraint<Real>>> constraints;
   std::vector<std::unique_ptr<ConstraintCorrection<Real>>> corrections;
 
   ConstraintReport correct(std::span<SimulatedObject<Real>> objects, std::span<const MechanicalState<Real>> start, Real dt,

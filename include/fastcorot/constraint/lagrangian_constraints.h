@@ -7,6 +7,7 @@
 #include "fastcorot/constraint/constraint_points.h"
 #include "fastcorot/constraint/constraint_problem.h"
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ enum class ConstraintOrder { position_and_velocity, velocity };
 
 template <class Real>
 class ConstraintDrawer;  // constraint_drawing.h
+template <class Real>
+struct SimulatedObject;  // sim/simulation.h
 
 template <class Real>
 class LagrangianConstraint {
@@ -29,6 +32,9 @@ class LagrangianConstraint {
   const std::string& where() const { return where_; }
   // The point sets it reads, for the loop to prepare each step.
   virtual std::vector<ConstraintPoints<Real>*> point_sets() = 0;
+  // Before its rows are built, after the free motion (the objects hold their free states): what it
+  // reads besides its point sets. Nothing by default.
+  virtual void prepare(std::span<const SimulatedObject<Real>> objects, Real dt) { static_cast<void>(objects), static_cast<void>(dt); }
   // Appends its rows (none when inactive) and remembers where they start.
   virtual void build(ConstraintRows<Real>& rows) = 0;
   // Its rows' violations, into dfree (indexed by row).

@@ -5,6 +5,8 @@
 // Simulation only calls it.
 #pragma once
 
+#include "fastcorot/core/types.h"
+
 #include <span>
 
 namespace fastcorot {
@@ -21,6 +23,14 @@ struct CollisionReport {
   double detection_seconds = 0;  // trees, broad and narrow phases
 };
 
+// One contact of the last detection, for drawing and outputs: the points on the two elements (the
+// first model's, then the second's) and the unit normal from the first to the second.
+template <class Real>
+struct DetectedContact {
+  Vec3<Real> point[2];
+  Vec3<Real> normal;
+};
+
 template <class Real>
 class CollisionStage {
  public:
@@ -28,6 +38,8 @@ class CollisionStage {
   // At the start of a step (after scripted topological changes, before any integration): detection
   // on the objects' current positions and the responses for this step. `time` is the step's start.
   virtual CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) = 0;
+  // The contacts the last begin_step kept (after each response merged its outputs), in solve order.
+  virtual std::span<const DetectedContact<Real>> contacts() const = 0;
 };
 
 }  // namespace fastcorot

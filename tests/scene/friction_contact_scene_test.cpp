@@ -1,0 +1,237 @@
+// FrictionContactConstraint under FreeMotionAnimationLoop through the scene builder: a soft cube
+// landing and sliding on a floor against SOFA's own trajectories (position and velocity violations,
+// Gauss–Seidel and LCP: tests/data/sofa_reference/cube_on_floor_friction*); a point mass on a floor
+// with gravity tilted by θ against Coulomb's closed forms (it sticks iff tan θ ≤ μ, else gains
+// h g (sin θ − μ cos θ) of speed per step; its normal impulse per step is m g cos θ h); two masses
+// meeting head-on keep their momentum; bad input and unsupported settings said clearly.
+#include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
+#include "fastcorot/scene/scene_builder.h"
+#include "fastcorot/scene/scene_graph.h"
+
+#include "../support/scene_text.h"
+#include "support/sofa_reference.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_scene_text;
+using testing::scene_error;
+
+void expect_sofa_trajectory(const char* scene_file, const char* trajectory_file) {
+  LoadedScene scene = load_scene_file(testing::sofa_reference_path(scene_file));
+  const auto reference = testing::load_sofa_trajectory(trajectory_file);
+  auto& simulation = scene.simulation;
+  ASSERT_TRUE(simulation.collisions);
+  ASSERT_TRUE(simulation.constraints);
+  const auto& x = simulation.objects[0].system.state.position;
+  const auto rest = testing::json_points(reference["steps"]["0"]["points"]);
+  for (const long step : testing::dumped_steps(reference)) {
+    while (simulation.steps_done() < step) simulation.step();
+    const auto& frame = reference["steps"][std::to_string(step)];
+    const auto d = testing::compare_points(x, testing::json_points(frame["points"]), rest);
+    // SOFA's solver stops at 1e-12 (scaled by the rows): the two agree to about that, not bitwise.
+    EXPECT_LE(d.difference, 1e-9 * d.displacement + 1e-15) << scene_file << " step " << step;
+    if (step > 0) {
+      EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << scene_file << " step " << step;
+      EXPECT_EQ(simulation.constraint_report().rows, frame["constraints"].get<int>()) << scene_file << " step " << step;
+    }
+  }
+}
+
+TEST(FrictionContactScene, SoftCubeSlidesOnAFloorAsInSofa) {
+  expect_sofa_trajectory("cube_on_floor_friction.scn", "cube_on_floor_friction_trajectory.json");
+}
+
+TEST(FrictionContactScene, VelocityViolationsFollowSofa) {
+  expect_sofa_trajectory("cube_on_floor_friction_velocity.scn", "cube_on_floor_friction_velocity_trajectory.json");
+}
+
+TEST(FrictionContactScene, LcpSolverFollowsSofa) {
+  expect_sofa_trajectory("cube_on_floor_friction_lcp.scn", "cube_on_floor_friction_lcp_trajectory.json");
+}
+
+constexpr double kMass = 0.5, kG = 9.81, kH = 0.01;
+
+// A number as the scene text writes it, every digit kept.
+std::string number(double value) {
+  std::ostringstream out;
+  out.precision(17);
+  out << value;
+  return out.str();
+}
+
+// A point of mass m resting at the contact distance (0.2) above a large still triangle in y = 0,
+// gravity g (sin θ, −cos θ, 0), contacts with friction coefficient `mu`.
+std::string point_on_incline(double mu, const std::string& solver = "<BlockGaussSeidelConstraintSolver maxIterations=\"100\" tolerance=\"1e-15\"/>") {
+  return "<FreeMotionAnimationLoop/>" + solver +
+         "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+         "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/>"
+         "<CollisionResponse response=\"FrictionContactConstraint\" responseParams=\"mu=" + number(mu) + "\"/>"
+         "<Node name=\"ball\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+         "<MechanicalObject name=\"point\" position=\"0.1 0.2 0.2\"/><UniformMass totalMass=\"0.5\"/><PointCollisionModel/>"
+         "<LinearSolverConstraintCorrection/></Node>"
+         "<Node name=\"floor\"><MeshTopology position=\"-10 0 -10  10 0 -10  0 0 20\" triangles=\"0 2 1\"/><MechanicalObject/>"
+         "<TriangleCollisionModel simulated=\"0\" moving=\"0\"/></Node>";
+}
+
+std::string tilted_gravity(double theta) {
+  return "dt=\"0.01\" gravity=\"" + number(kG * std::sin(theta)) + " " + number(-kG * std::cos(theta)) + " 0\"";
+}
+
+TEST(FrictionContactScene, APointOnAnInclineSticksIffTanThetaIsBelowMu) {
+  const double theta = std::atan(0.4);
+  const double gx = kG * std::sin(theta), gy = -kG * std::cos(theta);
+  for (const double mu : {0.5, 0.4000001}) {
+    LoadedScene scene = build_scene_text(point_on_incline(mu), tilted_gravity(theta));
+    auto& simulation = scene.simulation;
+    const auto& x = simulation.objects[0].system.state.position;
+    const auto& v = simulation.objects[0].system.state.velocity;
+    for (int step = 0; step < 200; ++step) {
+      simulation.step();
+      ASSERT_EQ(simulation.collision_report().contacts, 1) << "step " << step;
+      // The normal impulse holds the weight's normal part over the step.
+      const auto lambda = simulation.constraints->constraint_forces();
+      ASSERT_EQ(lambda.size(), 3u);
+      EXPECT_NEAR(lambda[0], -kMass * gy * kH, 1e-12) << "step " << step;
+      // The friction impulse holds the tangential part, inside the disk.
+      EXPECT_NEAR(std::hypot(lambda[1], lambda[2]), kMass * gx * kH, 1e-12) << "step " << step;
+    }
+    EXPECT_NEAR(x[0].x(), 0.1, 1e-11) << "mu " << mu;
+    EXPECT_NEAR(x[0].y(), 0.2, 1e-11) << "at the contact distance";
+    EXPECT_NEAR(v[0].norm(), 0.0, 1e-11);
+  }
+}
+
+TEST(FrictionContactScene, APointOnASteeperInclineGainsCoulombsSpeedEachStep) {
+  const double theta = std::atan(0.4);
+  const double gx = kG * std::sin(theta), gy = -kG * std::cos(theta);
+  for (const double mu : {0.2, 0.0}) {
+    LoadedScene scene = build_scene_text(point_on_incline(mu), tilted_gravity(theta));
+    auto& simulation = scene.simulation;
+    const auto& x = simulation.objects[0].system.state.position;
+    const auto& v = simulation.objects[0].system.state.velocity;
+    const int steps = 100;
+    for (int step = 0; step < steps; ++step) {
+      simulation.step();
+      const auto lambda = simulation.constraints->constraint_forces();
+      ASSERT_EQ(lambda.size(), mu > 0 ? 3u : 1u);
+      EXPECT_NEAR(lambda[0], -kMass * gy * kH, 1e-12);
+      if (mu > 0) EXPECT_NEAR(std::hypot(lambda[1], lambda[2]), mu * lambda[0], 1e-12) << "on the disk's rim";
+    }
+    const double a = gx + mu * gy;  // g (sin θ − μ cos θ)
+    EXPECT_NEAR(v[0].x(), steps * kH * a, 1e-10) << "mu " << mu;
+    EXPECT_NEAR(v[0].y(), 0.0, 1e-11);
+    EXPECT_NEAR(v[0].z(), 0.0, 1e-11);
+    // Semi-implicit Euler: x_n = x_0 + h² a n (n + 1) / 2.
+    EXPECT_NEAR(x[0].x(), 0.1 + kH * kH * a * steps * (steps + 1) / 2, 1e-10);
+    EXPECT_NEAR(x[0].y(), 0.2, 1e-11);
+  }
+}
+
+TEST(FrictionContactScene, TwoMassesMeetingHeadOnKeepTheirMomentumWithoutRebound) {
+  // Two points, each under its own solver, closing at 1 + 0.5; no gravity; Point–Point contacts.
+  const std::string text =
+      "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"100\" tolerance=\"1e-15\"/>"
+      "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+      "<MinProximityIntersection alarmDistance=\"0.2\" contactDistance=\"0.05\"/>"
+      "<CollisionResponse response=\"FrictionContactConstraint\" responseParams=\"mu=0\"/>"
+      "<Node name=\"a\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+      "<MechanicalObject position=\"0 0 0\" velocity=\"1 0 0\"/><UniformMass totalMass=\"2\"/><PointCollisionModel/>"
+      "<LinearSolverConstraintCorrection/></Node>"
+      "<Node name=\"b\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+      "<MechanicalObject position=\"0.5 0 0\" velocity=\"-0.5 0 0\"/><UniformMass totalMass=\"1\"/><PointCollisionModel/>"
+      "<LinearSolverConstraintCorrection/></Node>";
+  LoadedScene scene = build_scene_text(text, "dt=\"0.01\" gravity=\"0 0 0\"");
+  auto& simulation = scene.simulation;
+  ASSERT_EQ(simulation.objects.size(), 2u);
+  const auto momentum = [&] { return 2 * simulation.objects[0].system.state.velocity[0] + simulation.objects[1].system.state.velocity[0]; };
+  const Vec3<double> before = momentum();
+  bool touched = false;
+  for (int step = 0; step < 100; ++step) {
+    simulation.step();
+    touched = touched || simulation.collision_report().contacts > 0;
+    EXPECT_NEAR((momentum() - before).norm(), 0.0, 1e-12) << "step " << step;
+    const double gap = simulation.objects[1].system.state.position[0].x() - simulation.objects[0].system.state.position[0].x();
+    EXPECT_GE(gap, 0.05 - 1e-12) << "never closer than the contact distance, step " << step;
+  }
+  EXPECT_TRUE(touched);
+  // No rebound: they end moving together at the common speed.
+  const double common = before.x() / 3;
+  EXPECT_NEAR(simulation.objects[0].system.state.velocity[0].x(), common, 1e-10);
+  EXPECT_NEAR(simulation.objects[1].system.state.velocity[0].x(), common, 1e-10);
+}
+
+TEST(FrictionContactScene, TheTangentFrameIsSofas) {
+  // SOFA's frame for n = (0, 1, 0): t = (n_z, n_x, n_y) = (0, 0, 1); s = n × t / |n × t| = (1, 0, 0);
+  // t ← −n × s = (0, 0, 1).
+  Vec3<double> t, s;
+  UnilateralLagrangianConstraint<double>::tangents(Vec3<double>(0, 1, 0), t, s);
+  EXPECT_LT((s - Vec3<double>(1, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((t - Vec3<double>(0, 0, 1)).norm(), 1e-15);
+  // Any normal: an orthonormal frame.
+  const Vec3<double> n = Vec3<double>(0.3, -0.5, 0.81).normalized();
+  UnilateralLagrangianConstraint<double>::tangents(n, t, s);
+  EXPECT_NEAR(t.dot(n), 0, 1e-15);
+  EXPECT_NEAR(s.dot(n), 0, 1e-15);
+  EXPECT_NEAR(t.dot(s), 0, 1e-15);
+  EXPECT_NEAR(t.norm(), 1, 1e-15);
+}
+
+TEST(FrictionContactScene, FrictionResolutionMatchesCoulombsDiskByHand) {
+  // W diagonal 2, coupling W_nt = 0.5; d = (−1, 3, 0): λ_n = 0.5, then d_t = 3 + 0.5·0.5 = 3.25,
+  // λ_t = −3.25, clipped to μ λ_n = 0.25 in size.
+  DenseMatrix<double> w = DenseMatrix<double>::Identity(3, 3) * 2;
+  w(0, 1) = w(1, 0) = 0.5;
+  UnilateralFrictionResolution<double> resolution(0.5, 0);
+  double f[3] = {0, 0, 0};
+  resolution.init(0, w, f);
+  const double d[3] = {-1, 3, 0};
+  resolution.resolve(0, w, d, f, d);
+  EXPECT_DOUBLE_EQ(f[0], 0.5);
+  EXPECT_DOUBLE_EQ(f[1], -0.25);
+  EXPECT_DOUBLE_EQ(f[2], 0.0);
+  // A pulling normal impulse releases all three.
+  const double apart[3] = {1, 3, 0};
+  double g[3] = {0, 1, 1};
+  resolution.resolve(0, w, apart, g, apart);
+  EXPECT_EQ(g[0], 0.0);
+  EXPECT_EQ(g[1], 0.0);
+  EXPECT_EQ(g[2], 0.0);
+}
+
+TEST(FrictionContactScene, BadInputAndUnsupportedSettingsAreSaid) {
+  std::string garbage = point_on_incline(0.3);
+  garbage.replace(garbage.find("responseParams=\"mu=0.29999999999999999\""), std::string("responseParams=\"mu=0.29999999999999999\"").size(), "responseParams=\"mu=abc\"");
+  EXPECT_NE(scene_error(garbage).find("responseParams: 'mu=abc' is not name=number"), std::string::npos) << scene_error(garbage);
+  std::string negative = point_on_incline(0.3);
+  negative.replace(negative.find("mu=0.29999999999999999"), std::string("mu=0.29999999999999999").size(), "mu=-1");
+  EXPECT_NE(scene_error(negative).find("mu and tol must be ≥ 0"), std::string::npos) << scene_error(negative);
+  std::string uncorrected = point_on_incline(0.3);
+  uncorrected.replace(uncorrected.find("<LinearSolverConstraintCorrection/>"), std::string("<LinearSolverConstraintCorrection/>").size(), "");
+  EXPECT_NE(scene_error(uncorrected).find("has no constraint correction"), std::string::npos) << scene_error(uncorrected);
+  // Under the default loop: the scene loads, its collisions said to need FreeMotionAnimationLoop.
+  std::string default_loop = point_on_incline(0.3);
+  default_loop.replace(default_loop.find("<FreeMotionAnimationLoop/>"), std::string("<FreeMotionAnimationLoop/>").size(), "");
+  default_loop.replace(default_loop.find("<LinearSolverConstraintCorrection/>"), std::string("<LinearSolverConstraintCorrection/>").size(), "");
+  LoadedScene plain = build_scene_text(default_loop, "dt=\"0.01\"");
+  EXPECT_FALSE(plain.simulation.collisions);
+  bool said = false;
+  for (const auto& line : plain.warnings) said = said || line.find("only a FreeMotionAnimationLoop solves") != std::string::npos;
+  EXPECT_TRUE(said);
+  // A contactStiffness of 0 disables the response, as in SOFA: no contact, the point falls through.
+  std::string soft = point_on_incline(0.3);
+  soft.replace(soft.find("<PointCollisionModel/>"), std::string("<PointCollisionModel/>").size(), "<PointCollisionModel contactStiffness=\"0\"/>");
+  LoadedScene disabled = build_scene_text(soft, "dt=\"0.01\"");
+  for (int step = 0; step < 5; ++step) disabled.simulation.step();
+  EXPECT_EQ(disabled.simulation.constraint_report().rows, 0);
+  EXPECT_LT(disabled.simulation.objects[0].system.state.position[0].y(), 0.2);
+}
+
+}  // namespace
+}  // namespace fastcorot
