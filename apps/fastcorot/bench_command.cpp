@@ -1,5 +1,6 @@
 #include "bench_command.h"
 
+#include "contact_figures.h"
 #include "default_scene.h"
 #include "json_io.h"
 #include "run_command.h"
@@ -110,6 +111,8 @@ void bench(const BenchOptions& options, std::ostream& out) {
   // Under a FreeMotionAnimationLoop: W's and the constraint solve's time, rows and iterations.
   double compliance_seconds = 0, constraint_solve_seconds = 0;
   long constraint_rows = 0, constraint_iterations = 0, unconverged = 0;
+  // With a collision pipeline: contacts per step and the time in detection.
+  ContactTally contacts;
   const auto start = std::chrono::steady_clock::now();
   for (long step = 0; step < options.steps; ++step) {
     simulation.step();
@@ -121,6 +124,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
       constraint_iterations += r.iterations;
       unconverged += r.converged ? 0 : 1;
     }
+    if (simulation.collisions) contacts.add(simulation.collision_report());
     if (!options.vtu_dir.empty()) {
       const PhaseTimer timer(&total.output);
       write_frame(options.vtu_dir, simulation);
@@ -147,7 +151,8 @@ void bench(const BenchOptions& options, std::ostream& out) {
   forces_only = std::min(forces_only, total.add_force);
   const double refresh = total.add_force - forces_only;
   // Whatever the phases do not cover (the step loop itself, concurrent objects' overlap).
-  const double other = std::max(0.0, seconds - total.total() - compliance_seconds - constraint_solve_seconds);
+  const double other =
+      std::max(0.0, seconds - total.total() - compliance_seconds - constraint_solve_seconds - contacts.seconds);
   const SceneSize size = measure(simulation);
   const double per_step = 1e3 / static_cast<double>(options.steps);
   const double steps_per_second = static_cast<double>(options.steps) / seconds;
@@ -172,6 +177,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
                      {"output", total.output * per_step},
                      {"constraint_compliance", compliance_seconds * per_step},
                      {"constraint_solve", constraint_solve_seconds * per_step},
+                     {"collision_detection", contacts.seconds * per_step},
                      {"other", other * per_step}}},
                    {"force_field_bytes", size.force_field_bytes},
                    {"force_field_bytes_per_tetrahedron",
@@ -189,6 +195,7 @@ void bench(const BenchOptions& options, std::ostream& out) {
                                {"unconverged_steps", unconverged},
                                {"compliance_share", seconds > 0 ? compliance_seconds / seconds : 0.0}};
     }
+    if (simulation.collisions) result["contacts"] = contacts.to_json(seconds);
     out << result.dump(2) << '\n';
     return;
   }
@@ -212,12 +219,14 @@ void bench(const BenchOptions& options, std::ostream& out) {
     line("constraint W", compliance_seconds);
     line("constraint solve", constraint_solve_seconds);
   }
+  if (simulation.collisions) line("collision detection", contacts.seconds);
   line("other", other);
   if (simulation.constraints) {
     out << std::setprecision(1) << "constraints: " << static_cast<double>(constraint_rows) / static_cast<double>(options.steps)
         << " rows and " << static_cast<double>(constraint_iterations) / static_cast<double>(options.steps) << " "
         << simulation.constraints->solver_name() << " iterations per step, " << unconverged << " step(s) unconverged\n";
   }
+  if (simulation.collisions) contacts.summarise(out);
   out << std::setprecision(0) << "force field memory " << size.force_field_bytes / 1024 << " KiB ("
       << (size.tetrahedra > 0 ? size.force_field_bytes / static_cast<double>(size.tetrahedra) : 0.0)
       << " bytes per tetrahedron); peak process memory " << peak_memory_bytes() / (1024 * 1024) << " MiB\n";

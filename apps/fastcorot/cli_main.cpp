@@ -45,6 +45,9 @@ std::vector<CLI::Option*> add_picture_options(CLI::App* command, fastcorot::cli:
       command->add_option("--constraint-force-scale", picture.constraint_force_scale,
                           "constraint force arrows' length per unit of force (0: the largest a tenth of the scene)")
           ->capture_default_str(),
+      command->add_option("--contacts", picture.contacts,
+                          "the last collision detection's contacts (points joined, normals): on, off")
+          ->capture_default_str(),
       command->add_option("--camera-eye", picture.camera_eye, "camera position X,Y,Z (default: framed automatically)"),
       command->add_option("--camera-target", picture.camera_target, "point looked at X,Y,Z (default: the scene's centre)"),
       command->add_option("--camera-up", picture.camera_up, "up direction X,Y,Z (default: against gravity)"),
@@ -104,6 +107,7 @@ int run_cli(int argc, char** argv) {
                   "at most every core; fewer while other processes keep cores busy; 1 per rank under mpirun)")
       ->capture_default_str();
   run->add_flag("--quiet", run_options.quiet, "no progress bar, info lines or summary");
+  run->add_flag("--json", run_options.json, "print the summary as JSON (also with --quiet)");
   run->add_flag("--strict", run_options.strict, "treat warnings (unknown attributes) as errors");
   auto* checkpoint_every = run->add_option("--checkpoint-every", run_options.checkpoint_every,
                                            "save the whole state every K steps (to --checkpoint)");

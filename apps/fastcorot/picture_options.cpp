@@ -33,6 +33,10 @@ DrawOptions draw_options(const PictureOptions& options) {
                      ": must be a finite length per unit of force >= 0 (0: chosen per frame)");
   }
   draw.constraint_force_scale = options.constraint_force_scale;
+  if (options.contacts != "on" && options.contacts != "off") {
+    throw make_error("--contacts \"", options.contacts, "\": expected on or off");
+  }
+  draw.contacts = options.contacts == "on";
   return draw;
 }
 

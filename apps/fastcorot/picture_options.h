@@ -1,6 +1,6 @@
 // The command-line options shared by `fastcorot run --png` and `fastcorot view` that say what a
-// picture looks like: its size, which force fields are drawn as tetrahedra, the constraints, and the
-// camera. They
+// picture looks like: its size, which force fields are drawn as tetrahedra, the constraints, the
+// contacts and the camera. They
 // are kept as text until the command runs, so that bad values become fastcorot::Error messages
 // naming the option (exit status 2) rather than parser failures.
 #pragma once
@@ -25,6 +25,7 @@ struct PictureOptions {
   bool surface_edges = false;    // outline the mesh on the boundary surface
   std::string constraints = "on";     // Lagrangian constraints' points, pairs and forces: on, off
   double constraint_force_scale = 0;  // arrow length per unit of force; 0: the largest a tenth of the scene
+  std::string contacts = "on";        // the last detection's contacts: points joined, normals: on, off
 };
 
 // "X,Y,Z" (commas or spaces); throws fastcorot::Error naming `option` otherwise.

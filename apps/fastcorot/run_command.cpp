@@ -1,5 +1,6 @@
 #include "run_command.h"
 
+#include "contact_figures.h"
 #include "default_scene.h"
 #include "distributed_run.h"
 #include "thread_count.h"
@@ -312,38 +313,28 @@ struct ConstraintTally {
     }
     out << '\n';
   }
-};
 
-// The collision stage's figures over a run: contacts per step and at the last step, the element
-// pairs tested, degenerate elements skipped, the time in detection.
-struct ContactTally {
-  long contacts = 0, last = 0, max_contacts = 0, element_pairs = 0, degenerate = 0;
-  double seconds = 0;
-
-  void add(const CollisionReport& r) {
-    contacts += r.contacts;
-    last = r.contacts;
-    max_contacts = std::max<long>(max_contacts, r.contacts);
-    element_pairs += r.element_pairs;
-    degenerate = std::max<long>(degenerate, r.degenerate_elements);
-    seconds += r.detection_seconds;
-  }
-
-  void summarise(std::ostream& out, long steps) const {
+  // As `bench --json` gives them, with the run's time `seconds`.
+  json to_json(long steps, const char* solver, double seconds) const {
     const double n = static_cast<double>(std::max<long>(steps, 1));
-    out << "contacts: " << std::setprecision(1) << static_cast<double>(contacts) / n << " per step (at most " << max_contacts
-        << ", last step " << last << "), " << static_cast<double>(element_pairs) / n << " element pairs tested per step, detection "
-        << std::setprecision(3) << seconds << " s";
-    if (degenerate > 0) out << "; " << degenerate << " degenerate element(s) skipped";
-    out << '\n';
+    return {{"solver", solver},
+            {"rows_per_step", static_cast<double>(rows) / n},
+            {"max_rows", max_rows},
+            {"iterations_per_step", static_cast<double>(iterations) / n},
+            {"unconverged_steps", unconverged},
+            {"largest_error", worst_error},
+            {"compliance_share", seconds > 0 ? compliance_seconds / seconds : 0.0},
+            {"solve_share", seconds > 0 ? solve_seconds / seconds : 0.0}};
   }
 };
 
 // A dumped step: `steps` the positions of each simulated object under its path (the first format,
 // kept for the files written before velocities were dumped), `states` every MechanicalObject,
 // mapped ones included, under "node path/object name" in scene order (docs/cli.md); under
-// FreeMotionAnimationLoop, `impulses` the constraint impulses λ of the step (one per row).
-void record(json& steps, nlohmann::ordered_json& states, json& impulses, const Simulation<double>& simulation) {
+// FreeMotionAnimationLoop, `impulses` the constraint impulses λ of the step (one per row); with a
+// collision pipeline, `contacts` the step's contacts (null: none known, the step resumed from).
+void record(json& steps, nlohmann::ordered_json& states, json& impulses, json* contacts,
+            const Simulation<double>& simulation) {
   json frame = json::object();
   nlohmann::ordered_json all = nlohmann::ordered_json::object();
   for (const auto& object : simulation.objects) {
@@ -362,6 +353,7 @@ void record(json& steps, nlohmann::ordered_json& states, json& impulses, const S
     const auto forces = simulation.constraints->constraint_forces();
     impulses[std::to_string(simulation.steps_done())] = std::vector<double>(forces.begin(), forces.end());
   }
+  if (simulation.collisions && contacts) (*contacts)[std::to_string(simulation.steps_done())] = contacts_to_json(*simulation.collisions);
   steps[std::to_string(simulation.steps_done())] = std::move(frame);
   states[std::to_string(simulation.steps_done())] = std::move(all);
 }
@@ -426,10 +418,12 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   json steps = json::object();
   nlohmann::ordered_json states = nlohmann::ordered_json::object();
   json impulses = json::object();
+  json contacts_dumped = json::object();
   auto write_dump = [&] {
     if (options.dump_state.empty()) return;
     nlohmann::ordered_json dump = {{"dt", simulation.dt}, {"steps", steps}, {"states", states}};
     if (simulation.constraints) dump["constraintForces"] = impulses;
+    if (simulation.collisions) dump["contacts"] = contacts_dumped;
     write_text(dump.dump(), options.dump_state);
   };
   // Outputs are set up on the scene as built (the pictures' camera is framed on it), also when
@@ -458,7 +452,8 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (vtu) vtu->adopt_earlier_frames(simulation, options.every);
     if (options.dump_steps.count(simulation.steps_done()) ||
         (dump_last && options.steps == simulation.steps_done())) {
-      record(steps, states, impulses, simulation);
+      // No detection has run in this process: the step's contacts are not known (left out).
+      record(steps, states, impulses, nullptr, simulation);
     }
   }
   // Frames and dumps of the step just done: a distributed run first gathers the state on rank 0
@@ -471,7 +466,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     }
     on_every_rank([&] {
       if (!writer) return;
-      if (dump) record(steps, states, impulses, simulation);
+      if (dump) record(steps, states, impulses, &contacts_dumped, simulation);
       if (vtu && frame) vtu->write(simulation, distributed->active() ? &forces : nullptr);
       if (obj && frame) obj->write(simulation);
       if (pictures && frame) pictures->write(simulation);
@@ -531,7 +526,18 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
   });
   const double seconds = elapsed();
   const long steps_run = options.steps - first_step + 1;
-  if (!options.quiet && writer) {
+  if (options.json && writer) {
+    json summary = {{"steps", steps_run},
+                    {"seconds", seconds},
+                    {"steps_per_second", seconds > 0 ? static_cast<double>(steps_run) / seconds : 0.0},
+                    {"objects", simulation.objects.size()},
+                    {"linear_solves", solves},
+                    {"linear_iterations_per_solve", solves > 0 ? static_cast<double>(iterations) / static_cast<double>(solves) : 0.0},
+                    {"ranks", process_count()}};
+    if (simulation.constraints) summary["constraints"] = constraints.to_json(steps_run, simulation.constraints->solver_name(), seconds);
+    if (simulation.collisions) summary["contacts"] = contacts.to_json(seconds);
+    out << summary.dump(2) << '\n';
+  } else if (!options.quiet && writer) {
     out << "fastcorot run: " << steps_run << " steps in " << std::fixed << std::setprecision(3)
         << seconds << " s (" << std::setprecision(1)
         << (seconds > 0 ? static_cast<double>(steps_run) / seconds : 0.0) << " steps/s), "
@@ -543,7 +549,7 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
     if (distributed->active()) out << ", " << process_count() << " ranks";
     out << '\n';
     if (simulation.constraints) constraints.summarise(out, steps_run, simulation.constraints->solver_name());
-    if (simulation.collisions) contacts.summarise(out, steps_run);
+    if (simulation.collisions) contacts.summarise(out);
   }
 }
 

@@ -1,5 +1,5 @@
 // `fastcorot run [SCENE] [--steps N] [--dt DT] [--out DIR] [--vtu] [--obj] [--every K]
-//                [--dump-state FILE --dump-steps 0,1,10,100] [--threads N] [--quiet]
+//                [--dump-state FILE --dump-steps 0,1,10,100] [--threads N] [--quiet] [--json]
 //                [--png DIR [--size WxH] [--drawing scene|on|off] [--camera-...]]
 //                [--checkpoint-every K [--checkpoint FILE]] [--resume FILE] [--divergence-factor
 //                F]`:
@@ -30,6 +30,7 @@ struct RunOptions {
   std::set<long> dump_steps = {0, 1, 10, 100};
   int threads = 0;  // 0: every core (thread_count.h)
   bool quiet = false;
+  bool json = false;    // the summary as JSON on standard output (also with quiet)
   bool strict = false;  // warnings (unknown attributes) are errors
   std::string png_dir;     // empty: no pictures; else one PNG per written frame
   PictureOptions picture;  // what the pictures (and the drawn tetrahedra in --vtu) look like

@@ -192,6 +192,9 @@ void on_key(GLFWwindow* window, int key, int, int action, int mods) {
     case GLFW_KEY_L:
       s.draw.constraints = !s.draw.constraints;
       break;
+    case GLFW_KEY_K:
+      s.draw.contacts = !s.draw.contacts;
+      break;
     case GLFW_KEY_F:
       c.reframe = true;
       break;

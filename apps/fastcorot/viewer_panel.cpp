@@ -62,6 +62,8 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
   ImGui::Checkbox("boxes", &session.draw.boxes);
   ImGui::SameLine();
   ImGui::Checkbox("constraints (L)", &session.draw.constraints);
+  ImGui::SameLine();
+  ImGui::Checkbox("contacts (K)", &session.draw.contacts);
 
   ImGui::Checkbox("cut mode (C)", &session.cut_mode);
   ImGui::SameLine();
@@ -101,7 +103,7 @@ PanelRequests draw_viewer_panel(ViewerSession& session, PanelState& state,
   ImGui::TextDisabled(
       "drag: orbit  right drag: pan  wheel: zoom\n"
       "ctrl drag (or drag in cut mode): cut\nspace: play/pause  N: step  D: drawing\n"
-      "E: edges  L: constraints  C: cut mode\nF: reframe  R: reload  Q: quit");
+      "E: edges  L: constraints  K: contacts\nC: cut mode  F: reframe  R: reload  Q: quit");
   ImGui::End();
   return requests;
 }

@@ -109,6 +109,21 @@ class Simulation:
         {key: {..., "position": p.tolist(), ...}}}} writes the command line's format."""
         return self._core.states()
 
+    def contacts(self):
+        """The contacts the last step's collision detection kept (a scene with a CollisionPipeline),
+        in solve order, as `fastcorot run --dump-state` writes one dumped step under "contacts": a
+        dict {"count": n, "points": (n, 2, 3) numpy copy, each contact's point on its first element
+        then on its second, "normals": (n, 3), unit, from the first element to the second}. The
+        points are where detection found them, at the step's start. Count 0 before the first step
+        and without a collision pipeline."""
+        return self._core.contacts()
+
+    def collision_report(self):
+        """What the last step's collision detection did: a dict {"contacts", "model_pairs",
+        "element_pairs", "degenerate_elements", "detection_seconds"} (the run summary's figures;
+        zeros without a collision pipeline)."""
+        return self._core.collision_report()
+
     def tetrahedra(self, index=0):
         """(m, 4) tetrahedra of simulated object `index` (its force field's mesh; empty without one),
         indices into its MechanicalObject's points."""

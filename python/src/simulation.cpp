@@ -118,6 +118,7 @@ void bind_simulation(py::module_& m) {
                                   "The compiled simulation behind fastcorot.Simulation (built from a scene tree).");
   bind_matrices(core);
   bind_constraints(core);
+  bind_contacts(core);
   bind_python_force_fields(core);
   core.def(py::init(&build), py::arg("tree"), py::arg("strict") = true, py::arg("allow_empty") = false)
       .def_property_readonly("warnings", [](SimulationCore& c) { return c.scene.warnings; })

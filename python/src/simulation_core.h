@@ -35,6 +35,8 @@ struct SimulationCore {
 void bind_matrices(py::class_<SimulationCore>& core);
 // Adds the constraint stage's accessors (constraints.cpp).
 void bind_constraints(py::class_<SimulationCore>& core);
+// Adds the collision stage's accessors (contacts.cpp).
+void bind_contacts(py::class_<SimulationCore>& core);
 // Adds add_python_force_field (python_force_field.cpp).
 void bind_python_force_fields(py::class_<SimulationCore>& core);
 

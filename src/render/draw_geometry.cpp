@@ -151,7 +151,26 @@ DrawGeometry SceneDrawer::draw(const Simulation<Real>& simulation, const DrawOpt
   DrawGeometry geometry;
   for (const auto& object : simulation.objects) draw_object(object, options, geometry);
   draw_constraints(simulation, options, geometry);
+  draw_contacts(simulation, options, geometry);
   return geometry;
+}
+
+template <class Real>
+void SceneDrawer::draw_contacts(const Simulation<Real>& simulation, const DrawOptions& options,
+                                DrawGeometry& geometry) {
+  if (!options.contacts || !simulation.collisions) return;
+  const float length = static_cast<float>(options.contact_normal_length > 0
+                                              ? options.contact_normal_length
+                                              : static_cast<double>(simulation.scene_size()) / 20);
+  for (const DetectedContact<Real>& contact : simulation.collisions->contacts()) {
+    const Eigen::Vector3f first = to_float(contact.point[0]), second = to_float(contact.point[1]);
+    geometry.markers.positions.push_back(first);
+    geometry.markers.positions.push_back(second);
+    geometry.markers.colors.push_back(options.contact_color);
+    geometry.markers.colors.push_back(options.contact_color);
+    add_segment(geometry.lines, first, second, options.contact_color);
+    add_segment(geometry.lines, second, second + length * to_float(contact.normal), options.contact_normal_color);
+  }
 }
 
 template <class Real>
@@ -274,6 +293,8 @@ template DrawGeometry SceneDrawer::draw(const Simulation<float>&, const DrawOpti
 template DrawGeometry SceneDrawer::draw(const Simulation<double>&, const DrawOptions&);
 template void SceneDrawer::draw_constraints(const Simulation<float>&, const DrawOptions&, DrawGeometry&);
 template void SceneDrawer::draw_constraints(const Simulation<double>&, const DrawOptions&, DrawGeometry&);
+template void SceneDrawer::draw_contacts(const Simulation<float>&, const DrawOptions&, DrawGeometry&);
+template void SceneDrawer::draw_contacts(const Simulation<double>&, const DrawOptions&, DrawGeometry&);
 template void SceneDrawer::draw_object(const SimulatedObject<float>&, const DrawOptions&,
                                        DrawGeometry&);
 template void SceneDrawer::draw_object(const SimulatedObject<double>&, const DrawOptions&,

@@ -126,6 +126,7 @@ TEST(RunPng, BadPictureOptionsExitWith2AndSayWhy) {
       {png + " --drawing maybe", "--drawing \"maybe\""},
       {png + " --constraints maybe", "--constraints \"maybe\""},
       {png + " --constraint-force-scale -1", "--constraint-force-scale -1"},
+      {png + " --contacts maybe", "--contacts \"maybe\""},
       {png + " --camera-eye 1,2", "--camera-eye \"1,2\""},
       {png + " --camera-fov 200", "--camera-fov 200"},
       {" --steps 1 --png " + scene + "/inside-a-file", "cannot create the folder"},

@@ -1,11 +1,13 @@
 // What SceneDrawer draws for scenes built through the real parser: the drawn tetrahedra with the
 // scene's colours, otherwise the boundary surface (which follows cuts), fixed points and BoxROI
-// boxes; and the switches.
+// boxes; the contacts of the last collision detection; and the switches.
 #include "fastcorot/render/draw_geometry.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/render/tetrahedron_drawing.h"
+#include "fastcorot/scene/scene_builder.h"
 #include "render/render_scenes.h"
+#include "support/sofa_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -170,6 +172,59 @@ TEST(DrawGeometry, RigidBodiesShowTheirFrames) {
   DrawOptions without;
   without.rigid_frames = false;
   EXPECT_EQ(drawer.draw(scene.simulation, without).lines.size(), 0u);
+}
+
+// SOFA's soft cube over a floor: once it reaches the floor, each contact of the last detection is
+// drawn as its two points (markers) joined by a segment and its normal from the second point, in
+// colours apart from the constraints'; nothing with the switch off.
+TEST(DrawGeometry, ContactsAreTheirPointsJoinedAndTheirNormals) {
+  LoadedScene scene = load_scene_file(testing::sofa_reference_path("cube_on_floor.scn"));
+  Simulation<double>& simulation = scene.simulation;
+  ASSERT_TRUE(simulation.collisions);
+  SceneDrawer drawer;
+  DrawOptions off;
+  off.contacts = false;
+  // Before the first step nothing was detected.
+  EXPECT_EQ(drawer.draw(simulation, DrawOptions{}).lines.size(), drawer.draw(simulation, off).lines.size());
+  for (int step = 0; step < 30; ++step) simulation.step();
+  const auto contacts = simulation.collisions->contacts();
+  const std::size_t n = contacts.size();
+  ASSERT_EQ(n, 15u);  // SOFA's count at step 30 (cube_on_floor_trajectory.json)
+  ASSERT_EQ(static_cast<int>(n), simulation.collision_report().contacts);
+
+  const DrawGeometry without = drawer.draw(simulation, off);
+  const DrawGeometry with = drawer.draw(simulation, DrawOptions{});
+  ASSERT_EQ(with.markers.size(), without.markers.size() + 2 * n);
+  ASSERT_EQ(with.lines.size(), without.lines.size() + 2 * n);
+  ASSERT_EQ(with.triangles.size(), without.triangles.size());
+  // The contacts come last: 2 markers and 2 segments each, in the stage's order.
+  const DrawOptions options;
+  const float length = static_cast<float>(simulation.scene_size()) / 20;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Vector3f a = contacts[k].point[0].cast<float>(), b = contacts[k].point[1].cast<float>();
+    const std::size_t marker = without.markers.size() + 2 * k, end = 2 * (without.lines.size() + 2 * k);
+    EXPECT_EQ(with.markers.positions[marker], a) << "contact " << k;
+    EXPECT_EQ(with.markers.positions[marker + 1], b) << "contact " << k;
+    EXPECT_EQ(with.markers.colors[marker], options.contact_color);
+    EXPECT_EQ(with.lines.positions[end], a);
+    EXPECT_EQ(with.lines.positions[end + 1], b);
+    EXPECT_EQ(with.lines.colors[end], options.contact_color);
+    // The floor's normal is +y: the normal segment rises from the cube's point by a twentieth of the scene.
+    EXPECT_EQ(with.lines.positions[end + 2], b);
+    EXPECT_TRUE(with.lines.positions[end + 3].isApprox(b + length * Eigen::Vector3f::UnitY(), 1e-6f))
+        << with.lines.positions[end + 3].transpose();
+    EXPECT_EQ(with.lines.colors[end + 2], options.contact_normal_color);
+  }
+  for (const Rgba& c : {options.constraint_color, options.inactive_constraint_color, options.constraint_force_color}) {
+    EXPECT_NE(options.contact_color, c);
+    EXPECT_NE(options.contact_normal_color, c);
+  }
+  // A chosen normal length.
+  DrawOptions longer;
+  longer.contact_normal_length = 0.5;
+  const DrawGeometry scaled = drawer.draw(simulation, longer);
+  const std::size_t end = 2 * (without.lines.size() + 1);
+  EXPECT_NEAR((scaled.lines.positions[end + 1] - scaled.lines.positions[end]).norm(), 0.5f, 1e-6f);
 }
 
 }  // namespace

@@ -4,8 +4,9 @@
 // fields displayed: force fields with `drawing` on as shrunk tetrahedra in drawColor1..4
 // (tetrahedron_drawing.h), the other objects as their shaded boundary surface, fixed points as
 // dots, BoxROI boxes as wire boxes, each rigid body's frame as three axes and the Lagrangian
-// constraints' points as markers, bilateral pairs joined, with their forces as arrows. Nothing here
-// touches OpenGL, so it is testable and usable without a display.
+// constraints' points as markers, bilateral pairs joined, with their forces as arrows, and the
+// contacts of the last collision detection as their two points joined, with the normal. Nothing
+// here touches OpenGL, so it is testable and usable without a display.
 #pragma once
 
 #include "fastcorot/sim/simulation.h"
@@ -36,6 +37,13 @@ struct DrawOptions {
   // the scene's size (Simulation::scene_size()).
   bool constraints = true;
   double constraint_force_scale = 0;
+  // Contacts of the last step's collision detection (Simulation::collisions): each contact's two
+  // points (on the first element, on the second) as markers joined by a segment, as SOFA's
+  // PenalityContactForceField draws a contact, and its unit normal (first → second) from the second
+  // point as a segment contact_normal_length long (0: a twentieth of the scene's size), as SOFA's
+  // showNormals draws it. The points are where detection found them, at the step's start.
+  bool contacts = true;
+  double contact_normal_length = 0;
   Rgba surface_color{0.80f, 0.80f, 0.78f, 1.0f};
   Rgba edge_color{0.15f, 0.15f, 0.17f, 1.0f};
   Rgba fixed_point_color{0.90f, 0.15f, 0.10f, 1.0f};
@@ -43,6 +51,8 @@ struct DrawOptions {
   Rgba constraint_color{1.00f, 0.00f, 1.00f, 1.0f};           // SOFA's bilateral points: magenta
   Rgba inactive_constraint_color{0.00f, 1.00f, 0.00f, 1.0f};  // and green when inactive
   Rgba constraint_force_color{0.10f, 0.85f, 0.95f, 1.0f};
+  Rgba contact_color{1.00f, 0.45f, 0.00f, 1.0f};         // orange: apart from the constraints' colours
+  Rgba contact_normal_color{1.00f, 1.00f, 0.00f, 1.0f};  // SOFA's normals: yellow
 };
 
 // Triangles: corners i = 3t, 3t+1, 3t+2 of triangle t; one normal and colour per corner.
@@ -70,7 +80,7 @@ struct DrawGeometry {
   TriangleList triangles;
   LineList lines;
   PointList points;
-  PointList markers;  // larger points (RenderStyle::marker_size): the constraints' points
+  PointList markers;  // larger points (RenderStyle::marker_size): the constraints' and contacts' points
 
   // The box holding everything drawn (empty when nothing is).
   Eigen::AlignedBox3d bounds() const;
@@ -104,6 +114,12 @@ class SceneDrawer {
   template <class Real>
   void draw_constraints(const Simulation<Real>& simulation, const DrawOptions& options,
                         DrawGeometry& geometry);
+
+  // Appends the last detection's contacts: per contact two markers and two segments (the points
+  // joined, then the normal); nothing without a collision stage or with options.contacts off.
+  template <class Real>
+  void draw_contacts(const Simulation<Real>& simulation, const DrawOptions& options,
+                     DrawGeometry& geometry);
 
  private:
   const std::vector<BoundaryTriangle>& boundary_of(const TetMesh& mesh);
