@@ -1,11 +1,11 @@
 // LocalMinDistance's pair rules and cone filters against references written differently, in long
 // double: feet of perpendiculars along unit directions, closest points of lines by the
 // cross-product formulas, projections on triangles with sub-triangle areas, front sides and cones
-// as angles (atan2), neighbourhoods by scanning every element; on thousands of random primitives
-// and a random surface, plus SOFA's thresholds at their boundaries, and hand-made meshes whose
-// cones are known in closed form (a face, a regular tetrahedron's corner, a roof ridge, a flat and
-// a boundary edge). SOFA's own LocalMinDistance_test only checks its four data names and no values;
-// the settings' defaults are checked against LocalMinDistance.cpp's initData.
+// as angles (atan2); on thousands of random primitives, plus SOFA's thresholds at their boundaries,
+// and hand-made meshes whose cones are known in closed form (a face, a regular tetrahedron's
+// corner, a roof ridge, a flat and a boundary edge). SOFA's own LocalMinDistance_test only checks
+// its four data names and no values; the settings' defaults are checked against
+// LocalMinDistance.cpp's initData.
 #include "fastcorot/collision/local_min_distance.h"
 
 #include "fastcorot/core/error.h"
@@ -25,14 +25,16 @@ using Settings = LocalMinDistanceSettings<double>;
 using PointCone = LocalMinDistancePointCone<double>;
 using LineCone = LocalMinDistanceLineCone<double>;
 
-L wide(const V& v) { return v.cast<long double>(); }
+L wide(const V& v) {
+  return v.cast<long double>();
+}
 V random_point(std::mt19937& rng, double scale = 1) {
   std::uniform_real_distribution<double> u(-scale, scale);
   return V(u(rng), u(rng), u(rng));
 }
-// cos of the angle between a and b, through the angle itself.
-long double cos_angle(const L& a, const L& b) { return std::cos(std::atan2(a.cross(b).norm(), a.dot(b))); }
-bool near(long double x, long double threshold) { return std::abs(x - threshold) < 1e-9L; }
+bool near(long double x, long double threshold) {
+  return std::abs(x - threshold) < 1e-9L;
+}
 
 const ProximityDistances<double> kWide{10.0, 0.25};
 const Settings kSofa{};
@@ -43,7 +45,8 @@ Settings unfiltered() {
 }
 
 TEST(LocalMinDistanceSettings, DefaultsAreSofasData) {
-  // LocalMinDistance.cpp: filterIntersection true, angleCone 0.0, coneFactor 0.5, useLMDFilters false.
+  // LocalMinDistance.cpp: filterIntersection true, angleCone 0.0, coneFactor 0.5, useLMDFilters
+  // false.
   EXPECT_TRUE(kSofa.filter_intersection);
   EXPECT_EQ(kSofa.angle_cone, 0.0);
   EXPECT_EQ(kSofa.cone_factor, 0.5);
@@ -75,17 +78,25 @@ TEST(LocalMinDistanceRules, LinePointKeepsOnlyFeetInsideTheSegment) {
   EXPECT_GT(outside, 1000);
   // α = AP·AB / AB·AB exactly 1e-6 and 0.999999 are kept, the next doubles out are not.
   const V a(0, 0, 0), b(1, 0, 0);
-  EXPECT_TRUE(local_min_distance_line_point(a, b, LineCone{}, V(1e-6, 0.5, 0), nullptr, kWide, kSofa));
-  EXPECT_FALSE(local_min_distance_line_point(a, b, LineCone{}, V(std::nextafter(1e-6, 0.0), 0.5, 0), nullptr, kWide, kSofa));
-  EXPECT_TRUE(local_min_distance_line_point(a, b, LineCone{}, V(0.999999, 0.5, 0), nullptr, kWide, kSofa));
-  EXPECT_FALSE(local_min_distance_line_point(a, b, LineCone{}, V(std::nextafter(0.999999, 1.0), 0.5, 0), nullptr, kWide, kSofa));
+  EXPECT_TRUE(
+      local_min_distance_line_point(a, b, LineCone{}, V(1e-6, 0.5, 0), nullptr, kWide, kSofa));
+  EXPECT_FALSE(local_min_distance_line_point(a, b, LineCone{}, V(std::nextafter(1e-6, 0.0), 0.5, 0),
+                                             nullptr, kWide, kSofa));
+  EXPECT_TRUE(
+      local_min_distance_line_point(a, b, LineCone{}, V(0.999999, 0.5, 0), nullptr, kWide, kSofa));
+  EXPECT_FALSE(local_min_distance_line_point(
+      a, b, LineCone{}, V(std::nextafter(0.999999, 1.0), 0.5, 0), nullptr, kWide, kSofa));
   // MinProximity clamps to the end; LocalMinDistance has nothing beyond it.
   EXPECT_TRUE(min_proximity_line_point(a, b, V(1.5, 0.5, 0), kWide));
-  EXPECT_FALSE(local_min_distance_line_point(a, b, LineCone{}, V(1.5, 0.5, 0), nullptr, kWide, kSofa));
+  EXPECT_FALSE(
+      local_min_distance_line_point(a, b, LineCone{}, V(1.5, 0.5, 0), nullptr, kWide, kSofa));
   // Alarm exclusive; SOFA's guard |AB| < 1e-12 |AP|; a segment of no length.
-  EXPECT_FALSE(local_min_distance_line_point(a, b, LineCone{}, V(0.5, 2, 0), nullptr, {2.0, 0.0}, kSofa));
-  EXPECT_TRUE(local_min_distance_line_point(a, b, LineCone{}, V(0.5, 1.999, 0), nullptr, {2.0, 0.0}, kSofa));
-  EXPECT_FALSE(local_min_distance_line_point(a, V(1e-13, 0, 0), LineCone{}, V(5e-14, 1, 0), nullptr, kWide, kSofa));
+  EXPECT_FALSE(
+      local_min_distance_line_point(a, b, LineCone{}, V(0.5, 2, 0), nullptr, {2.0, 0.0}, kSofa));
+  EXPECT_TRUE(local_min_distance_line_point(a, b, LineCone{}, V(0.5, 1.999, 0), nullptr, {2.0, 0.0},
+                                            kSofa));
+  EXPECT_FALSE(local_min_distance_line_point(a, V(1e-13, 0, 0), LineCone{}, V(5e-14, 1, 0), nullptr,
+                                             kWide, kSofa));
   EXPECT_FALSE(local_min_distance_line_point(a, a, LineCone{}, a, nullptr, kWide, kSofa));
 }
 
@@ -93,9 +104,11 @@ TEST(LocalMinDistanceRules, LineLineUsesItsOwnThresholdsAndTheLineFilterCatchesP
   std::mt19937 rng(12);
   int found = 0;
   for (int k = 0; k < 4000; ++k) {
-    const V a = random_point(rng), b = random_point(rng), c = random_point(rng), e = random_point(rng);
+    const V a = random_point(rng), b = random_point(rng), c = random_point(rng),
+            e = random_point(rng);
     const L d1 = wide(b) - wide(a), d2 = wide(e) - wide(c), w = wide(c) - wide(a), n = d1.cross(d2);
-    const long double s = w.cross(d2).dot(n) / n.squaredNorm(), t = w.cross(d1).dot(n) / n.squaredNorm();
+    const long double s = w.cross(d2).dot(n) / n.squaredNorm(),
+                      t = w.cross(d1).dot(n) / n.squaredNorm();
     if (near(s, 1e-15L) || near(t, 1e-15L) || near(s, 1 - 1e-15L) || near(t, 1 - 1e-15L)) continue;
     const bool inside = s >= 1e-15L && s <= 1 - 1e-15L && t >= 1e-15L && t <= 1 - 1e-15L;
     const auto out = local_min_distance_line_line(a, b, LineCone{}, c, e, LineCone{}, kWide, kSofa);
@@ -108,32 +121,39 @@ TEST(LocalMinDistanceRules, LineLineUsesItsOwnThresholdsAndTheLineFilterCatchesP
     EXPECT_NEAR(out->value, double((q - p).norm()) - 0.25, 1e-9);
   }
   EXPECT_GT(found, 500);
-  // Crossing segments built so that α = t exactly: 1e-15 and 1 − 1e-15 kept, the next doubles out not.
+  // Crossing segments built so that α = t exactly: 1e-15 and 1 − 1e-15 kept, the next doubles out
+  // not.
   const auto cross_at = [&](double t) {
-    return local_min_distance_line_line(V(0, 0, 0), V(1, 0, 0), LineCone{}, V(t, -1, 1), V(t, 1, 1), LineCone{}, kWide, kSofa);
+    return local_min_distance_line_line(V(0, 0, 0), V(1, 0, 0), LineCone{}, V(t, -1, 1), V(t, 1, 1),
+                                        LineCone{}, kWide, kSofa);
   };
   EXPECT_TRUE(cross_at(1e-15));
   EXPECT_FALSE(cross_at(std::nextafter(1e-15, 0.0)));
   EXPECT_TRUE(cross_at(1.0 - 1e-15));
   EXPECT_FALSE(cross_at(std::nextafter(1.0 - 1e-15, 2.0)));
   EXPECT_TRUE(cross_at(1e-7));  // MinProximity's [1e-6, 0.999999] would reject it
-  EXPECT_FALSE(min_proximity_line_line(V(0, 0, 0), V(1, 0, 0), V(1e-7, -1, 1), V(1e-7, 1, 1), kWide));
+  EXPECT_FALSE(
+      min_proximity_line_line(V(0, 0, 0), V(1, 0, 0), V(1e-7, -1, 1), V(1e-7, 1, 1), kWide));
   // det = |AB × CD|² = s⁴: s = 1e-8 is parallel (≤ 1e-30), the midpoints; s = 1e-7 is not.
   const double s8 = 1e-8, s7 = 1e-7;
-  const auto parallel = local_min_distance_line_line(V(0, 0, 0), V(s8, 0, 0), LineCone{}, V(0, -s8 / 2, 1), V(0, s8 / 2, 1), LineCone{},
-                                                     kWide, kSofa);
+  const auto parallel =
+      local_min_distance_line_line(V(0, 0, 0), V(s8, 0, 0), LineCone{}, V(0, -s8 / 2, 1),
+                                   V(0, s8 / 2, 1), LineCone{}, kWide, kSofa);
   ASSERT_TRUE(parallel);
   EXPECT_EQ(parallel->point[0], V(s8 / 2, 0, 0));
   EXPECT_EQ(parallel->point[1], V(0, 0, 1));
-  EXPECT_FALSE(local_min_distance_line_line(V(0, 0, 0), V(s7, 0, 0), LineCone{}, V(0, -s7 / 2, 1), V(0, s7 / 2, 1), LineCone{}, kWide,
+  EXPECT_FALSE(local_min_distance_line_line(V(0, 0, 0), V(s7, 0, 0), LineCone{}, V(0, -s7 / 2, 1),
+                                            V(0, s7 / 2, 1), LineCone{}, kWide,
                                             kSofa));  // α = 0
   // Parallel segments side by side: midpoints along the segments, so the segment filter (no two
   // triangles: |u·v̂| ≤ 1e-4) rejects it; unfiltered (and under MinProximity) it is a contact.
   const V a(0, 0, 0), b(1, 0, 0), c(5, 0.5, 0), e(7, 0.5, 0);
   EXPECT_FALSE(local_min_distance_line_line(a, b, LineCone{}, c, e, LineCone{}, kWide, kSofa));
-  EXPECT_TRUE(local_min_distance_line_line(a, b, LineCone{}, c, e, LineCone{}, kWide, unfiltered()));
+  EXPECT_TRUE(
+      local_min_distance_line_line(a, b, LineCone{}, c, e, LineCone{}, kWide, unfiltered()));
   EXPECT_TRUE(min_proximity_line_line(a, b, c, e, kWide));
-  EXPECT_FALSE(local_min_distance_line_line(a, a, LineCone{}, c, e, LineCone{}, kWide, unfiltered()));  // no length
+  EXPECT_FALSE(local_min_distance_line_line(a, a, LineCone{}, c, e, LineCone{}, kWide,
+                                            unfiltered()));  // no length
 }
 
 struct Projection {
@@ -153,7 +173,8 @@ TEST(LocalMinDistanceRules, TrianglePointAndSphereKeepInsideAndFrontOnly) {
   std::mt19937 rng(13);
   int front = 0, behind = 0;
   for (int k = 0; k < 4000; ++k) {
-    const V a = random_point(rng), b = random_point(rng), c = random_point(rng), p = random_point(rng);
+    const V a = random_point(rng), b = random_point(rng), c = random_point(rng),
+            p = random_point(rng);
     const Projection r = project(wide(a), wide(b), wide(c), wide(p));
     if (near(r.alpha, 1e-6L) || near(r.beta, 1e-6L) || near(r.alpha + r.beta, 0.999999L)) continue;
     const bool inside = r.alpha >= 1e-6L && r.beta >= 1e-6L && r.alpha + r.beta <= 0.999999L;
@@ -161,7 +182,10 @@ TEST(LocalMinDistanceRules, TrianglePointAndSphereKeepInsideAndFrontOnly) {
     const long double side = (wide(p) - r.q).dot((wide(b) - wide(a)).cross(wide(c) - wide(b)));
     const auto out = local_min_distance_triangle_point(a, b, c, false, p, nullptr, kWide, kSofa);
     ASSERT_EQ(out.has_value(), inside && side >= 0) << k;
-    ASSERT_EQ(local_min_distance_triangle_point(a, b, c, true, p, nullptr, kWide, kSofa).has_value(), inside) << k;  // bothSide
+    ASSERT_EQ(
+        local_min_distance_triangle_point(a, b, c, true, p, nullptr, kWide, kSofa).has_value(),
+        inside)
+        << k;  // bothSide
     const ProximitySphere<double> sphere{p, 0.1, false};
     const auto ball = local_min_distance_triangle_sphere(a, b, c, false, sphere, kWide, kSofa);
     ASSERT_EQ(ball.has_value(), inside && side >= 0) << k;
@@ -180,55 +204,72 @@ TEST(LocalMinDistanceRules, TrianglePointAndSphereKeepInsideAndFrontOnly) {
   EXPECT_GT(behind, 200);
   // α, β from Cramer's rule on the unit right triangle are the coordinates themselves.
   const V a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
-  EXPECT_TRUE(local_min_distance_triangle_point(a, b, c, false, V(1e-6, 0.3, 0.1), nullptr, kWide, kSofa));
-  EXPECT_FALSE(local_min_distance_triangle_point(a, b, c, false, V(std::nextafter(1e-6, 0.0), 0.3, 0.1), nullptr, kWide, kSofa));
+  EXPECT_TRUE(
+      local_min_distance_triangle_point(a, b, c, false, V(1e-6, 0.3, 0.1), nullptr, kWide, kSofa));
+  EXPECT_FALSE(local_min_distance_triangle_point(
+      a, b, c, false, V(std::nextafter(1e-6, 0.0), 0.3, 0.1), nullptr, kWide, kSofa));
   ASSERT_EQ(0.25 + 0.749999, 0.999999);
-  EXPECT_TRUE(local_min_distance_triangle_point(a, b, c, false, V(0.25, 0.749999, 0.1), nullptr, kWide, kSofa));
-  EXPECT_FALSE(local_min_distance_triangle_point(a, b, c, false, V(0.25, std::nextafter(0.749999, 1.0), 0.1), nullptr, kWide, kSofa));
+  EXPECT_TRUE(local_min_distance_triangle_point(a, b, c, false, V(0.25, 0.749999, 0.1), nullptr,
+                                                kWide, kSofa));
+  EXPECT_FALSE(local_min_distance_triangle_point(
+      a, b, c, false, V(0.25, std::nextafter(0.749999, 1.0), 0.1), nullptr, kWide, kSofa));
 }
 
 TEST(LocalMinDistanceRules, SpheresAddTheirRadiiAndLineSphereTakesTheTrueFoot) {
   const ProximityDistances<double> d{0.5, 0.1};
-  // Sphere–Sphere: centres 2 apart, radii 1 and 0.5; A + r₁ + r₂ = 2 is exclusive here (MinProximity keeps it).
-  EXPECT_FALSE(local_min_distance_sphere_sphere<double>({V(0, 0, 0), 1, false}, {V(2, 0, 0), 0.5, false}, d));
-  EXPECT_TRUE(min_proximity_sphere_sphere<double>({V(0, 0, 0), 1, false}, {V(2, 0, 0), 0.5, false}, d));
-  const auto spheres = local_min_distance_sphere_sphere<double>({V(0, 0, 0), 1, false}, {V(1.9, 0, 0), 0.5, false}, d);
+  // Sphere–Sphere: centres 2 apart, radii 1 and 0.5; A + r₁ + r₂ = 2 is exclusive here
+  // (MinProximity keeps it).
+  EXPECT_FALSE(local_min_distance_sphere_sphere<double>({V(0, 0, 0), 1, false},
+                                                        {V(2, 0, 0), 0.5, false}, d));
+  EXPECT_TRUE(
+      min_proximity_sphere_sphere<double>({V(0, 0, 0), 1, false}, {V(2, 0, 0), 0.5, false}, d));
+  const auto spheres = local_min_distance_sphere_sphere<double>({V(0, 0, 0), 1, false},
+                                                                {V(1.9, 0, 0), 0.5, false}, d);
   ASSERT_TRUE(spheres);
   EXPECT_EQ(spheres->point[0], V(0, 0, 0));
   EXPECT_EQ(spheres->point[1], V(1.9, 0, 0));
   EXPECT_NEAR(spheres->value, 1.9 - 1.5 - 0.1, 1e-15);
   // Sphere–Point: the centre first.
-  const auto point = local_min_distance_sphere_point<double>({V(0, 0, 0), 1, false}, V(0, 1.2, 0), nullptr, d, kSofa);
+  const auto point = local_min_distance_sphere_point<double>({V(0, 0, 0), 1, false}, V(0, 1.2, 0),
+                                                             nullptr, d, kSofa);
   ASSERT_TRUE(point);
   EXPECT_EQ(point->normal, V(0, 1, 0));
   EXPECT_NEAR(point->value, 1.2 - 1.1, 1e-15);
-  // Line–Sphere: the centre projects at a quarter of the segment, and the point is there (MinProximity: three quarters).
-  const auto line = local_min_distance_line_sphere<double>(V(0, 0, 0), V(4, 0, 0), LineCone{}, {V(1, 1, 0), 0.5, false}, kWide, kSofa);
+  // Line–Sphere: the centre projects at a quarter of the segment, and the point is there
+  // (MinProximity: three quarters).
+  const auto line = local_min_distance_line_sphere<double>(V(0, 0, 0), V(4, 0, 0), LineCone{},
+                                                           {V(1, 1, 0), 0.5, false}, kWide, kSofa);
   ASSERT_TRUE(line);
   EXPECT_EQ(line->point[0], V(1, 0, 0));
   EXPECT_EQ(line->point[1], V(1, 1, 0));
   EXPECT_NEAR(line->value, 1 - 0.75, 1e-15);
-  const auto mirrored = min_proximity_line_sphere<double>(V(0, 0, 0), V(4, 0, 0), {V(1, 1, 0), 0.5, false}, kWide);
+  const auto mirrored =
+      min_proximity_line_sphere<double>(V(0, 0, 0), V(4, 0, 0), {V(1, 1, 0), 0.5, false}, kWide);
   ASSERT_TRUE(mirrored);
   EXPECT_EQ(mirrored->point[0], V(3, 0, 0));
   // Rigid spheres have no LocalMinDistance rule in SOFA.
-  EXPECT_THROW(local_min_distance_sphere_sphere<double>({V(0, 0, 0), 1, true}, {V(1, 0, 0), 1, false}, d), Error);
+  EXPECT_THROW(
+      local_min_distance_sphere_sphere<double>({V(0, 0, 0), 1, true}, {V(1, 0, 0), 1, false}, d),
+      Error);
 }
 
 TEST(LocalMinDistanceRules, ZeroDistancesAndDegenerateElementsGiveNoNaN) {
   // SOFA divides by the zero distance; here the triangle's normal, or (1, 0, 0), flagged.
-  const auto on_face = local_min_distance_triangle_point(V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), false, V(0.2, 0.2, 0), nullptr, kWide, kSofa);
+  const auto on_face = local_min_distance_triangle_point(V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), false,
+                                                         V(0.2, 0.2, 0), nullptr, kWide, kSofa);
   ASSERT_TRUE(on_face);
   EXPECT_TRUE(on_face->null_distance);
   EXPECT_EQ(on_face->normal, V(0, 0, 1));
   EXPECT_EQ(on_face->value, -0.25);
-  const auto same = local_min_distance_point_point<double>(V(1, 2, 3), nullptr, V(1, 2, 3), nullptr, kWide, kSofa);
+  const auto same = local_min_distance_point_point<double>(V(1, 2, 3), nullptr, V(1, 2, 3), nullptr,
+                                                           kWide, kSofa);
   ASSERT_TRUE(same);
   EXPECT_EQ(same->normal, V(1, 0, 0));
   // Collinear corners: no output (SOFA's NaN barycentrics).
-  EXPECT_FALSE(local_min_distance_triangle_point(V(0, 0, 0), V(1, 0, 0), V(2, 0, 0), true, V(1, 0.1, 0), nullptr, kWide, unfiltered()));
-  EXPECT_FALSE(local_min_distance_triangle_sphere<double>(V(0, 0, 0), V(1, 0, 0), V(2, 0, 0), true, {V(1, 0.1, 0), 0.5, false}, kWide,
-                                                          unfiltered()));
+  EXPECT_FALSE(local_min_distance_triangle_point(V(0, 0, 0), V(1, 0, 0), V(2, 0, 0), true,
+                                                 V(1, 0.1, 0), nullptr, kWide, unfiltered()));
+  EXPECT_FALSE(local_min_distance_triangle_sphere<double>(
+      V(0, 0, 0), V(1, 0, 0), V(2, 0, 0), true, {V(1, 0.1, 0), 0.5, false}, kWide, unfiltered()));
 }
 
 // A mesh and its neighbourhood at its positions.
@@ -251,9 +292,13 @@ struct Mesh {
 
 TEST(LocalMinDistanceCones, PointBehindAFaceIsRejectedInFrontKept) {
   // A square of two triangles facing +z; a point below or above the first one.
-  Mesh m{{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)}, {{0, 1, 2}, {0, 2, 3}}, {{0, 1}, {1, 2}, {2, 0}, {2, 3}, {3, 0}}};
+  Mesh m{{V(0, 0, 0), V(1, 0, 0), V(1, 1, 0), V(0, 1, 0)},
+         {{0, 1, 2}, {0, 2, 3}},
+         {{0, 1}, {1, 2}, {2, 0}, {2, 3}, {3, 0}}};
   const auto test = [&](double z, bool both_side, const Settings& s) {
-    return local_min_distance_triangle_point(m.x[0], m.x[1], m.x[2], both_side, V(0.6, 0.3, z), nullptr, kWide, s).has_value();
+    return local_min_distance_triangle_point(m.x[0], m.x[1], m.x[2], both_side, V(0.6, 0.3, z),
+                                             nullptr, kWide, s)
+        .has_value();
   };
   EXPECT_TRUE(test(0.2, false, kSofa));
   EXPECT_FALSE(test(-0.2, false, kSofa));
@@ -270,12 +315,13 @@ TEST(LocalMinDistanceCones, PointBehindAFaceIsRejectedInFrontKept) {
   EXPECT_TRUE(pair(V(1.05, -0.05, 0.3), kSofa));
   EXPECT_FALSE(pair(V(1.05, -0.05, -0.3), kSofa));
   EXPECT_TRUE(pair(V(1.05, -0.05, -0.3), unfiltered()));
-  EXPECT_TRUE(local_min_distance_point_point<double>(m.x[1], nullptr, V(1.05, -0.05, -0.3), nullptr, kWide, kSofa));  // no LineModel
+  EXPECT_TRUE(local_min_distance_point_point<double>(m.x[1], nullptr, V(1.05, -0.05, -0.3), nullptr,
+                                                     kWide, kSofa));  // no LineModel
 }
 
 TEST(LocalMinDistanceCones, ConvexCornerKeepsItsConeAndRejectsOutside) {
-  // A regular tetrahedron about the origin, faces outward; corner 0 = (1, 1, 1): nMean = (1, 1, 1)/√3
-  // by symmetry, edges e_k = unit(x₀ − x_k) with nMean·e_k = √(2/3).
+  // A regular tetrahedron about the origin, faces outward; corner 0 = (1, 1, 1): nMean = (1, 1,
+  // 1)/√3 by symmetry, edges e_k = unit(x₀ − x_k) with nMean·e_k = √(2/3).
   Mesh m{{V(1, 1, 1), V(1, -1, -1), V(-1, 1, -1), V(-1, -1, 1)},
          {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}},
          {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
@@ -285,12 +331,13 @@ TEST(LocalMinDistanceCones, ConvexCornerKeepsItsConeAndRejectsOutside) {
   const V w = (e1 - n * n.dot(e1)).normalized();  // e₁'s part across nMean: e₁·(−w) = −1/√3
   const PointCone cone = m.cones.point_cone(0);
   const auto kept = [&](const V& v, const Settings& s, const PointCone& c) {
-    return local_min_distance_point_point(m.x[0], &c, V(m.x[0] + 0.1 * v), nullptr, kWide, s).has_value();
+    return local_min_distance_point_point(m.x[0], &c, V(m.x[0] + 0.1 * v), nullptr, kWide, s)
+        .has_value();
   };
   EXPECT_TRUE(kept(n, kSofa, cone));
   EXPECT_TRUE(kept(V(n + 0.5 * w), kSofa, cone));
-  // v = −w + 0.05 n: nMean·v > 0, e₁·v = −0.577 + 0.041 below −coneFactor √(2/3) = −0.408: rejected;
-  // with coneFactor 1 (−0.816) kept, as unfiltered.
+  // v = −w + 0.05 n: nMean·v > 0, e₁·v = −0.577 + 0.041 below −coneFactor √(2/3) = −0.408:
+  // rejected; with coneFactor 1 (−0.816) kept, as unfiltered.
   const V outside = -w + 0.05 * n;
   EXPECT_FALSE(kept(outside, kSofa, cone));
   Settings wide_cone;
@@ -301,21 +348,24 @@ TEST(LocalMinDistanceCones, ConvexCornerKeepsItsConeAndRejectsOutside) {
   Settings angle;
   angle.angle_cone = 0.15;
   EXPECT_TRUE(kept(outside, angle, cone));
-  // From behind: rejected; bothSide skips only the nMean test, the edges still reject it (e·(−n) = −0.816).
+  // From behind: rejected; bothSide skips only the nMean test, the edges still reject it (e·(−n) =
+  // −0.816).
   EXPECT_FALSE(kept(-n, kSofa, cone));
   EXPECT_FALSE(kept(-n, kSofa, m.cones.point_cone(0, true)));
   EXPECT_TRUE(kept(-n, unfiltered(), cone));
   // No LineCollisionModel near the point model: no cone at all.
-  EXPECT_TRUE(local_min_distance_point_point<double>(m.x[0], nullptr, V(m.x[0] - 0.1 * n), nullptr, kWide, kSofa));
+  EXPECT_TRUE(local_min_distance_point_point<double>(m.x[0], nullptr, V(m.x[0] - 0.1 * n), nullptr,
+                                                     kWide, kSofa));
 }
 
 TEST(LocalMinDistanceCones, SegmentConesOfARidgeAFlatEdgeAndABoundaryEdge) {
   // Edge (0, 1) along x; the left triangle lists 0→1, the right one 1→0. h > 0: a convex ridge
-  // whose faces lean by atan(h); nMean = +z, t_left = (0, −1, h)/√(1+h²), t_right = (0, 1, h)/√(1+h²),
-  // each widened by coneFactor nMean·t = 0.5 h/√(1+h²).
+  // whose faces lean by atan(h); nMean = +z, t_left = (0, −1, h)/√(1+h²), t_right = (0, 1,
+  // h)/√(1+h²), each widened by coneFactor nMean·t = 0.5 h/√(1+h²).
   const auto ridge = [](double h, bool left_first) {
     return Mesh({V(0, 0, 0), V(1, 0, 0), V(0.5, 1, -h), V(0.5, -1, -h)},
-                left_first ? std::vector<Triangle>{{0, 1, 2}, {1, 0, 3}} : std::vector<Triangle>{{1, 0, 3}, {0, 1, 2}},
+                left_first ? std::vector<Triangle>{{0, 1, 2}, {1, 0, 3}}
+                           : std::vector<Triangle>{{1, 0, 3}, {0, 1, 2}},
                 {{0, 1}, {0, 2}, {1, 2}, {0, 3}, {1, 3}});
   };
   const auto kept = [](const Mesh& m, double phi, const Settings& s = kSofa) {
@@ -325,7 +375,8 @@ TEST(LocalMinDistanceCones, SegmentConesOfARidgeAFlatEdgeAndABoundaryEdge) {
   const double deg = std::acos(-1.0) / 180;
   for (bool left_first : {true, false}) {
     const Mesh m = ridge(0.5, left_first);
-    EXPECT_EQ(m.topology.edge_right_left[0], (left_first ? std::array<Index, 2>{1, 0} : std::array<Index, 2>{0, 1}));
+    EXPECT_EQ(m.topology.edge_right_left[0],
+              (left_first ? std::array<Index, 2>{1, 0} : std::array<Index, 2>{0, 1}));
     // t_left·v = (−sin φ + h cos φ)/√(1+h²) ≥ −0.5 h/√(1+h²) while sin φ − h cos φ ≤ h/2, i.e.
     // φ ≤ atan h + asin(h/2/√(1+h²)) = 39.486° for h = 0.5 (the faces' own normals lean by 26.57°).
     const double limit = std::atan(0.5) + std::asin(0.25 / std::sqrt(1.25));
@@ -340,10 +391,12 @@ TEST(LocalMinDistanceCones, SegmentConesOfARidgeAFlatEdgeAndABoundaryEdge) {
   // Two triangles both running along edge (0, 1) (an inconsistent mesh): SOFA's list puts the
   // later one first (MeshTopology::createTrianglesAroundEdgeArray inserts such triangles in
   // front), so LocalMinDistance takes triangle 1 as left and triangle 0 as right.
-  const Mesh folded({V(0, 0, 0), V(1, 0, 0), V(0.5, 1, 0), V(0.5, -1, 0)}, {{0, 1, 2}, {0, 1, 3}}, {{0, 1}, {1, 2}, {2, 0}, {1, 3}, {3, 0}});
+  const Mesh folded({V(0, 0, 0), V(1, 0, 0), V(0.5, 1, 0), V(0.5, -1, 0)}, {{0, 1, 2}, {0, 1, 3}},
+                    {{0, 1}, {1, 2}, {2, 0}, {1, 3}, {3, 0}});
   EXPECT_EQ(folded.topology.edge_right_left[0], (std::array<Index, 2>{0, 1}));
   // Both running against it: kept in order, the first is right.
-  const Mesh against({V(0, 0, 0), V(1, 0, 0), V(0.5, 1, 0), V(0.5, -1, 0)}, {{1, 0, 2}, {1, 0, 3}}, {{0, 1}, {1, 2}, {2, 0}, {1, 3}, {3, 0}});
+  const Mesh against({V(0, 0, 0), V(1, 0, 0), V(0.5, 1, 0), V(0.5, -1, 0)}, {{1, 0, 2}, {1, 0, 3}},
+                     {{0, 1}, {1, 2}, {2, 0}, {1, 3}, {3, 0}});
   EXPECT_EQ(against.topology.edge_right_left[0], (std::array<Index, 2>{0, 1}));
   // Flat (h = 0): t = ±y and no widening, so only v exactly along the normal is kept.
   const Mesh flat = ridge(0, true);
@@ -351,18 +404,23 @@ TEST(LocalMinDistanceCones, SegmentConesOfARidgeAFlatEdgeAndABoundaryEdge) {
   EXPECT_FALSE(kept(flat, 1e-3));
   EXPECT_FALSE(kept(flat, -1e-3));
   // A boundary edge (one triangle): any side, as long as |u·v̂| ≤ 1e-4.
-  const Mesh boundary({V(0, 0, 0), V(1, 0, 0), V(0.5, 1, 0)}, {{0, 1, 2}}, {{0, 1}, {1, 2}, {2, 0}});
+  const Mesh boundary({V(0, 0, 0), V(1, 0, 0), V(0.5, 1, 0)}, {{0, 1, 2}},
+                      {{0, 1}, {1, 2}, {2, 0}});
   const LineCone one = boundary.cones.line_cone(0);
   EXPECT_FALSE(one.two_triangles);
-  EXPECT_TRUE(local_min_distance_line_validity(boundary.x[0], boundary.x[1], one, V(0, 0, -1), kSofa));
-  EXPECT_TRUE(local_min_distance_line_validity(boundary.x[0], boundary.x[1], one, V(0.99e-4, 0, 1), kSofa));
-  EXPECT_FALSE(local_min_distance_line_validity(boundary.x[0], boundary.x[1], one, V(1.01e-4, 0, 1), kSofa));
+  EXPECT_TRUE(
+      local_min_distance_line_validity(boundary.x[0], boundary.x[1], one, V(0, 0, -1), kSofa));
+  EXPECT_TRUE(
+      local_min_distance_line_validity(boundary.x[0], boundary.x[1], one, V(0.99e-4, 0, 1), kSofa));
+  EXPECT_FALSE(
+      local_min_distance_line_validity(boundary.x[0], boundary.x[1], one, V(1.01e-4, 0, 1), kSofa));
   // Through Line–Point: a point below the ridge is rejected by the segment's cone; bothSide skips
   // only the nMean test, so below a ridge the tangents still reject it (t·(−z) = −0.447 < −0.224),
   // below a flat edge (t·(−z) = 0) it is kept.
   const Mesh m = ridge(0.5, true);
   const auto line_point = [](const Mesh& mesh, bool both_side, double z) {
-    return local_min_distance_line_point(mesh.x[0], mesh.x[1], mesh.cones.line_cone(0, both_side), V(0.5, 0, z), nullptr, kWide, kSofa)
+    return local_min_distance_line_point(mesh.x[0], mesh.x[1], mesh.cones.line_cone(0, both_side),
+                                         V(0.5, 0, z), nullptr, kWide, kSofa)
         .has_value();
   };
   EXPECT_TRUE(line_point(m, false, 0.3));
@@ -370,132 +428,6 @@ TEST(LocalMinDistanceCones, SegmentConesOfARidgeAFlatEdgeAndABoundaryEdge) {
   EXPECT_FALSE(line_point(m, true, -0.3));
   EXPECT_FALSE(line_point(flat, false, -0.3));
   EXPECT_TRUE(line_point(flat, true, -0.3));
-}
-
-TEST(LocalMinDistanceCones, NeighbourhoodAndFiltersMatchAScanOfARandomSurface) {
-  // A 6×6 height field (consistently oriented, some edges listed backwards), a polyline and a lone point.
-  std::mt19937 rng(14);
-  std::uniform_real_distribution<double> u(-1, 1);
-  Mesh m;
-  const int n = 6;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) m.x.push_back(V(i + 0.3 * u(rng), j + 0.3 * u(rng), 0.6 * u(rng)));
-  for (int j = 0; j + 1 < n; ++j) {
-    for (int i = 0; i + 1 < n; ++i) {
-      const Index v00 = j * n + i, v10 = v00 + 1, v01 = v00 + n, v11 = v01 + 1;
-      m.triangles.push_back({v00, v10, v11});
-      m.triangles.push_back({v00, v11, v01});
-    }
-  }
-  for (const Triangle& t : m.triangles) {
-    for (int k = 0; k < 3; ++k) {
-      Edge e{t[k], t[(k + 1) % 3]};
-      bool known = false;
-      for (const Edge& f : m.edges) known |= (f[0] == e[0] && f[1] == e[1]) || (f[0] == e[1] && f[1] == e[0]);
-      if (!known) m.edges.push_back(rng() % 2 ? e : Edge{e[1], e[0]});
-    }
-  }
-  const Index polyline = Index(m.x.size());
-  for (int k = 0; k < 4; ++k) m.x.push_back(V(k, -3 + u(rng) * 0.2, u(rng)));
-  for (int k = 0; k < 3; ++k) m.edges.push_back({polyline + k, polyline + k + 1});
-  m.x.push_back(V(9, 9, 9));
-  m.build();
-
-  const auto unit_normal = [&](const Triangle& t) {
-    return L((wide(m.x[t[1]]) - wide(m.x[t[0]])).cross(wide(m.x[t[2]]) - wide(m.x[t[1]])).normalized());
-  };
-  std::vector<L> mean(m.x.size());
-  for (std::size_t v = 0; v < m.x.size(); ++v) {
-    L sum = L::Zero();
-    bool any = false;
-    for (const Triangle& t : m.triangles)
-      for (Index c : t)
-        if (c == Index(v)) sum += unit_normal(t), any = true;
-    for (const Edge& e : m.edges)
-      if (!any && (e[0] == Index(v) || e[1] == Index(v))) sum += (wide(m.x[v]) - wide(m.x[e[0] + e[1] - Index(v)])).normalized();
-    EXPECT_LT((wide(m.cones.normal_sum[v]) - sum).norm(), 1e-12L) << v;
-    mean[v] = sum.norm() > 1e-10L ? L(sum.normalized()) : sum;
-  }
-  EXPECT_EQ(m.cones.normal_sum.back(), V::Zero());
-
-  std::uniform_real_distribution<double> setting(0, 1);
-  int rejected = 0, accepted = 0;
-  for (int k = 0; k < 6000; ++k) {
-    Settings s;
-    s.angle_cone = k % 3 == 0 ? 0.0 : 0.3 * setting(rng);
-    s.cone_factor = setting(rng);
-    const bool both_side = k % 5 == 0;
-    const V v = random_point(rng, 2);
-    bool expected = true, ambiguous = false;
-    const auto reject_below = [&](long double value, long double threshold) {
-      ambiguous |= near(value, threshold);
-      if (value < threshold) expected = false;
-    };
-    bool got = false, got_unfiltered = false;
-    Settings off = s;
-    off.filter_intersection = false;
-    if (k % 2 == 0) {  // a vertex
-      const Index p = Index(rng() % m.x.size());
-      if (mean[p].norm() > 1e-10L && !both_side) reject_below(cos_angle(mean[p], wide(v)), -s.angle_cone);
-      for (const Edge& e : m.edges) {
-        if (e[0] != p && e[1] != p) continue;
-        const L dir = (wide(m.x[p]) - wide(m.x[e[0] + e[1] - p])).normalized();
-        reject_below(cos_angle(dir, wide(v)), -(std::max(0.0L, s.cone_factor * mean[p].dot(dir)) + s.angle_cone));
-      }
-      const PointCone cone = m.cones.point_cone(p, both_side);
-      got = local_min_distance_point_validity(&cone, v, s);
-      got_unfiltered = local_min_distance_point_validity(&cone, v, off);
-    } else {  // an edge
-      const Index i = Index(rng() % m.edges.size());
-      const Edge& e = m.edges[i];
-      const L a = wide(m.x[e[0]]), b = wide(m.x[e[1]]), ab = b - a;
-      std::vector<Triangle> around;
-      for (const Triangle& t : m.triangles) {
-        int shared = 0;
-        for (Index c : t) shared += (c == e[0]) + (c == e[1]);
-        if (shared == 2) around.push_back(t);
-      }
-      if (around.size() == 2) {
-        const auto lists_forward = [&](const Triangle& t) {
-          for (int c = 0; c < 3; ++c)
-            if (t[c] == e[0]) return t[(c + 1) % 3] == e[1];
-          return false;
-        };
-        const Triangle& left = lists_forward(around[0]) ? around[0] : around[1];
-        const Triangle& right = lists_forward(around[0]) ? around[1] : around[0];
-        // Each tangent points away from its triangle's third corner, across the edge.
-        const auto away = [&](const Triangle& t) {
-          const L k3 = wide(m.x[t[0] + t[1] + t[2] - e[0] - e[1]]) - a;
-          return L(-(k3 - ab * (k3.dot(ab) / ab.squaredNorm())).normalized());
-        };
-        const L nm = (unit_normal(right) + unit_normal(left)).normalized();
-        if (!both_side) reject_below(nm.dot(wide(v)), 0);
-        for (const L& t : {away(right), away(left)})
-          reject_below(cos_angle(t, wide(v)), -(std::max(0.0L, s.cone_factor * nm.dot(t)) + s.angle_cone));
-      } else {
-        reject_below(-std::abs(cos_angle(ab, wide(v))), -(s.angle_cone + 1e-4L));
-      }
-      got = local_min_distance_line_validity(m.x[e[0]], m.x[e[1]], m.cones.line_cone(i, both_side), v, s);
-      got_unfiltered = local_min_distance_line_validity(m.x[e[0]], m.x[e[1]], m.cones.line_cone(i, both_side), v, off);
-    }
-    ASSERT_TRUE(got_unfiltered) << k;  // filterIntersection = false accepts everything
-    if (ambiguous) continue;
-    ASSERT_EQ(got, expected) << k;
-    (expected ? accepted : rejected)++;
-  }
-  EXPECT_GT(accepted, 500);
-  EXPECT_GT(rejected, 500);
-}
-
-TEST(LocalMinDistanceCones, BadTopologiesAreNamed) {
-  const std::vector<Triangle> triangles{{0, 1, 5}};
-  EXPECT_THROW(local_min_distance_topology(3, triangles, {}), Error);
-  const std::vector<Edge> repeated{{0, 1}, {1, 0}};
-  EXPECT_THROW(local_min_distance_topology(3, {}, repeated), Error);
-  const auto topology = local_min_distance_topology(3, {}, std::vector<Edge>{{0, 1}});
-  LocalMinDistanceNeighbourhood<double> cones;
-  const std::vector<V> two{V::Zero(), V::Zero()};
-  EXPECT_THROW(compute_local_min_distance_neighbourhood<double>(topology, two, cones), Error);
 }
 
 }  // namespace
