@@ -94,9 +94,11 @@ int CollisionModel<Real>::update_tree() {
         for (Index p : triangles[e]) box.extend(at(p));
         degenerate_[e] = degenerate_triangle(at(triangles[e][0]), at(triangles[e][1]), at(triangles[e][2]));
         break;
+      case CollisionElements::spheres: box.extend(x[e]); break;
     }
-    box.min.array() -= contact_distance;
-    box.max.array() += contact_distance;
+    const Real grow = kind == CollisionElements::spheres ? radii[e] + contact_distance : contact_distance;
+    box.min.array() -= grow;
+    box.max.array() += grow;
     boxes_[e] = box;
   }
   if (built_ && tree_.size() == n) {
@@ -106,6 +108,13 @@ int CollisionModel<Real>::update_tree() {
     built_ = true;
   }
   return static_cast<int>(std::count(degenerate_.begin(), degenerate_.end(), char(1)));
+}
+
+template <class Real>
+void CollisionModel<Real>::update_neighbourhood() {
+  if (!cone_topology || (neighbourhood_built_ && (!moving || points->is_still()))) return;
+  compute_local_min_distance_neighbourhood<Real>(*cone_topology, points->positions(), neighbourhood);
+  neighbourhood_built_ = true;
 }
 
 template <class Real>

@@ -7,19 +7,6 @@
 
 namespace fastcorot {
 
-namespace {
-
-// SOFA's intersector order: Triangle before Line before Point.
-int rank(CollisionElements kind) {
-  switch (kind) {
-    case CollisionElements::triangles: return 2;
-    case CollisionElements::lines: return 1;
-    default: return 0;
-  }
-}
-
-}  // namespace
-
 template <class Real>
 std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::rule_pairs(const std::vector<CollisionModel<Real>>& models,
                                                                                          const Parameters& p) {
@@ -29,14 +16,10 @@ std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::ru
       if (!can_collide(models[earlier], models[later])) continue;
       if (models[earlier].points->is_still() && models[later].points->is_still()) continue;  // nothing can move
       // SOFA's broad phase asks for the intersector of (new model, earlier one) and swaps them into
-      // the intersector's order (Triangle before Line before Point).
+      // the intersector's order (Triangle before Line before Sphere before Point).
       ModelPair pair{later, earlier};
-      if (rank(models[earlier].kind) > rank(models[later].kind)) std::swap(pair.first, pair.second);
-      const auto a = models[pair.first].kind, b = models[pair.second].kind;
-      using E = CollisionElements;
-      const bool covered = (a == E::triangles && b == E::points) || (a == E::lines && b == E::points && p.use_line_point) ||
-                           (a == E::lines && b == E::lines && p.use_line_line) || (a == E::points && b == E::points && p.use_point_point);
-      if (covered) pairs.push_back(pair);
+      if (element_rank(models[earlier].kind) > element_rank(models[later].kind)) std::swap(pair.first, pair.second);
+      if (has_rule(p, models[pair.first].kind, models[pair.second].kind)) pairs.push_back(pair);
     }
   }
   return pairs;
@@ -83,41 +66,13 @@ template <class Real>
 std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narrow_phase(const ModelPair& pair, CollisionReport& report) const {
   const auto& m1 = models_[pair.first];
   const auto& m2 = models_[pair.second];
-  const ProximityDistances<Real> d{parameters_.alarm_distance + m1.contact_distance + m2.contact_distance,
-                                   parameters_.contact_distance + m1.contact_distance + m2.contact_distance};
+  const ProximityDistances<Real> d = pair_distances(parameters_, m1, m2);
   std::vector<std::pair<Index, Index>> candidates;
   AabbTree<Real>::pairs(m1.tree(), m2.tree(), d.alarm, candidates);
   if (!candidates.empty()) ++report.model_pairs;
   report.element_pairs += static_cast<long>(candidates.size());
-  const auto& x1 = m1.points->positions();
-  const auto& x2 = m2.points->positions();
-  const auto at1 = [&](Index p) -> const Vec3<Real>& { return x1[static_cast<std::size_t>(p)]; };
-  const auto at2 = [&](Index p) -> const Vec3<Real>& { return x2[static_cast<std::size_t>(p)]; };
-  const bool first_larger = m1.size() > m2.size();
   std::vector<Output> outputs;
-  for (const auto& [e1, e2] : candidates) {
-    std::optional<ProximityOutput<Real>> found;
-    Index id = first_larger ? e1 : e2;
-    using E = CollisionElements;
-    if (m1.kind == E::triangles) {
-      const Triangle& t = m1.triangles[static_cast<std::size_t>(e1)];
-      Vec3<Real> normal;
-      if (parameters_.use_surface_normals) normal = (at1(t[1]) - at1(t[0])).cross(at1(t[2]) - at1(t[0])).normalized();
-      found = min_proximity_triangle_point(at1(t[0]), at1(t[1]), at1(t[2]), at2(e2), d, parameters_.use_surface_normals ? &normal : nullptr);
-      id = e2;
-    } else if (m1.kind == E::lines && m2.kind == E::points) {
-      const Edge& s = m1.edges[static_cast<std::size_t>(e1)];
-      found = min_proximity_line_point(at1(s[0]), at1(s[1]), at2(e2), d);
-      id = e2;
-    } else if (m1.kind == E::lines) {
-      const Edge& s = m1.edges[static_cast<std::size_t>(e1)];
-      const Edge& r = m2.edges[static_cast<std::size_t>(e2)];
-      found = min_proximity_line_line(at1(s[0]), at1(s[1]), at2(r[0]), at2(r[1]), d);
-    } else {
-      found = min_proximity_point_point(at1(e1), at2(e2), d);
-    }
-    if (found) outputs.push_back({e1, e2, id, *found});
-  }
+  for (const auto& [e1, e2] : candidates) intersect_elements(parameters_, m1, e1, m2, e2, d, outputs);
   return outputs;
 }
 
@@ -128,7 +83,8 @@ Vec3<Real> ContactPipeline<Real>::add_side(const CollisionModel<Real>& model, In
   const auto e = static_cast<std::size_t>(element);
   const auto at = [&](Index i) -> const Vec3<Real>& { return x[static_cast<std::size_t>(i)]; };
   switch (model.kind) {
-    case CollisionElements::points: model.points->add_row_blocks(e, Real(1), out); return x[e];
+    case CollisionElements::points:
+    case CollisionElements::spheres: model.points->add_row_blocks(e, Real(1), out); return x[e];
     case CollisionElements::lines: {
       const Edge& s = model.edges[e];
       const Vec3<Real> ab = at(s[1]) - at(s[0]);
@@ -162,15 +118,23 @@ PenaltyContact<Real> ContactPipeline<Real>::contact(const ModelPair& pair, const
   c.y2 = add_side(m2, output.second, output.proximity.point[1], c.side2);
   c.normal = output.proximity.normal;
   // SOFA's BarycentricPenalityContact: d = contactDistance + cd₁ + cd₂, k = ks₁ ks₂ / d.
-  c.distance = contact_distance(pair);
+  c.distance = contact_distance(pair, output);
   const Real ks = m1.contact_stiffness * m2.contact_stiffness;
   c.stiffness = c.distance != 0 ? ks / c.distance : ks;
   return c;
 }
 
 template <class Real>
-Real ContactPipeline<Real>::contact_distance(const ModelPair& pair) const {
-  return parameters_.contact_distance + models_[pair.first].contact_distance + models_[pair.second].contact_distance;
+Real ContactPipeline<Real>::contact_distance(const ModelPair& pair, const Output& output) const {
+  const auto& m1 = models_[pair.first];
+  const auto& m2 = models_[pair.second];
+  // The method's contact distance (none for DiscreteIntersection) and the models'; a sphere's
+  // contact mapper adds its radius.
+  const Real method = parameters_.method == IntersectionMethod::discrete ? Real(0) : parameters_.contact_distance;
+  Real d = method + m1.contact_distance + m2.contact_distance;
+  if (m1.kind == CollisionElements::spheres) d += m1.radii[static_cast<std::size_t>(output.first)];
+  if (m2.kind == CollisionElements::spheres) d += m2.radii[static_cast<std::size_t>(output.second)];
+  return d;
 }
 
 template <class Real>
@@ -178,7 +142,7 @@ int ContactPipeline<Real>::penalty_response(const ModelPair& pair, const std::ve
                                             std::vector<std::vector<PenaltyContact<Real>>>& contacts) {
   // SOFA's penalty response keeps one output per id: the smallest value, the first on ties; the
   // contacts follow the kept outputs' order.
-  std::map<Index, std::size_t> kept;
+  std::map<std::int64_t, std::size_t> kept;
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     const auto [it, inserted] = kept.emplace(outputs[k].id, k);
     if (!inserted && outputs[k].proximity.value < outputs[it->second].proximity.value) it->second = k;
@@ -226,7 +190,7 @@ int ContactPipeline<Real>::friction_response(std::size_t k, const std::vector<Ou
     c.first.position = add_side(m1, o.first, o.proximity.point[0], c.first.blocks);
     c.second.position = add_side(m2, o.second, o.proximity.point[1], c.second.blocks);
     c.normal = o.proximity.normal;
-    c.distance = contact_distance(pair);
+    c.distance = contact_distance(pair, o);
     detected_.push_back({{o.proximity.point[0], o.proximity.point[1]}, o.proximity.normal});
   }
   constraints_[k]->set_contacts(std::move(contacts));
@@ -243,6 +207,7 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
   for (auto& m : models_) {
     try {
       report.degenerate_elements += m.update_tree();
+      m.update_neighbourhood();
     } catch (const Error& error) {
       throw error_at(m.where, error);
     }

@@ -4,6 +4,7 @@
 #include "fastcorot/core/phase_times.h"
 
 #include <chrono>
+#include <string_view>
 
 namespace fastcorot {
 
@@ -134,7 +135,13 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
     report.error = solved.error;
     report.tolerance = solved.tolerance;
     report.converged = solved.converged;
-    if (!problem_.f.allFinite()) throw make_error(solver_->name(), ": the constraint impulses are not finite");
+    if (!problem_.f.allFinite()) {
+      const bool jacobi = std::string_view(solver_->name()) == "ImprovedJacobiConstraintSolver";
+      throw make_error(solver_->name(), ": the constraint impulses are not finite: the solve diverged",
+                       jacobi ? " (Jacobi iterations diverge on strongly coupled rows, such as many contacts: set "
+                                "useSpectralCorrection, or use a BlockGaussSeidelConstraintSolver)"
+                              : "");
+    }
     forces_ = problem_.f;
     if (solver_->stores_lambda()) rows.store_constraint_forces(problem_.f.data(), dt);
     // Each object corrected for the impulses Hᵀλ on its blocks.

@@ -2,11 +2,13 @@
 #include "hexahedron_builders.h"
 
 #include "fastcorot/collision/contact_pipeline.h"
+#include "fastcorot/collision/new_proximity.h"
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/core/error.h"
 
 #include <stdexcept>
 
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -76,25 +78,16 @@ class CollisionBuilder {
     Component* response = nullptr;
     for (Component* c : components) {
       const std::string_view type = c->type();
-      if (type == "MinProximityIntersection") intersection = intersection ? intersection : c;
+      if (type == "MinProximityIntersection" || type == "NewProximityIntersection" || type == "LocalMinDistance" ||
+          type == "DiscreteIntersection") {
+        intersection = intersection ? intersection : c;
+      }
       if (type == "CollisionResponse") response = response ? response : c;
       if (type == "BruteForceBroadPhase" && c->has("box")) throw NotSimulated{c->where() + ": its box (a region of interest) is not simulated yet"};
     }
-    if (!intersection) throw NotSimulated{"the scene has no intersection method fastcorot simulates (MinProximityIntersection)"};
-    typename ContactPipeline<double>::Parameters p;
-    p.alarm_distance = data_.real(*intersection, "alarmDistance", 1.0);
-    p.contact_distance = data_.real(*intersection, "contactDistance", 0.5);
-    if (!(p.alarm_distance >= 0) || !(p.contact_distance >= 0)) {
-      throw error_at(intersection->where(), make_error("alarmDistance and contactDistance must be ≥ 0"));
-    }
-    if (p.alarm_distance < p.contact_distance) {
-      data_.warn(intersection->where() + ": alarmDistance " + std::to_string(p.alarm_distance) + " is below contactDistance " +
-                 std::to_string(p.contact_distance) + ": contacts are found only once the bodies are already closer than the distance kept");
-    }
-    p.use_point_point = data_.boolean(*intersection, "usePointPoint", true);
-    p.use_line_point = data_.boolean(*intersection, "useLinePoint", true);
-    p.use_line_line = data_.boolean(*intersection, "useLineLine", true);
-    p.use_surface_normals = data_.boolean(*intersection, "useSurfaceNormals", false);
+    if (!intersection) throw NotSimulated{"the scene has no intersection method"};
+    const typename ContactPipeline<double>::Parameters p = intersection_settings(*intersection);
+    method_ = p.method;
     response_name_ = data_.text(*response, "response", "PenalityContactForceField");
     const bool friction = response_name_ == "FrictionContactConstraint";
     if (!friction && response_name_ != "PenalityContactForceField") {
@@ -109,7 +102,9 @@ class CollisionBuilder {
     std::vector<const GraphNode*> nodes;
     for (Component* c : components) {
       const std::string_view type = c->type();
-      if (type != "TriangleCollisionModel" && type != "LineCollisionModel" && type != "PointCollisionModel") continue;
+      if (type != "TriangleCollisionModel" && type != "LineCollisionModel" && type != "PointCollisionModel" && type != "SphereCollisionModel") {
+        continue;
+      }
       if (!data_.boolean(*c, "active", true)) continue;
       models.push_back(model(*c));
       nodes.push_back(c->node);
@@ -151,6 +146,41 @@ class CollisionBuilder {
   }
 
  private:
+  // The intersection method's settings, SOFA's defaults.
+  typename ContactPipeline<double>::Parameters intersection_settings(Component& c) {
+    typename ContactPipeline<double>::Parameters p;
+    const std::string_view type = c.type();
+    p.method = type == "NewProximityIntersection" ? IntersectionMethod::new_proximity
+               : type == "LocalMinDistance"       ? IntersectionMethod::local_min_distance
+               : type == "DiscreteIntersection"   ? IntersectionMethod::discrete
+                                                  : IntersectionMethod::min_proximity;
+    if (p.method == IntersectionMethod::discrete) return p;
+    p.alarm_distance = data_.real(c, "alarmDistance", 1.0);
+    p.contact_distance = data_.real(c, "contactDistance", 0.5);
+    if (!(p.alarm_distance >= 0) || !(p.contact_distance >= 0)) {
+      throw error_at(c.where(), make_error("alarmDistance and contactDistance must be ≥ 0"));
+    }
+    if (p.alarm_distance < p.contact_distance) {
+      data_.warn(c.where() + ": alarmDistance " + std::to_string(p.alarm_distance) + " is below contactDistance " +
+                 std::to_string(p.contact_distance) + ": contacts are found only once the bodies are already closer than the distance kept");
+    }
+    p.use_line_line = data_.boolean(c, "useLineLine", p.method != IntersectionMethod::new_proximity);
+    if (p.method == IntersectionMethod::new_proximity) return p;
+    p.use_point_point = data_.boolean(c, "usePointPoint", true);
+    p.use_line_point = data_.boolean(c, "useLinePoint", true);
+    p.use_sphere_triangle = data_.boolean(c, "useSphereTriangle", true);
+    if (p.method == IntersectionMethod::min_proximity) {
+      p.use_surface_normals = data_.boolean(c, "useSurfaceNormals", false);
+      return p;
+    }
+    auto& f = p.local_min_distance;
+    f.filter_intersection = data_.boolean(c, "filterIntersection", true);
+    f.angle_cone = data_.real(c, "angleCone", 0.0);
+    f.cone_factor = data_.real(c, "coneFactor", 0.5);
+    f.use_lmd_filters = data_.boolean(c, "useLMDFilters", false);
+    return p;
+  }
+
   // SOFA's FrictionContactConstraint response: one UnilateralLagrangianConstraint per model pair,
   // its rows placed as SOFA's graph places the response (the simulated model's node against a
   // still one, else the pipeline's node: nodes in depth-first order, pairs in broad-phase order
@@ -269,7 +299,9 @@ class CollisionBuilder {
     const std::string_view type = c.type();
     m.kind = type == "TriangleCollisionModel" ? CollisionElements::triangles
              : type == "LineCollisionModel"   ? CollisionElements::lines
+             : type == "SphereCollisionModel" ? CollisionElements::spheres
                                               : CollisionElements::points;
+    m.both_side = data_.boolean(c, "bothSide", false);
     m.simulated = data_.boolean(c, "simulated", true);
     m.moving = data_.boolean(c, "moving", true);
     if (data_.boolean(c, "selfCollision", false)) throw NotSimulated{c.where() + " asks for selfCollision, which is not simulated yet"};
@@ -286,8 +318,23 @@ class CollisionBuilder {
     for (const double g : data_.data(c, "group")) m.groups.push_back(static_cast<int>(g));
     Component& state = state_of(c);
     m.points = points_of(state, c);
-    if (m.kind == CollisionElements::points) return m;
-    Component* topology = data_.topology_of(c);
+    if (m.kind == CollisionElements::spheres) {
+      if (is_rigid_template(data_.text(c, "template", "Vec3d"))) throw NotSimulated{c.where() + ": rigid spheres (RigidSphereModel) are not simulated yet"};
+      // SOFA's radii: listRadius where it has one, radius (1) for the points beyond it.
+      const Numbers listed = data_.data(c, "listRadius");
+      const double fallback = data_.real(c, "radius", 1.0);
+      for (std::size_t i = 0; i < m.points->size(); ++i) {
+        const double r = i < listed.size() ? listed[i] : fallback;
+        if (!(r >= 0) || !std::isfinite(r)) throw error_at(c.where(), make_error("the radius of sphere ", i, " is ", r, ": it must be finite and ≥ 0"));
+        m.radii.push_back(r);
+      }
+      return m;
+    }
+    Component* topology = topology_of(c);
+    if (m.kind == CollisionElements::points) {
+      if (method_ == IntersectionMethod::local_min_distance && topology) cone_topology(c, *topology, m);
+      return m;
+    }
     if (!topology) throw error_at(c.where(), make_error("no topology in its node or above to take its elements from"));
     // SOFA takes a grid's faces, and a volume's edges and faces, from its cells: not made here.
     if (is_grid_topology(topology->type()) || !data_.indices(*topology, "tetrahedra").empty() ||
@@ -325,7 +372,49 @@ class CollisionBuilder {
     };
     check(m.triangles, "triangle");
     check(m.edges, "edge");
+    if (m.kind == CollisionElements::triangles && method_ == IntersectionMethod::new_proximity) {
+      // SOFA's ownership flags come from the topology's own triangles; those made from quads have none.
+      const auto given = tuples<2>(data_, *topology, "edges");
+      const std::size_t own = m.triangles.size() - 2 * quads.size();
+      try {
+        m.triangle_flags = triangle_flags(std::span<const Triangle>(m.triangles.data(), own), m.points->size(), given);
+      } catch (const Error& error) {
+        throw error_at(c.where(), error);
+      }
+      m.triangle_flags.resize(m.triangles.size(), 0);
+    }
+    if (method_ == IntersectionMethod::local_min_distance) cone_topology(c, *topology, m);
     return m;
+  }
+
+  // LocalMinDistance's neighbourhood topology for model m: the triangles and edges of its topology
+  // (the line model's own edge list), and whether a point model's filter applies (SOFA finds a
+  // LineCollisionModel in the node or above).
+  void cone_topology(Component& c, Component& topology, CollisionModel<double>& m) {
+    std::vector<Triangle> triangles = tuples<3>(data_, topology, "triangles");
+    const auto quads = tuples<4>(data_, topology, "quads");
+    std::vector<Edge> edges = m.kind == CollisionElements::lines ? m.edges : tuples<2>(data_, topology, "edges");
+    if (edges.empty()) edges = surface_edges(triangles, quads);
+    m.cone_topology = std::make_shared<const LocalMinDistanceTopology>(
+        local_min_distance_topology(static_cast<Index>(m.points->size()), triangles, edges));
+    if (m.kind != CollisionElements::points) return;
+    for (const GraphNode* node = c.node; node && !m.point_filter; node = node->parent) {
+      for (const auto& other : node->components) m.point_filter = m.point_filter || other->type() == "LineCollisionModel";
+    }
+  }
+
+  // SOFA's context topology: the model's `topology` link, else the nearest topology container of its
+  // node or above (a TriangleSetTopologyContainer included).
+  Component* topology_of(Component& c) {
+    if (c.has("topology")) return data_.topology_of(c);
+    for (const GraphNode* node = c.node; node; node = node->parent) {
+      Component* found = nullptr;
+      for (const auto& other : node->components) {
+        if (other->spec && (other->spec->category == "topology" || other->spec->category == "trianglecontainer")) found = other.get();
+      }
+      if (found) return found;
+    }
+    return nullptr;
   }
 
   // SOFA's context state: the first MechanicalObject of the node or of the nearest ancestor.
@@ -386,6 +475,7 @@ class CollisionBuilder {
   const std::vector<const GraphNode*>& solver_nodes_;
   const GraphNode& pipeline_node_;
   FreeMotionAnimationLoop<double>* loop_ = nullptr;
+  IntersectionMethod method_ = IntersectionMethod::min_proximity;
   std::string response_name_ = "PenalityContactForceField";
   std::map<const Component*, std::shared_ptr<CollisionPoints<double>>> points_;
 };

@@ -1,7 +1,8 @@
-// Collision detection and penalty contact: SOFA's pipeline with MinProximityIntersection and the
-// PenalityContactForceField response (built by collision_builder.cpp; docs/collision.md). The other
-// intersection methods, sphere and tetrahedron models are not in this table: a scene with one is
-// loaded with its collisions ignored, warned.
+// Collision detection and contact: SOFA's pipeline, its intersection methods (MinProximity,
+// NewProximity, LocalMinDistance, Discrete), point, line, triangle and sphere models, and the
+// PenalityContactForceField and FrictionContactConstraint responses (built by collision_builder.cpp;
+// docs/collision.md). Tetrahedron and ray models are not in this table: a scene with one is loaded
+// with its collisions ignored, warned.
 #include "component_families.h"
 
 namespace fastcorot::scene_detail {
@@ -17,7 +18,8 @@ std::vector<AttributeSpec> model_attributes() {
           {"proximity", "real", "0", "SOFA's alias of contactDistance"},
           {"contactStiffness", "real", "10", "k of the penalty: k₁ k₂ / d per contact"},
           {"contactFriction", "real", "0", "accepted (the penalty response ignores it, as SOFA)"},
-          {"contactResponse", "string", "", "must be empty or PenalityContactForceField"},
+          {"contactResponse", "string", "", "must be empty or the pipeline's response"},
+          {"bothSide", "bool", "false", "LocalMinDistance: the cone filters accept both sides"},
           {"group", "indices", "", "group numbers: two models sharing one never collide"},
           {"topology", "link", "", "the topology its elements come from (default: the nearest one)"},
           {"mstate", "link", "", "accepted: the node's MechanicalObject is used"},
@@ -29,8 +31,29 @@ std::vector<AttributeSpec> model_attributes() {
 
 std::vector<ComponentSpec> collision_components() {
   auto triangle = model_attributes();
-  triangle.push_back({"bothSide", "bool", "false", "accepted (MinProximity ignores it)"});
   triangle.push_back({"computeNormals", "bool", "true", "accepted"});
+  auto sphere = model_attributes();
+  sphere.push_back({"radius", "real", "1", "the radius of the spheres listRadius does not give"});
+  sphere.push_back({"listRadius", "reals", "", "one radius per point"});
+  const std::vector<AttributeSpec> proximity = {{"alarmDistance", "real", "1", "pairs farther apart are not contacts"},
+                                                {"contactDistance", "real", "0.5", "the distance the response keeps"}};
+  auto min_proximity = proximity;
+  min_proximity.insert(min_proximity.end(), {{"usePointPoint", "bool", "true", "Point–Point (and Sphere–Point) pairs"},
+                                             {"useLinePoint", "bool", "true", "Line–Point (and Line–Sphere) pairs"},
+                                             {"useLineLine", "bool", "true", "Line–Line pairs"},
+                                             {"useSphereTriangle", "bool", "true", "Triangle–Sphere pairs"},
+                                             {"useSurfaceNormals", "bool", "false", "Triangle–Point outputs take the triangle's unit normal"}});
+  auto local_min = proximity;
+  local_min.insert(local_min.end(), {{"usePointPoint", "bool", "true", "Point–Point (and Sphere–Point) pairs"},
+                                     {"useLinePoint", "bool", "true", "Line–Point (and Line–Sphere) pairs"},
+                                     {"useLineLine", "bool", "true", "Line–Line pairs"},
+                                     {"useSphereTriangle", "bool", "true", "Triangle–Sphere pairs"},
+                                     {"filterIntersection", "bool", "true", "the cone filters (false: every pair within the alarm distance)"},
+                                     {"angleCone", "real", "0", "the cones' widening"},
+                                     {"coneFactor", "real", "0.5", "the edge cones' factor"},
+                                     {"useLMDFilters", "bool", "false", "true: no cone filter (SOFA's LMDFilter components are not read)"}});
+  auto new_proximity = proximity;
+  new_proximity.push_back({"useLineLine", "bool", "false", "edge–edge pairs (Line–Line, and between triangles' edges)"});
   return {
       {"CollisionPipeline", "collision",
        "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection and the PenalityContactForceField response under the default animation loop, between a simulated body and an obstacle (or two models of one body); otherwise the scene's collisions are ignored with a warning saying why.",
@@ -42,23 +65,26 @@ std::vector<ComponentSpec> collision_components() {
        {{"box", "string", "", "accepted"}}},
       {"BVHNarrowPhase", "collision", "The narrow phase: bounding-volume trees of the models' elements, every element pair whose boxes are within the alarm distance handed to the intersection's rule.", {}, {"BruteForceDetection"}},
       {"MinProximityIntersection", "collision",
-       "SOFA's MinProximityIntersection: Point–Point, Line–Point (clamped to the segment), Line–Line and Triangle–Point (strictly inside) within alarmDistance + the models' contactDistance; outputs at distance − (contactDistance + the models' contactDistance).",
-       {{"alarmDistance", "real", "1", "pairs farther apart are not contacts"},
-        {"contactDistance", "real", "0.5", "the distance the response keeps"},
-        {"usePointPoint", "bool", "true", "Point–Point pairs"},
-        {"useLinePoint", "bool", "true", "Line–Point pairs"},
-        {"useLineLine", "bool", "true", "Line–Line pairs"},
-        {"useSphereTriangle", "bool", "true", "accepted (no spheres here)"},
-        {"useSurfaceNormals", "bool", "false", "Triangle–Point outputs take the triangle's unit normal"}}},
+       "SOFA's MinProximityIntersection: Point–Point, Line–Point (clamped to the segment), Line–Line, Triangle–Point (strictly inside) and the sphere pairs within alarmDistance + the models' contactDistance; outputs at distance − (contactDistance + the models' contactDistance).",
+       min_proximity},
+      {"NewProximityIntersection", "collision",
+       "SOFA's NewProximityIntersection: MinProximity's pairs with closest points clamped onto edges and corners (reported by the triangle that owns them), plus Triangle–Line and Triangle–Triangle (each triangle's vertices against the other; with useLineLine, edges against edges).",
+       new_proximity},
+      {"LocalMinDistance", "collision",
+       "SOFA's LocalMinDistance: MinProximity's pairs with its own thresholds, each side's cone filter (the triangles' and edges' normals around a point or edge) rejecting pairs seen from behind.",
+       local_min},
+      {"DiscreteIntersection", "collision",
+       "SOFA's DiscreteIntersection: overlapping spheres (Sphere–Sphere), no alarm or contact distance.", {}},
       {"CollisionResponse", "collision",
-       "The contact manager: each model pair's outputs become a PenalityContactForceField (one contact per id: the closest), k = k₁ k₂ / d, pen = d − (y₂ − y₁)·n, force k pen n when pen > 0, implicit in the body's step.",
-       {{"response", "string", "PenalityContactForceField", "must be PenalityContactForceField here"},
-        {"responseParams", "string", "", "accepted (the penalty response takes none)"},
+       "The contact manager: each model pair's outputs become a PenalityContactForceField (one contact per id: the closest), k = k₁ k₂ / d, pen = d − (y₂ − y₁)·n, force k pen n when pen > 0, implicit in the body's step; or, under FreeMotionAnimationLoop, a FrictionContactConstraint (a UnilateralLagrangianConstraint: a normal row per contact, with two tangent rows in Coulomb's disk when mu > 0).",
+       {{"response", "string", "PenalityContactForceField", "PenalityContactForceField or FrictionContactConstraint"},
+        {"responseParams", "string", "", "FrictionContactConstraint's data as name=value joined by &: mu (0.8), tol (0: the solver's)"},
         {"mu", "real", "", "accepted (friction is not part of the penalty response)"}},
        {"DefaultContactManager"}},
       {"TriangleCollisionModel", "collision", "The triangles of the node's topology (quads split as SOFA) on the node's MechanicalObject.", triangle, {"TriangleModel"}},
       {"LineCollisionModel", "collision", "The edges of the node's topology (from its triangles when it lists none) on the node's MechanicalObject.", model_attributes(), {"LineModel"}},
       {"PointCollisionModel", "collision", "Every point of the node's MechanicalObject.", model_attributes(), {"PointModel"}},
+      {"SphereCollisionModel", "collision", "A sphere at every point of the node's MechanicalObject (Vec3d), its radius from listRadius or radius.", sphere, {"SphereModel"}},
   };
 }
 

@@ -12,7 +12,7 @@ std::vector<ComponentSpec> visual_components() {
         {"scale3d", "vec3", "1 1 1", "applied first"},
         {"scale", "real", "1", "uniform scale, multiplies scale3d"},
         {"handleSeams", "bool", "false", "accepted: texture and normal seams do not move points"},
-        {"triangulate", "bool", "false", "accepted: quads are drawn as two triangles either way"},
+        {"triangulate", "bool", "false", "true: each quad read as two triangles (a, b, c), (a, c, d), as SOFA (quads drawn so either way)"},
         {"loadMaterial", "bool", "true", "accepted: the visual model's color is used"},
         {"createSubelements", "bool", "false", "accepted"}}},
       {"MeshSTLLoader", "surfaceloader", "Reads an STL surface (ASCII or binary) for a visual model.",

@@ -336,8 +336,11 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     } catch (const Error& error) {
       throw error_at(c.where(), error);
     }
-    if (name == "triangles") return flatten_indices(surface.triangles);
-    if (name == "quads") return flatten_indices(surface.quads);
+    // triangulate (MeshOBJLoader): each quad as (a, b, c) and (a, c, d), as SOFA splits it; SOFA keeps
+    // the file's face order, here a mixed file's triangles come before its split quads.
+    const bool triangulate = type == "MeshOBJLoader" && boolean(c, "triangulate", false);
+    if (name == "triangles") return flatten_indices(triangulate ? surface.all_triangles() : surface.triangles);
+    if (name == "quads") return triangulate ? Numbers{} : flatten_indices(surface.quads);
     Vec3<double> scale = vec3(c, "scale3d", {1, 1, 1});
     if (c.has("scale")) scale *= real(c, "scale", 1);
     return flatten(transformed(surface.points, scale, vec3(c, "rotation", {0, 0, 0}), vec3(c, "translation", {0, 0, 0})));
@@ -436,6 +439,11 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
         } else {
           const auto local = c.node->of_category("topology");
           if (!local.empty()) topology = local.front();
+          // A TriangleSetTopologyContainer with points gives them too (SOFA's MechanicalObject takes the
+          // context topology's points).
+          for (Component* triangles : c.node->of_category("trianglecontainer")) {
+            if (!topology && (triangles->has("position") || triangles->has("src"))) topology = triangles;
+          }
         }
         if (!topology) {
           // SOFA's MechanicalObject is one point at the origin until something sizes it.

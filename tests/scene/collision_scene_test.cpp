@@ -6,7 +6,7 @@
 #include "fastcorot/scene/scene_graph.h"
 
 #include "../support/scene_text.h"
-#include "support/sofa_reference.h"
+#include "support/contact_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -39,6 +39,13 @@ TEST(CollisionScene, SoftCubeFallsOnAFloorAsInSofa) {
   EXPECT_GT(lowest, -0.3) << "resting on the floor, not through it";
 }
 
+TEST(CollisionScene, SpheresOnSpheresFollowSofa) {
+  // DiscreteIntersection: overlapping spheres only. SOFA counts its detection outputs; its penalty
+  // keeps one contact per id (the floor sphere's index here), as fastcorot's count does.
+  testing::expect_contact_trajectory("spheres_on_spheres.scn", "spheres_on_spheres_trajectory.json", 1e-9,
+                                     {.contacts = false, .rows = false});
+}
+
 // A point of mass m above a still triangle in the plane y = 0; contact distance d, stiffnesses
 // ks₁ = ks₂ = s, so k = s² / d.
 std::string point_over_floor(double height, const std::string& extra = "") {
@@ -68,13 +75,13 @@ TEST(CollisionScene, APointMassRestsAtTheClosedFormHeightAndNeverSinks) {
 }
 
 TEST(CollisionScene, WhatIsNotSimulatedYetIsWarnedPerComponent) {
-  // Another intersection method: the scene loads, its collisions ignored, each component saying why.
+  // A model kind not simulated: the scene loads, its collisions ignored, each component saying why.
   std::string text = point_over_floor(0.4);
-  text.replace(text.find("<MinProximityIntersection"), std::string("<MinProximityIntersection").size(), "<NewProximityIntersection");
+  text.replace(text.find("<PointCollisionModel"), std::string("<PointCollisionModel").size(), "<TetrahedronCollisionModel/><PointCollisionModel");
   LoadedScene scene = build_scene_text(text, "dt=\"0.01\"");
   EXPECT_FALSE(scene.simulation.collisions);
   int said = 0;
-  for (const auto& line : scene.warnings) said += line.find("NewProximityIntersection is not simulated yet") != std::string::npos;
+  for (const auto& line : scene.warnings) said += line.find("TetrahedronCollisionModel is not simulated yet") != std::string::npos;
   EXPECT_GE(said, 5) << "the pipeline's components and both models";
   // Two bodies each under its own solver (SOFA's explicit penalty).
   std::string bodies = point_over_floor(0.4);

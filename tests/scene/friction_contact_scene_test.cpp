@@ -10,7 +10,7 @@
 #include "fastcorot/scene/scene_graph.h"
 
 #include "../support/scene_text.h"
-#include "support/sofa_reference.h"
+#include "support/contact_reference.h"
 
 #include <gtest/gtest.h>
 
@@ -23,37 +23,33 @@ namespace {
 using testing::build_scene_text;
 using testing::scene_error;
 
-void expect_sofa_trajectory(const char* scene_file, const char* trajectory_file) {
-  LoadedScene scene = load_scene_file(testing::sofa_reference_path(scene_file));
-  const auto reference = testing::load_sofa_trajectory(trajectory_file);
-  auto& simulation = scene.simulation;
-  ASSERT_TRUE(simulation.collisions);
-  ASSERT_TRUE(simulation.constraints);
-  const auto& x = simulation.objects[0].system.state.position;
-  const auto rest = testing::json_points(reference["steps"]["0"]["points"]);
-  for (const long step : testing::dumped_steps(reference)) {
-    while (simulation.steps_done() < step) simulation.step();
-    const auto& frame = reference["steps"][std::to_string(step)];
-    const auto d = testing::compare_points(x, testing::json_points(frame["points"]), rest);
-    // SOFA's solver stops at 1e-12 (scaled by the rows): the two agree to about that, not bitwise.
-    EXPECT_LE(d.difference, 1e-9 * d.displacement + 1e-15) << scene_file << " step " << step;
-    if (step > 0) {
-      EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << scene_file << " step " << step;
-      EXPECT_EQ(simulation.constraint_report().rows, frame["constraints"].get<int>()) << scene_file << " step " << step;
-    }
-  }
-}
-
+// SOFA's solvers stop at 1e-12 (scaled by the rows): the two agree to about that, not bitwise.
 TEST(FrictionContactScene, SoftCubeSlidesOnAFloorAsInSofa) {
-  expect_sofa_trajectory("cube_on_floor_friction.scn", "cube_on_floor_friction_trajectory.json");
+  testing::expect_contact_trajectory("cube_on_floor_friction.scn", "cube_on_floor_friction_trajectory.json", 1e-9);
 }
 
 TEST(FrictionContactScene, VelocityViolationsFollowSofa) {
-  expect_sofa_trajectory("cube_on_floor_friction_velocity.scn", "cube_on_floor_friction_velocity_trajectory.json");
+  testing::expect_contact_trajectory("cube_on_floor_friction_velocity.scn", "cube_on_floor_friction_velocity_trajectory.json", 1e-9);
 }
 
 TEST(FrictionContactScene, LcpSolverFollowsSofa) {
-  expect_sofa_trajectory("cube_on_floor_friction_lcp.scn", "cube_on_floor_friction_lcp_trajectory.json");
+  testing::expect_contact_trajectory("cube_on_floor_friction_lcp.scn", "cube_on_floor_friction_lcp_trajectory.json", 1e-9);
+}
+
+TEST(FrictionContactScene, NewProximityContactsFollowSofa) {
+  // Clamped to the floor's edges and corners: more contacts than MinProximity's (19 against 16).
+  testing::expect_contact_trajectory("cube_on_floor_friction_newproximity.scn", "cube_on_floor_friction_newproximity_trajectory.json",
+                                     1e-9);
+}
+
+TEST(FrictionContactScene, LocalMinDistanceContactsFollowSofa) {
+  testing::expect_contact_trajectory("cube_on_floor_friction_localmindistance.scn",
+                                     "cube_on_floor_friction_localmindistance_trajectory.json", 1e-9);
+}
+
+TEST(FrictionContactScene, SpheresSlideOnAFloorAsInSofa) {
+  // Triangle–Sphere contacts keep the contact distance plus the radius.
+  testing::expect_contact_trajectory("spheres_on_floor_friction.scn", "spheres_on_floor_friction_trajectory.json", 1e-9);
 }
 
 constexpr double kMass = 0.5, kG = 9.81, kH = 0.01;

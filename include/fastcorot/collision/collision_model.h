@@ -6,6 +6,7 @@
 #pragma once
 
 #include "fastcorot/collision/aabb_tree.h"
+#include "fastcorot/collision/local_min_distance.h"
 #include "fastcorot/mapping/mechanical_mapping.h"
 #include "fastcorot/sim/simulation.h"
 
@@ -43,7 +44,9 @@ class CollisionPoints {
   mutable std::vector<std::pair<Index, Mat3<Real>>> scratch_;
 };
 
-enum class CollisionElements { points, lines, triangles };
+// SOFA's PointCollisionModel, LineCollisionModel, TriangleCollisionModel, SphereCollisionModel
+// (Vec3: a sphere per point).
+enum class CollisionElements { points, lines, triangles, spheres };
 
 template <class Real>
 struct CollisionModel {
@@ -59,6 +62,16 @@ struct CollisionModel {
   std::shared_ptr<CollisionPoints<Real>> points;  // shared by the models of one node
   std::vector<Edge> edges;                        // lines
   std::vector<Triangle> triangles;                // triangles
+  std::vector<Real> radii;                        // spheres: one per point
+  // NewProximityIntersection: SOFA's ownership flags of the triangles (new_proximity.h).
+  std::vector<int> triangle_flags;
+  // LocalMinDistance: the topology its cone filters read (the node's triangles and edges), whether
+  // a point model's filter applies (a LineCollisionModel in its node or above), bothSide; the
+  // neighbourhood at the points' positions (update_neighbourhood).
+  std::shared_ptr<const LocalMinDistanceTopology> cone_topology;
+  bool point_filter = false;
+  bool both_side = false;
+  LocalMinDistanceNeighbourhood<Real> neighbourhood;
 
   // Elements: the points, the edges or the triangles.
   std::size_t size() const;
@@ -66,11 +79,15 @@ struct CollisionModel {
   // the first time, then refitted; a model that does not move keeps its first tree). Returns the
   // number of elements with no extent (a triangle without area, a segment without length).
   int update_tree();
+  // LocalMinDistance's neighbourhood at the points' positions (nothing without cone_topology; a
+  // model that does not move keeps its first one).
+  void update_neighbourhood();
   const AabbTree<Real>& tree() const { return tree_; }
 
  private:
   AabbTree<Real> tree_;
   bool built_ = false;
+  bool neighbourhood_built_ = false;
   std::vector<Aabb<Real>> boxes_;
   std::vector<char> degenerate_;
 };

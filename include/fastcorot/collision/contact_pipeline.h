@@ -12,7 +12,7 @@
 #pragma once
 
 #include "fastcorot/collision/collision_model.h"
-#include "fastcorot/collision/intersections.h"
+#include "fastcorot/collision/element_intersection.h"
 #include "fastcorot/collision/penalty_contact_force_field.h"
 #include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 #include "fastcorot/sim/collision_stage.h"
@@ -26,12 +26,8 @@ namespace fastcorot {
 template <class Real>
 class ContactPipeline final : public CollisionStage<Real> {
  public:
-  struct Parameters {
-    Real alarm_distance = 1;    // MinProximityIntersection's alarmDistance
-    Real contact_distance = 0.5;  // its contactDistance
-    bool use_point_point = true, use_line_point = true, use_line_line = true;
-    bool use_surface_normals = false;
-  };
+  // The intersection method and its data.
+  using Parameters = IntersectionSettings<Real>;
   // `penalties[o]`: object o's penalty field (null for an object no contact can reach). Throws
   // fastcorot::Error for a model pair whose contact would join two different simulated objects
   // (SOFA's explicit body–body penalty, not simulated yet), or a model without points.
@@ -50,12 +46,7 @@ class ContactPipeline final : public CollisionStage<Real> {
   // The last step's contacts, per object with a penalty field (for drawing and outputs).
   const std::vector<CollisionModel<Real>>& models() const { return models_; }
 
-  // Outputs of one model pair as the narrow phase finds them: element pairs, each rule's output.
-  struct Output {
-    Index first = 0, second = 0;  // elements of the pair's first and second model
-    Index id = 0;
-    ProximityOutput<Real> proximity;
-  };
+  using Output = ElementOutput<Real>;
   struct ModelPair {
     std::size_t first = 0, second = 0;  // models, in the rule's order (Triangle before Point, ...)
   };
@@ -70,7 +61,8 @@ class ContactPipeline final : public CollisionStage<Real> {
   int penalty_response(const ModelPair& pair, const std::vector<Output>& outputs,
                        std::vector<std::vector<PenaltyContact<Real>>>& contacts);
   int friction_response(std::size_t k, const std::vector<Output>& outputs);
-  Real contact_distance(const ModelPair& pair) const;
+  // The distance a contact keeps: the method's contact distance, the models', the spheres' radii.
+  Real contact_distance(const ModelPair& pair, const Output& output) const;
   // The weights of `p` (a point of element `element` of `model`) on the element's points, their J
   // row blocks into `out`; returns the weighted point (SOFA's contact mapper's position).
   Vec3<Real> add_side(const CollisionModel<Real>& model, Index element, const Vec3<Real>& p,

@@ -1,0 +1,237 @@
+#include "fastcorot/collision/element_intersection.h"
+
+#include "fastcorot/collision/new_proximity.h"
+
+namespace fastcorot {
+
+int element_rank(CollisionElements kind) {
+  switch (kind) {
+    case CollisionElements::triangles: return 3;
+    case CollisionElements::lines: return 2;
+    case CollisionElements::spheres: return 1;
+    default: return 0;
+  }
+}
+
+template <class Real>
+bool has_rule(const IntersectionSettings<Real>& s, CollisionElements a, CollisionElements b) {
+  using E = CollisionElements;
+  const auto is = [&](E x, E y) { return a == x && b == y; };
+  switch (s.method) {
+    case IntersectionMethod::discrete: return is(E::spheres, E::spheres);
+    case IntersectionMethod::new_proximity:
+      // NewProximityIntersection registers every mesh pair (its Line–Line rule reads useLineLine).
+      return is(E::spheres, E::spheres) || is(E::spheres, E::points) || is(E::points, E::points) || is(E::lines, E::points) ||
+             is(E::lines, E::lines) || is(E::triangles, E::points) || is(E::triangles, E::lines) || is(E::triangles, E::triangles) ||
+             is(E::lines, E::spheres) || is(E::triangles, E::spheres);
+    default:
+      // MinProximityIntersection and LocalMinDistance: no Triangle–Line, no Triangle–Triangle.
+      return is(E::spheres, E::spheres) || (is(E::spheres, E::points) && s.use_point_point) ||
+             (is(E::points, E::points) && s.use_point_point) || (is(E::lines, E::points) && s.use_line_point) ||
+             (is(E::lines, E::lines) && s.use_line_line) || is(E::triangles, E::points) ||
+             (is(E::lines, E::spheres) && s.use_line_point) || (is(E::triangles, E::spheres) && s.use_sphere_triangle);
+  }
+}
+
+template <class Real>
+ProximityDistances<Real> pair_distances(const IntersectionSettings<Real>& s, const CollisionModel<Real>& m1, const CollisionModel<Real>& m2) {
+  if (s.method == IntersectionMethod::discrete) return {Real(0), Real(0)};
+  return {s.alarm_distance + m1.contact_distance + m2.contact_distance, s.contact_distance + m1.contact_distance + m2.contact_distance};
+}
+
+namespace {
+
+template <class Real>
+struct Elements {
+  const CollisionModel<Real>& model;
+  const std::vector<Vec3<Real>>& x;
+  explicit Elements(const CollisionModel<Real>& m) : model(m), x(m.points->positions()) {}
+  const Vec3<Real>& at(Index p) const { return x[static_cast<std::size_t>(p)]; }
+  const Edge& edge(Index e) const { return model.edges[static_cast<std::size_t>(e)]; }
+  const Triangle& triangle(Index e) const { return model.triangles[static_cast<std::size_t>(e)]; }
+  ProximitySphere<Real> sphere(Index e) const { return {at(e), model.radii[static_cast<std::size_t>(e)], false}; }
+  int flags(Index e) const { return model.triangle_flags.empty() ? 0 : model.triangle_flags[static_cast<std::size_t>(e)]; }
+  PointElement<Real> point_element(Index e) const { return {at(e), e}; }
+  LineElement<Real> line_element(Index e) const { return {at(edge(e)[0]), at(edge(e)[1]), e}; }
+  TriangleElement<Real> triangle_element(Index e) const {
+    const Triangle& t = triangle(e);
+    return {at(t[0]), at(t[1]), at(t[2]), t, flags(e), e};
+  }
+  SphereElement<Real> sphere_element(Index e) const { return {sphere(e), e}; }
+  // LocalMinDistance's cones: a point's only when its filter applies.
+  std::optional<LocalMinDistancePointCone<Real>> point_cone(Index e) const {
+    if (!model.point_filter || !model.cone_topology) return std::nullopt;
+    return model.neighbourhood.point_cone(e, model.both_side);
+  }
+  LocalMinDistanceLineCone<Real> line_cone(Index e) const {
+    if (!model.cone_topology) return LocalMinDistanceLineCone<Real>{false, Vec3<Real>::Zero(), Vec3<Real>::Zero(), model.both_side};
+    return model.neighbourhood.line_cone(e, model.both_side);
+  }
+};
+
+template <class Real>
+void min_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a, Index e1, const Elements<Real>& b, Index e2,
+                   const ProximityDistances<Real>& d, std::vector<ElementOutput<Real>>& outputs) {
+  using E = CollisionElements;
+  const bool first_larger = a.model.size() > b.model.size();
+  std::optional<ProximityOutput<Real>> found;
+  std::int64_t id = first_larger ? e1 : e2;
+  const E k1 = a.model.kind, k2 = b.model.kind;
+  if (k1 == E::triangles) {
+    const Triangle& t = a.triangle(e1);
+    Vec3<Real> normal;
+    if (s.use_surface_normals) normal = (a.at(t[1]) - a.at(t[0])).cross(a.at(t[2]) - a.at(t[0])).normalized();
+    if (k2 == E::points) {
+      found = min_proximity_triangle_point(a.at(t[0]), a.at(t[1]), a.at(t[2]), b.at(e2), d, s.use_surface_normals ? &normal : nullptr);
+    } else {
+      found = min_proximity_triangle_sphere(a.at(t[0]), a.at(t[1]), a.at(t[2]), b.sphere(e2), d);
+    }
+    id = e2;
+  } else if (k1 == E::lines) {
+    const Edge& l = a.edge(e1);
+    if (k2 == E::points) {
+      found = min_proximity_line_point(a.at(l[0]), a.at(l[1]), b.at(e2), d);
+      id = e2;
+    } else if (k2 == E::spheres) {
+      found = min_proximity_line_sphere(a.at(l[0]), a.at(l[1]), b.sphere(e2), d);
+      id = e2;
+    } else {
+      const Edge& r = b.edge(e2);
+      found = min_proximity_line_line(a.at(l[0]), a.at(l[1]), b.at(r[0]), b.at(r[1]), d);
+    }
+  } else if (k1 == E::spheres) {
+    found = k2 == E::spheres ? min_proximity_sphere_sphere(a.sphere(e1), b.sphere(e2), d) : min_proximity_sphere_point(a.sphere(e1), b.at(e2), d);
+  } else {
+    found = min_proximity_point_point(a.at(e1), b.at(e2), d);
+  }
+  if (found) outputs.push_back({e1, e2, id, *found});
+}
+
+template <class Real>
+void local_min_distance(const IntersectionSettings<Real>& s, const Elements<Real>& a, Index e1, const Elements<Real>& b, Index e2,
+                        const ProximityDistances<Real>& d, std::vector<ElementOutput<Real>>& outputs) {
+  using E = CollisionElements;
+  const auto& f = s.local_min_distance;
+  const bool first_larger = a.model.size() > b.model.size();
+  std::optional<ProximityOutput<Real>> found;
+  std::int64_t id = first_larger ? e1 : e2;
+  const E k1 = a.model.kind, k2 = b.model.kind;
+  const auto cone_of = [](const std::optional<LocalMinDistancePointCone<Real>>& c) { return c ? &*c : nullptr; };
+  if (k1 == E::triangles) {
+    const Triangle& t = a.triangle(e1);
+    if (k2 == E::points) {
+      const auto cone = b.point_cone(e2);
+      found = local_min_distance_triangle_point(a.at(t[0]), a.at(t[1]), a.at(t[2]), a.model.both_side, b.at(e2), cone_of(cone), d, f);
+    } else {
+      found = local_min_distance_triangle_sphere(a.at(t[0]), a.at(t[1]), a.at(t[2]), a.model.both_side, b.sphere(e2), d, f);
+    }
+    id = e2;
+  } else if (k1 == E::lines) {
+    const Edge& l = a.edge(e1);
+    if (k2 == E::points) {
+      const auto cone = b.point_cone(e2);
+      found = local_min_distance_line_point(a.at(l[0]), a.at(l[1]), a.line_cone(e1), b.at(e2), cone_of(cone), d, f);
+      id = e2;
+    } else if (k2 == E::spheres) {
+      found = local_min_distance_line_sphere(a.at(l[0]), a.at(l[1]), a.line_cone(e1), b.sphere(e2), d, f);
+      id = e2;
+    } else {
+      const Edge& r = b.edge(e2);
+      found = local_min_distance_line_line(a.at(l[0]), a.at(l[1]), a.line_cone(e1), b.at(r[0]), b.at(r[1]), b.line_cone(e2), d, f);
+    }
+  } else if (k1 == E::spheres) {
+    if (k2 == E::spheres) {
+      found = local_min_distance_sphere_sphere(a.sphere(e1), b.sphere(e2), d);
+    } else {
+      const auto cone = b.point_cone(e2);
+      found = local_min_distance_sphere_point(a.sphere(e1), b.at(e2), cone_of(cone), d, f);
+    }
+  } else {
+    const auto c1 = a.point_cone(e1), c2 = b.point_cone(e2);
+    found = local_min_distance_point_point(a.at(e1), cone_of(c1), b.at(e2), cone_of(c2), d, f);
+  }
+  if (found) outputs.push_back({e1, e2, id, *found});
+}
+
+template <class Real>
+void new_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a, Index e1, const Elements<Real>& b, Index e2,
+                   const ProximityDistances<Real>& d, std::vector<ElementOutput<Real>>& outputs) {
+  using E = CollisionElements;
+  NewProximityPair<Real> pair;
+  pair.distances = d;
+  pair.size1 = a.model.size();
+  pair.size2 = b.model.size();
+  pair.same_model = &a.model == &b.model;
+  pair.use_line_line = s.use_line_line;
+  thread_local std::vector<DetectionOutput<Real>> found;
+  found.clear();
+  const E k1 = a.model.kind, k2 = b.model.kind;
+  if (k1 == E::triangles) {
+    const auto t = a.triangle_element(e1);
+    if (k2 == E::triangles) new_proximity_intersection(t, b.triangle_element(e2), pair, found);
+    if (k2 == E::lines) new_proximity_intersection(t, b.line_element(e2), pair, found);
+    if (k2 == E::spheres) new_proximity_intersection(t, b.sphere_element(e2), pair, found);
+    if (k2 == E::points) new_proximity_intersection(t, b.point_element(e2), pair, found);
+  } else if (k1 == E::lines) {
+    const auto l = a.line_element(e1);
+    if (k2 == E::lines) new_proximity_intersection(l, b.line_element(e2), pair, found);
+    if (k2 == E::spheres) new_proximity_intersection(l, b.sphere_element(e2), pair, found);
+    if (k2 == E::points) new_proximity_intersection(l, b.point_element(e2), pair, found);
+  } else if (k1 == E::spheres) {
+    const auto sphere = a.sphere_element(e1);
+    if (k2 == E::spheres) new_proximity_intersection(sphere, b.sphere_element(e2), pair, found);
+    if (k2 == E::points) new_proximity_intersection(sphere, b.point_element(e2), pair, found);
+  } else {
+    new_proximity_intersection(a.point_element(e1), b.point_element(e2), pair, found);
+  }
+  for (const auto& o : found) outputs.push_back({e1, e2, o.id, static_cast<const ProximityOutput<Real>&>(o)});
+}
+
+// SOFA's DiscreteIntersection::computeIntersectionSphere for two Vec3 spheres: overlapping (the
+// squared centre distance at most (r₁ + r₂)²), points the centres, value = distance − r₁ − r₂.
+template <class Real>
+void discrete(const Elements<Real>& a, Index e1, const Elements<Real>& b, Index e2, std::vector<ElementOutput<Real>>& outputs) {
+  const ProximitySphere<Real> s = a.sphere(e1), t = b.sphere(e2);
+  const Real r = s.radius + t.radius;
+  const Vec3<Real> gap = t.center - s.center;
+  const Real norm2 = gap.squaredNorm();
+  if (norm2 > r * r) return;
+  ElementOutput<Real> o;
+  o.first = e1;
+  o.second = e2;
+  o.id = a.model.size() > b.model.size() ? e1 : e2;
+  const Real distance = std::sqrt(norm2);
+  if (distance > Real(1e-15)) {
+    o.proximity.normal = gap / distance;
+  } else {
+    // Beyond SOFA: concentric spheres (SOFA divides by zero) get the normal (1, 0, 0).
+    o.proximity.normal = Vec3<Real>::UnitX();
+    o.proximity.null_distance = true;
+  }
+  o.proximity.point[0] = s.center;
+  o.proximity.point[1] = t.center;
+  o.proximity.value = distance - r;
+  outputs.push_back(o);
+}
+
+}  // namespace
+
+template <class Real>
+void intersect_elements(const IntersectionSettings<Real>& s, const CollisionModel<Real>& m1, Index e1, const CollisionModel<Real>& m2,
+                        Index e2, const ProximityDistances<Real>& d, std::vector<ElementOutput<Real>>& outputs) {
+  const Elements<Real> a(m1), b(m2);
+  switch (s.method) {
+    case IntersectionMethod::min_proximity: min_proximity(s, a, e1, b, e2, d, outputs); break;
+    case IntersectionMethod::local_min_distance: local_min_distance(s, a, e1, b, e2, d, outputs); break;
+    case IntersectionMethod::new_proximity: new_proximity(s, a, e1, b, e2, d, outputs); break;
+    case IntersectionMethod::discrete: discrete(a, e1, b, e2, outputs); break;
+  }
+}
+
+template bool has_rule(const IntersectionSettings<double>&, CollisionElements, CollisionElements);
+template ProximityDistances<double> pair_distances(const IntersectionSettings<double>&, const CollisionModel<double>&,
+                                                   const CollisionModel<double>&);
+template void intersect_elements(const IntersectionSettings<double>&, const CollisionModel<double>&, Index, const CollisionModel<double>&,
+                                 Index, const ProximityDistances<double>&, std::vector<ElementOutput<double>>&);
+
+}  // namespace fastcorot
