@@ -27,24 +27,31 @@ std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::ru
 
 template <class Real>
 ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                                       std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties)
-    : parameters_(parameters), models_(std::move(models)), penalties_(std::move(penalties)) {
+                                       std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties,
+                                       std::vector<char> explicit_pairs, std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces)
+    : parameters_(parameters),
+      models_(std::move(models)),
+      penalties_(std::move(penalties)),
+      explicit_pairs_(std::move(explicit_pairs)),
+      explicit_forces_(std::move(explicit_forces)) {
   for (const auto& m : models_) {
     if (!m.points) throw make_error(m.where, ": a collision model without points");
   }
   pairs_ = rule_pairs(models_, parameters_);
-  for (const auto& pair : pairs_) {
-    const auto& a = *models_[pair.first].points;
-    const auto& b = *models_[pair.second].points;
-    if (!a.is_still() && !b.is_still() && a.object() != b.object()) {
-      throw make_error(models_[pair.first].where, " and ", models_[pair.second].where,
-                       " are on two bodies each integrated by its own ODE solver: SOFA's explicit body–body penalty "
-                       "contact is not simulated yet (put both under one solver, or one of them still)");
+  explicit_pairs_.resize(pairs_.size(), 0);
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const auto& a = *models_[pairs_[k].first].points;
+    const auto& b = *models_[pairs_[k].second].points;
+    const bool is_explicit = explicit_pairs_[k] != 0;
+    if (!is_explicit && !a.is_still() && !b.is_still() && a.object() != b.object()) {
+      throw make_error(models_[pairs_[k].first].where, " and ", models_[pairs_[k].second].where,
+                       " are on two bodies each integrated by its own ODE solver: their penalty contacts can only be explicit");
     }
     for (const auto* side : {&a, &b}) {
-      if (!side->is_still() && (side->object() >= penalties_.size() || !penalties_[side->object()])) {
-        throw make_error(models_[pair.first].where, ": no penalty force field on its object");
-      }
+      if (side->is_still()) continue;
+      const auto o = side->object();
+      const bool present = is_explicit ? o < explicit_forces_.size() && explicit_forces_[o] : o < penalties_.size() && penalties_[o];
+      if (!present) throw make_error(models_[pairs_[k].first].where, ": no penalty force field on its object");
     }
   }
 }
@@ -138,24 +145,39 @@ Real ContactPipeline<Real>::contact_distance(const ModelPair& pair, const Output
 }
 
 template <class Real>
-int ContactPipeline<Real>::penalty_response(const ModelPair& pair, const std::vector<Output>& outputs,
+int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Output>& outputs,
                                             std::vector<std::vector<PenaltyContact<Real>>>& contacts) {
+  const ModelPair& pair = pairs_[k];
   // SOFA's penalty response keeps one output per id: the smallest value, the first on ties; the
   // contacts follow the kept outputs' order.
   std::map<std::int64_t, std::size_t> kept;
-  for (std::size_t k = 0; k < outputs.size(); ++k) {
-    const auto [it, inserted] = kept.emplace(outputs[k].id, k);
-    if (!inserted && outputs[k].proximity.value < outputs[it->second].proximity.value) it->second = k;
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const auto [it, inserted] = kept.emplace(outputs[i].id, i);
+    if (!inserted && outputs[i].proximity.value < outputs[it->second].proximity.value) it->second = i;
   }
   std::vector<std::size_t> order;
-  for (const auto& [id, k] : kept) order.push_back(k);
+  for (const auto& [id, i] : kept) order.push_back(i);
   std::sort(order.begin(), order.end());
   const auto& a = *models_[pair.first].points;
-  const std::size_t object = a.is_still() ? models_[pair.second].points->object() : a.object();
-  for (const std::size_t k : order) {
-    contacts[object].push_back(contact(pair, outputs[k]));
-    const auto& p = outputs[k].proximity;
+  const auto& b = *models_[pair.second].points;
+  for (const std::size_t i : order) {
+    PenaltyContact<Real> c = contact(pair, outputs[i]);
+    const auto& p = outputs[i].proximity;
     detected_.push_back({{p.point[0], p.point[1]}, p.normal});
+    if (!explicit_pairs_[k]) {
+      contacts[a.is_still() ? b.object() : a.object()].push_back(std::move(c));
+      continue;
+    }
+    // SOFA's explicit penalty: the force at the step's start positions, a load on both sides.
+    const Real pen = c.distance - (c.y2 - c.y1).dot(c.normal);
+    if (!(pen > 0)) continue;
+    const Vec3<Real> force = c.normal * (c.stiffness * pen);
+    if (!a.is_still()) {
+      for (const auto& [block, j] : c.side1) explicit_forces_[a.object()]->add(block, j.transpose() * -force);
+    }
+    if (!b.is_still()) {
+      for (const auto& [block, j] : c.side2) explicit_forces_[b.object()]->add(block, j.transpose() * force);
+    }
   }
   return static_cast<int>(order.size());
 }
@@ -214,9 +236,12 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
   }
   std::vector<std::vector<PenaltyContact<Real>>> contacts(penalties_.size());
   detected_.clear();
+  for (auto& forces : explicit_forces_) {
+    if (forces) forces->clear();
+  }
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::vector<Output> outputs = narrow_phase(pairs_[k], report);
-    report.contacts += constraints_.empty() ? penalty_response(pairs_[k], outputs, contacts) : friction_response(k, outputs);
+    report.contacts += constraints_.empty() ? penalty_response(k, outputs, contacts) : friction_response(k, outputs);
   }
   for (std::size_t o = 0; o < penalties_.size(); ++o) {
     if (penalties_[o]) penalties_[o]->set_contacts(std::move(contacts[o]), objects[o].system.state.position);

@@ -2,6 +2,7 @@
 #include "hexahedron_builders.h"
 
 #include "fastcorot/collision/contact_pipeline.h"
+#include "fastcorot/collision/explicit_contact_forces.h"
 #include "fastcorot/collision/new_proximity.h"
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/core/error.h"
@@ -120,27 +121,34 @@ class CollisionBuilder {
       }
     }
     if (friction) return friction_pipeline(*response, p, std::move(models), nodes);
-    for (const auto& pair : ContactPipeline<double>::rule_pairs(models, p)) {
-      check_placement(models, nodes, pair);
-      for (const std::size_t m : {pair.first, pair.second}) {
+    const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
+    std::vector<char> explicit_pairs(pairs.size(), 0);
+    std::vector<std::shared_ptr<ExplicitContactForces<double>>> explicit_forces(simulation_.objects.size());
+    const auto empty_mesh = [&](std::size_t o) {
+      return std::make_shared<const TetMesh>(simulation_.objects[o].system.size(), std::vector<Tetrahedron>{});
+    };
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      explicit_pairs[k] = explicit_placement(models, nodes, pairs[k]);
+      for (const std::size_t m : {pairs[k].first, pairs[k].second}) {
         if (models[m].points->is_still()) continue;
         const std::size_t o = models[m].points->object();
-        if (penalties[o]) continue;
-        auto& object = simulation_.objects[o];
-        penalties[o] = std::make_shared<PenaltyContactForceField<double>>(
-            std::make_shared<const TetMesh>(object.system.size(), std::vector<Tetrahedron>{}));
+        if (explicit_pairs[k] && !explicit_forces[o]) explicit_forces[o] = std::make_shared<ExplicitContactForces<double>>(empty_mesh(o));
+        if (!explicit_pairs[k] && !penalties[o]) penalties[o] = std::make_shared<PenaltyContactForceField<double>>(empty_mesh(o));
       }
     }
     std::shared_ptr<ContactPipeline<double>> pipeline;
     try {
-      pipeline = std::make_shared<ContactPipeline<double>>(p, std::move(models), penalties);
+      pipeline = std::make_shared<ContactPipeline<double>>(p, std::move(models), penalties, explicit_pairs, explicit_forces);
     } catch (const Error& error) {
       throw NotSimulated{error.what()};
     }
     for (std::size_t o = 0; o < penalties.size(); ++o) {
-      if (!penalties[o]) continue;
-      simulation_.objects[o].system.force_fields.push_back(penalties[o]);
-      simulation_.objects[o].force_field_drawing.push_back({});
+      for (const std::shared_ptr<ForceField<double>> field : {std::shared_ptr<ForceField<double>>(penalties[o]),
+                                                               std::shared_ptr<ForceField<double>>(explicit_forces[o])}) {
+        if (!field) continue;
+        simulation_.objects[o].system.force_fields.push_back(field);
+        simulation_.objects[o].force_field_drawing.push_back({});
+      }
     }
     return pipeline;
   }
@@ -265,30 +273,38 @@ class CollisionBuilder {
 
   // SOFA's placement of a model pair's response (SubCollisionPipeline::computeCollisionResponse): in
   // the node of the simulated model when the other is not simulated, else in the pipeline's node.
-  // Its penalty is implicit in the body's step only when that node is at or below the body's ODE
-  // solver; elsewhere SOFA evaluates it once, explicitly (or not at all), which is not simulated yet.
-  void check_placement(const std::vector<CollisionModel<double>>& models, const std::vector<const GraphNode*>& nodes,
-                       const typename ContactPipeline<double>::ModelPair& pair) const {
+  // Its penalty is implicit in the body's step when that node is at or below the body's ODE solver
+  // (true returned: false); when it is below none of the sides' solvers SOFA evaluates it once per
+  // step, explicitly (true). Below one side's solver only: not simulated.
+  bool explicit_placement(const std::vector<CollisionModel<double>>& models, const std::vector<const GraphNode*>& nodes,
+                          const typename ContactPipeline<double>::ModelPair& pair) const {
     const auto& a = models[pair.first];
     const auto& b = models[pair.second];
     const GraphNode* node = !a.simulated ? nodes[pair.second] : !b.simulated ? nodes[pair.first] : &pipeline_node_;
+    int below_count = 0, sides = 0;
     for (const auto* side : {&a, &b}) {
       if (side->points->is_still()) continue;
+      ++sides;
       const std::size_t o = side->points->object();
       const GraphNode* solver = o < solver_nodes_.size() ? solver_nodes_[o] : nullptr;
       bool below = false;
       for (const GraphNode* n = node; n && !below; n = n->parent) below = n == solver;
-      if (!below) {
-        throw NotSimulated{a.where + " and " + b.where + ": SOFA places their penalty response in node " + node->path +
-                           ", outside the ODE solver of " + simulation_.objects[o].path + ", and evaluates it explicitly: not "
-                           "simulated yet (an obstacle's models set simulated=\"0\" to have it implicit in the body's step)"};
-      }
+      below_count += below;
       if (solver) {
         for (const auto& c : solver->components) {
           if (c->type() == "PETScLinearSolver") throw NotSimulated{simulation_.objects[o].path + " is solved by PETScLinearSolver, whose matrix pattern does not follow contacts yet"};
         }
       }
     }
+    if (below_count == sides) {
+      const bool two_objects = !a.points->is_still() && !b.points->is_still() && a.points->object() != b.points->object();
+      if (!two_objects) return false;
+    }
+    if (below_count != 0 && below_count != sides) {
+      throw NotSimulated{a.where + " and " + b.where + ": SOFA places their penalty response in node " + node->path +
+                         ", under the ODE solver of one of their bodies only: not simulated"};
+    }
+    return true;
   }
 
   CollisionModel<double> model(Component& c) {

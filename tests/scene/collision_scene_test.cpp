@@ -83,28 +83,47 @@ TEST(CollisionScene, WhatIsNotSimulatedYetIsWarnedPerComponent) {
   int said = 0;
   for (const auto& line : scene.warnings) said += line.find("TetrahedronCollisionModel is not simulated yet") != std::string::npos;
   EXPECT_GE(said, 5) << "the pipeline's components and both models";
-  // Two bodies each under its own solver (SOFA's explicit penalty).
-  std::string bodies = point_over_floor(0.4);
-  bodies.replace(bodies.find("<Node name=\"floor\">"), std::string("<Node name=\"floor\">").size(),
-                 "<Node name=\"floor\"><EulerImplicitSolver/><CGLinearSolver/>");
-  LoadedScene two = build_scene_text(bodies, "dt=\"0.01\"");
-  EXPECT_FALSE(two.simulation.collisions);
-  bool explicit_said = false;
-  for (const auto& line : two.warnings) explicit_said = explicit_said || line.find("evaluates it explicitly") != std::string::npos;
-  EXPECT_TRUE(explicit_said);
-  // An obstacle whose models keep simulated="1": SOFA puts the response at the pipeline's node (the
-  // root, no solver) and applies it explicitly.
-  std::string simulated_floor = point_over_floor(0.4);
-  simulated_floor.replace(simulated_floor.find("simulated=\"0\" "), std::string("simulated=\"0\" ").size(), "");
-  LoadedScene root_placed = build_scene_text(simulated_floor, "dt=\"0.01\"");
-  EXPECT_FALSE(root_placed.simulation.collisions);
-  bool root_said = false;
-  for (const auto& line : root_placed.warnings) root_said = root_said || line.find("penalty response in node root") != std::string::npos;
-  EXPECT_TRUE(root_said);
   // A collision model without a pipeline: no contacts, as in SOFA (an info line).
   LoadedScene alone = build_scene_text("<Node name=\"b\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"0 0 0\"/>"
                                        "<UniformMass totalMass=\"1\"/><PointCollisionModel/></Node>");
   EXPECT_FALSE(alone.simulation.collisions);
+}
+
+// Two point masses closing head-on, each under its own solver, no gravity: SOFA's explicit penalty
+// (its response in the root, outside both solvers), evaluated once per step at the step's start.
+std::string two_points(const std::string& root_solver = "") {
+  return root_solver +
+         "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+         "<MinProximityIntersection alarmDistance=\"0.2\" contactDistance=\"0.1\"/><CollisionResponse response=\"PenalityContactForceField\"/>"
+         "<Node name=\"a\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+         "<MechanicalObject position=\"0 0 0\" velocity=\"1 0 0\"/><UniformMass totalMass=\"2\"/><PointCollisionModel contactStiffness=\"5\"/></Node>"
+         "<Node name=\"b\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+         "<MechanicalObject position=\"0.3 0 0\" velocity=\"-0.5 0 0\"/><UniformMass totalMass=\"1\"/><PointCollisionModel contactStiffness=\"4\"/></Node>";
+}
+
+TEST(CollisionScene, ExplicitPenaltyBetweenTwoBodiesKeepsMomentumAndActsOncePerStep) {
+  LoadedScene scene = build_scene_text(two_points(), "dt=\"0.01\" gravity=\"0 0 0\"");
+  auto& simulation = scene.simulation;
+  ASSERT_TRUE(simulation.collisions);
+  ASSERT_EQ(simulation.objects.size(), 2u);
+  auto& a = simulation.objects[0].system.state;
+  auto& b = simulation.objects[1].system.state;
+  const double p0 = 2 * a.velocity[0].x() + b.velocity[0].x();
+  const double d = 0.1, k = 5.0 * 4.0 / d, h = 0.01;
+  bool touched = false;
+  for (int step = 0; step < 60; ++step) {
+    const double gap = b.position[0].x() - a.position[0].x();
+    const double va = a.velocity[0].x(), vb = b.velocity[0].x();
+    simulation.step();
+    // The force k (d − gap) n, from the positions the step began at, over the step: Δv = h f / m.
+    const double f = gap < d ? k * (d - gap) : 0.0;
+    touched = touched || f > 0;
+    EXPECT_NEAR(a.velocity[0].x(), va - h * f / 2, 1e-12) << "step " << step;
+    EXPECT_NEAR(b.velocity[0].x(), vb + h * f / 1, 1e-12) << "step " << step;
+    EXPECT_NEAR(2 * a.velocity[0].x() + b.velocity[0].x(), p0, 1e-12) << "step " << step;
+  }
+  EXPECT_TRUE(touched);
+  EXPECT_GT(b.velocity[0].x(), a.velocity[0].x()) << "pushed apart";
 }
 
 TEST(CollisionScene, BadInputIsRefusedNamingTheComponent) {

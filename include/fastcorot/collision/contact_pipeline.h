@@ -13,6 +13,7 @@
 
 #include "fastcorot/collision/collision_model.h"
 #include "fastcorot/collision/element_intersection.h"
+#include "fastcorot/collision/explicit_contact_forces.h"
 #include "fastcorot/collision/penalty_contact_force_field.h"
 #include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 #include "fastcorot/sim/collision_stage.h"
@@ -28,11 +29,14 @@ class ContactPipeline final : public CollisionStage<Real> {
  public:
   // The intersection method and its data.
   using Parameters = IntersectionSettings<Real>;
-  // `penalties[o]`: object o's penalty field (null for an object no contact can reach). Throws
-  // fastcorot::Error for a model pair whose contact would join two different simulated objects
-  // (SOFA's explicit body–body penalty, not simulated yet), or a model without points.
+  // The PenalityContactForceField response. `penalties[o]`: object o's implicit penalty field (null
+  // for an object no implicit contact reaches). Rule pair k (rule_pairs' order) with
+  // explicit_pairs[k] set is SOFA's explicit penalty: evaluated once at the step's start into the
+  // explicit_forces of both sides' objects. Throws fastcorot::Error for an implicit pair joining two
+  // simulated objects, an object without the field its pairs need, or a model without points.
   ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                  std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties);
+                  std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties, std::vector<char> explicit_pairs = {},
+                  std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces = {});
   // SOFA's FrictionContactConstraint response (with FreeMotionAnimationLoop): rule pair k (in
   // rule_pairs' order) gives its contacts to `constraints[k]` (null: the pair makes none, SOFA's
   // response disabled by a zero contactStiffness), after SOFA's removal of duplicates (an output
@@ -58,8 +62,7 @@ class ContactPipeline final : public CollisionStage<Real> {
   PenaltyContact<Real> contact(const ModelPair& pair, const Output& output) const;
   // The penalty response of one pair's outputs into its objects' lists; the friction one into its
   // constraint. Both return the contacts kept.
-  int penalty_response(const ModelPair& pair, const std::vector<Output>& outputs,
-                       std::vector<std::vector<PenaltyContact<Real>>>& contacts);
+  int penalty_response(std::size_t k, const std::vector<Output>& outputs, std::vector<std::vector<PenaltyContact<Real>>>& contacts);
   int friction_response(std::size_t k, const std::vector<Output>& outputs);
   // The distance a contact keeps: the method's contact distance, the models', the spheres' radii.
   Real contact_distance(const ModelPair& pair, const Output& output) const;
@@ -72,6 +75,8 @@ class ContactPipeline final : public CollisionStage<Real> {
   std::vector<CollisionModel<Real>> models_;
   std::vector<ModelPair> pairs_;
   std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties_;
+  std::vector<char> explicit_pairs_;
+  std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces_;
   std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints_;
   std::vector<DetectedContact<Real>> detected_;
 };
