@@ -86,7 +86,7 @@ class CollisionBuilder {
       if (type == "CollisionResponse") response = response ? response : c;
       if (type == "BruteForceBroadPhase" && c->has("box")) throw NotSimulated{c->where() + ": its box (a region of interest) is not simulated yet"};
     }
-    if (!intersection) throw NotSimulated{"the scene has no intersection method"};
+    if (!intersection) throw NotSimulated{"the scene has no intersection method (MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection)"};
     const typename ContactPipeline<double>::Parameters p = intersection_settings(*intersection);
     method_ = p.method;
     response_name_ = data_.text(*response, "response", "PenalityContactForceField");

@@ -135,7 +135,7 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
   static constexpr std::pair<std::string_view, std::string_view> kRefused[] = {
-      {"UnilateralLagrangianConstraint", "UnilateralLagrangianConstraint is not simulated yet"},
+      {"UnilateralLagrangianConstraint", "a UnilateralLagrangianConstraint written in a scene is not simulated yet (those a FrictionContactConstraint response makes are)"},
       {"AugmentedLagrangianConstraint", "AugmentedLagrangianConstraint is not simulated yet"},
       {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},
       {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},

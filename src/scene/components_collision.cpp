@@ -56,7 +56,7 @@ std::vector<ComponentSpec> collision_components() {
   new_proximity.push_back({"useLineLine", "bool", "false", "edge–edge pairs (Line–Line, and between triangles' edges)"});
   return {
       {"CollisionPipeline", "collision",
-       "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection and the PenalityContactForceField response under the default animation loop, between a simulated body and an obstacle (or two models of one body); otherwise the scene's collisions are ignored with a warning saying why.",
+       "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection and the PenalityContactForceField response (implicit in a body's step, or explicit between two bodies' solvers) or FrictionContactConstraint under FreeMotionAnimationLoop; what is not (self-collision, Stick responses, tetrahedron models) is ignored with a warning saying why.",
        {{"depth", "int", "6", "accepted (fastcorot's tree has its own depth)"},
         {"verbose", "bool", "false", "accepted"},
         {"draw", "bool", "false", "accepted"}},

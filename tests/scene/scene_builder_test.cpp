@@ -222,7 +222,7 @@ TEST(SceneBuilder, CollisionComponentsAreWarnedAsNotSimulated) {
   ASSERT_EQ(without.warnings.size(), 5u);
   for (const auto& line : without.warnings) {
     EXPECT_NE(line.find("ignored: collisions and contacts are not simulated by fastcorot here: the scene has no intersection "
-                        "method fastcorot simulates (MinProximityIntersection)"),
+                        "method (MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection)"),
               std::string::npos)
         << line;
   }
