@@ -2,6 +2,7 @@
 
 #include "fastcorot/collision/intersections.h"
 #include "fastcorot/core/error.h"
+#include "fastcorot/state/rigid3.h"
 
 #include <algorithm>
 
@@ -35,11 +36,18 @@ CollisionPoints<Real> CollisionPoints<Real>::still(std::vector<Vec3<Real>> point
 }
 
 template <class Real>
+CollisionPoints<Real> CollisionPoints<Real>::rigid(std::size_t object, std::vector<Index> linear_blocks) {
+  CollisionPoints p = own(object, std::move(linear_blocks));
+  p.rigid_ = true;
+  return p;
+}
+
+template <class Real>
 void CollisionPoints<Real>::update(std::span<const SimulatedObject<Real>> objects) {
   if (still_) return;
   const auto& x = objects[object_].system.state.position;
   const Index extent = mapping_ ? mapping_->parent_extent()
-                                : (blocks_.empty() ? 0 : *std::max_element(blocks_.begin(), blocks_.end()) + 1);
+                                : (blocks_.empty() ? 0 : *std::max_element(blocks_.begin(), blocks_.end()) + (rigid_ ? 2 : 1));
   if (extent > static_cast<Index>(x.size())) {
     throw make_error(objects[object_].path, " lost points that a collision model reads (cut while running): contacts on a changing ",
                      "topology are not simulated yet");
@@ -60,6 +68,14 @@ void CollisionPoints<Real>::add_row_blocks(std::size_t i, Real weight, std::vect
   }
   mapping_->row_blocks(i, scratch_);
   for (const auto& [block, j] : scratch_) out.emplace_back(block, weight * j);
+}
+
+template <class Real>
+void CollisionPoints<Real>::add_rigid_point_blocks(std::size_t i, const Vec3<Real>& r,
+                                                   std::vector<std::pair<Index, Mat3<Real>>>& out) const {
+  if (!rigid_) throw make_error("CollisionPoints: add_rigid_point_blocks on points that are not rigid centres");
+  out.emplace_back(blocks_[i], Mat3<Real>::Identity());
+  out.emplace_back(blocks_[i] + 1, -cross_matrix(r));
 }
 
 template <class Real>

@@ -19,7 +19,10 @@ std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::ru
       // the intersector's order (Triangle before Line before Sphere before Point).
       ModelPair pair{later, earlier};
       if (element_rank(models[earlier].kind) > element_rank(models[later].kind)) std::swap(pair.first, pair.second);
-      if (has_rule(p, models[pair.first].kind, models[pair.second].kind)) pairs.push_back(pair);
+      // Among spheres, SOFA's intersectors take a Vec3 sphere before a rigid one.
+      const auto rigid = [&](std::size_t m) { return models[m].kind == CollisionElements::spheres && models[m].points->is_rigid(); };
+      if (models[earlier].kind == models[later].kind && rigid(pair.first) && !rigid(pair.second)) std::swap(pair.first, pair.second);
+      if (has_rule(p, models[pair.first], models[pair.second])) pairs.push_back(pair);
     }
   }
   return pairs;
@@ -90,8 +93,16 @@ Vec3<Real> ContactPipeline<Real>::add_side(const CollisionModel<Real>& model, In
   const auto e = static_cast<std::size_t>(element);
   const auto at = [&](Index i) -> const Vec3<Real>& { return x[static_cast<std::size_t>(i)]; };
   switch (model.kind) {
-    case CollisionElements::points:
-    case CollisionElements::spheres: model.points->add_row_blocks(e, Real(1), out); return x[e];
+    case CollisionElements::points: model.points->add_row_blocks(e, Real(1), out); return x[e];
+    case CollisionElements::spheres:
+      // SOFA's mappers: a Vec3 sphere's contact is its centre (identity); a rigid sphere's is the
+      // detected point, carried by the rigid (RigidContactMapper).
+      if (!model.points->is_rigid()) {
+        model.points->add_row_blocks(e, Real(1), out);
+        return x[e];
+      }
+      model.points->add_rigid_point_blocks(e, p - x[e], out);
+      return p;
     case CollisionElements::lines: {
       const Edge& s = model.edges[e];
       const Vec3<Real> ab = at(s[1]) - at(s[0]);
@@ -136,7 +147,8 @@ Real ContactPipeline<Real>::contact_distance(const ModelPair& pair, const Output
   const auto& m1 = models_[pair.first];
   const auto& m2 = models_[pair.second];
   // The method's contact distance (none for DiscreteIntersection) and the models'; a sphere's
-  // contact mapper adds its radius.
+  // contact mapper adds its radius (a rigid sphere's too, though its contact point is already on
+  // its surface: SOFA's RigidContactMapper, docs/collision.md §9 quirk 8).
   const Real method = parameters_.method == IntersectionMethod::discrete ? Real(0) : parameters_.contact_distance;
   Real d = method + m1.contact_distance + m2.contact_distance;
   if (m1.kind == CollisionElements::spheres) d += m1.radii[static_cast<std::size_t>(output.first)];

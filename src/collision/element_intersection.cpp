@@ -34,6 +34,13 @@ bool has_rule(const IntersectionSettings<Real>& s, CollisionElements a, Collisio
 }
 
 template <class Real>
+bool has_rule(const IntersectionSettings<Real>& s, const CollisionModel<Real>& a, const CollisionModel<Real>& b) {
+  const auto rigid_sphere = [](const CollisionModel<Real>& m) { return m.kind == CollisionElements::spheres && m.points->is_rigid(); };
+  if (s.method == IntersectionMethod::local_min_distance && (rigid_sphere(a) || rigid_sphere(b))) return false;
+  return has_rule(s, a.kind, b.kind);
+}
+
+template <class Real>
 ProximityDistances<Real> pair_distances(const IntersectionSettings<Real>& s, const CollisionModel<Real>& m1, const CollisionModel<Real>& m2) {
   if (s.method == IntersectionMethod::discrete) return {Real(0), Real(0)};
   return {s.alarm_distance + m1.contact_distance + m2.contact_distance, s.contact_distance + m1.contact_distance + m2.contact_distance};
@@ -49,7 +56,7 @@ struct Elements {
   const Vec3<Real>& at(Index p) const { return x[static_cast<std::size_t>(p)]; }
   const Edge& edge(Index e) const { return model.edges[static_cast<std::size_t>(e)]; }
   const Triangle& triangle(Index e) const { return model.triangles[static_cast<std::size_t>(e)]; }
-  ProximitySphere<Real> sphere(Index e) const { return {at(e), model.radii[static_cast<std::size_t>(e)], false}; }
+  ProximitySphere<Real> sphere(Index e) const { return {at(e), model.radii[static_cast<std::size_t>(e)], model.points->is_rigid()}; }
   int flags(Index e) const { return model.triangle_flags.empty() ? 0 : model.triangle_flags[static_cast<std::size_t>(e)]; }
   PointElement<Real> point_element(Index e) const { return {at(e), e}; }
   LineElement<Real> line_element(Index e) const { return {at(edge(e)[0]), at(edge(e)[1]), e}; }
@@ -208,8 +215,10 @@ void discrete(const Elements<Real>& a, Index e1, const Elements<Real>& b, Index 
     o.proximity.normal = Vec3<Real>::UnitX();
     o.proximity.null_distance = true;
   }
-  o.proximity.point[0] = s.center;
-  o.proximity.point[1] = t.center;
+  // SOFA's getContactPointByNormal: a Vec3 sphere's centre, a rigid sphere's surface point.
+  const Vec3<Real>& n = o.proximity.normal;
+  o.proximity.point[0] = s.rigid ? Vec3<Real>(s.center + n * s.radius) : s.center;
+  o.proximity.point[1] = t.rigid ? Vec3<Real>(t.center - n * t.radius) : t.center;
   o.proximity.value = distance - r;
   outputs.push_back(o);
 }
@@ -229,6 +238,7 @@ void intersect_elements(const IntersectionSettings<Real>& s, const CollisionMode
 }
 
 template bool has_rule(const IntersectionSettings<double>&, CollisionElements, CollisionElements);
+template bool has_rule(const IntersectionSettings<double>&, const CollisionModel<double>&, const CollisionModel<double>&);
 template ProximityDistances<double> pair_distances(const IntersectionSettings<double>&, const CollisionModel<double>&,
                                                    const CollisionModel<double>&);
 template void intersect_elements(const IntersectionSettings<double>&, const CollisionModel<double>&, Index, const CollisionModel<double>&,

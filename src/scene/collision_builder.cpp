@@ -335,7 +335,6 @@ class CollisionBuilder {
     Component& state = state_of(c);
     m.points = points_of(state, c);
     if (m.kind == CollisionElements::spheres) {
-      if (is_rigid_template(data_.text(c, "template", "Vec3d"))) throw NotSimulated{c.where() + ": rigid spheres (RigidSphereModel) are not simulated yet"};
       // SOFA's radii: listRadius where it has one, radius (1) for the points beyond it.
       const Numbers listed = data_.data(c, "listRadius");
       const double fallback = data_.real(c, "radius", 1.0);
@@ -443,7 +442,12 @@ class CollisionBuilder {
   }
 
   std::shared_ptr<CollisionPoints<double>> points_of(Component& state, Component& user) {
-    if (const auto it = points_.find(&state); it != points_.end()) return it->second;
+    if (const auto it = points_.find(&state); it != points_.end()) {
+      if (it->second->is_rigid() && user.type() != "SphereCollisionModel") {
+        throw NotSimulated{user.where() + ": a " + std::string(user.type()) + " on a Rigid3 state (put its points under a RigidMapping)"};
+      }
+      return it->second;
+    }
     std::shared_ptr<CollisionPoints<double>> points;
     if (const auto where = locate_(state)) {
       const auto& object = simulation_.objects[where->object];
@@ -454,10 +458,18 @@ class CollisionBuilder {
         points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::mapped(
             where->object, std::shared_ptr<MechanicalMapping<double>>(mechanical_mapping(where->mapped->map, where->mapped->rigid))));
       } else {
-        if (where->rigid) throw NotSimulated{user.where() + ": a collision model on a Rigid3 state (its points: under a RigidMapping)"};
         std::vector<Index> blocks;
-        for (Index i = 0; i < where->size; ++i) blocks.push_back(where->offset + i);
-        points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::own(where->object, std::move(blocks)));
+        if (where->rigid) {
+          // SOFA's RigidSphereModel: a SphereCollisionModel in a Rigid3 state's context.
+          if (user.type() != "SphereCollisionModel") {
+            throw NotSimulated{user.where() + ": a " + std::string(user.type()) + " on a Rigid3 state (put its points under a RigidMapping)"};
+          }
+          for (Index i = 0; i < where->size; i += 2) blocks.push_back(where->offset + i);
+          points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::rigid(where->object, std::move(blocks)));
+        } else {
+          for (Index i = 0; i < where->size; ++i) blocks.push_back(where->offset + i);
+          points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::own(where->object, std::move(blocks)));
+        }
       }
       static_cast<void>(object);
     } else {

@@ -24,7 +24,7 @@ std::vector<AttributeSpec> model_attributes() {
           {"topology", "link", "", "the topology its elements come from (default: the nearest one)"},
           {"mstate", "link", "", "accepted: the node's MechanicalObject is used"},
           {"color", "string", "", "accepted (display)"},
-          {"template", "string", "", "accepted (Vec3d)"}};
+          {"template", "string", "", "accepted: the node's MechanicalObject decides (Vec3d; Rigid3d for spheres)"}};
 }
 
 }  // namespace
@@ -84,7 +84,7 @@ std::vector<ComponentSpec> collision_components() {
       {"TriangleCollisionModel", "collision", "The triangles of the node's topology (quads split as SOFA) on the node's MechanicalObject.", triangle, {"TriangleModel"}},
       {"LineCollisionModel", "collision", "The edges of the node's topology (from its triangles when it lists none) on the node's MechanicalObject.", model_attributes(), {"LineModel"}},
       {"PointCollisionModel", "collision", "Every point of the node's MechanicalObject.", model_attributes(), {"PointModel"}},
-      {"SphereCollisionModel", "collision", "A sphere at every point of the node's MechanicalObject (Vec3d), its radius from listRadius or radius.", sphere, {"SphereModel"}},
+      {"SphereCollisionModel", "collision", "A sphere at every point of the node's MechanicalObject, or at every rigid body of a Rigid3d one (SOFA's RigidSphereModel: its contacts at the surface point, carried by the rigid, the radius also added to the contact distance as SOFA does), its radius from listRadius or radius. LocalMinDistance has no rule for rigid spheres, as in SOFA.", sphere, {"SphereModel"}},
   };
 }
 

@@ -4,6 +4,7 @@
 // 10,000 steps; what is not simulated yet warned in one line per component; bad input refused.
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
+#include "fastcorot/state/rigid3.h"
 
 #include "../support/scene_text.h"
 #include "support/contact_reference.h"
@@ -44,6 +45,41 @@ TEST(CollisionScene, SpheresOnSpheresFollowSofa) {
   // keeps one contact per id (the floor sphere's index here), as fastcorot's count does.
   testing::expect_contact_trajectory("spheres_on_spheres.scn", "spheres_on_spheres_trajectory.json", 1e-9,
                                      {.contacts = false, .rows = false});
+}
+
+TEST(CollisionScene, RigidSpheresFollowSofaWithTheRadiusCountedTwice) {
+  // SOFA's RigidSphereModel: the contact point is the sphere's surface point, carried by the rigid,
+  // and the radius is added to the contact distance too. A ball meets the cube's Vec3 spheres
+  // (explicit, two bodies), a bead a still sphere (implicit); both are thrown back up, as in SOFA.
+  LoadedScene scene = load_scene_file(testing::sofa_reference_path("rigid_spheres_on_spheres.scn"));
+  const auto reference = testing::load_sofa_trajectory("rigid_spheres_on_spheres_trajectory.json");
+  auto& simulation = scene.simulation;
+  ASSERT_TRUE(simulation.collisions);
+  ASSERT_EQ(simulation.objects.size(), 3u);  // cube, ball, bead: one object per solver
+  const auto rest = testing::json_points(reference["steps"]["0"]["points"]);
+  int contacts = 0;
+  double highest = 0;
+  for (const long step : testing::dumped_steps(reference)) {
+    while (simulation.steps_done() < step) simulation.step();
+    highest = std::max(highest, simulation.objects[1].system.state.position[0].y());
+    const auto& frame = reference["steps"][std::to_string(step)];
+    const auto d = testing::compare_points(simulation.objects[0].system.state.position, testing::json_points(frame["points"]), rest);
+    EXPECT_LE(d.difference, 1e-9 * d.displacement + 1e-15) << "cube, step " << step;
+    for (const auto& [object, name] : {std::pair{std::size_t{1}, "ball"}, std::pair{std::size_t{2}, "bead"}}) {
+      const auto& system = simulation.objects[object].system;
+      ASSERT_TRUE(system.rigids);
+      const RigidCoord<double> coord = system.rigids->coord(system.state.position, 0);
+      const auto& sofa = frame[name];
+      const Vec3<double> centre(sofa[0].get<double>(), sofa[1].get<double>(), sofa[2].get<double>());
+      const Eigen::Quaterniond q(sofa[6].get<double>(), sofa[3].get<double>(), sofa[4].get<double>(), sofa[5].get<double>());
+      EXPECT_LE((coord.center - centre).norm(), 1e-9 * std::max(1.0, centre.norm())) << name << ", step " << step;
+      EXPECT_LE(std::abs(std::abs(coord.orientation.dot(q)) - 1), 1e-12) << name << ", step " << step;
+    }
+    if (step > 0) EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << "step " << step;
+    contacts += simulation.collision_report().contacts;
+  }
+  EXPECT_EQ(contacts, 2);  // each body's one contact
+  EXPECT_GT(highest, 1.6) << "the ball was thrown above where it started";
 }
 
 // A point of mass m above a still triangle in the plane y = 0; contact distance d, stiffnesses
@@ -124,6 +160,40 @@ TEST(CollisionScene, ExplicitPenaltyBetweenTwoBodiesKeepsMomentumAndActsOncePerS
   }
   EXPECT_TRUE(touched);
   EXPECT_GT(b.velocity[0].x(), a.velocity[0].x()) << "pushed apart";
+}
+
+// A rigid ball of radius 0.3 overlapping a still Vec3 sphere of radius 0.5 (centres 0.7 apart) under
+// `method`, or a `model` on the rigid state.
+std::string rigid_ball(const std::string& method, const std::string& model = "<SphereCollisionModel radius=\"0.3\"/>") {
+  return "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>" + method +
+         "<CollisionResponse response=\"PenalityContactForceField\"/>"
+         "<Node name=\"ball\"><EulerImplicitSolver/><CGLinearSolver iterations=\"100\" tolerance=\"1e-30\" threshold=\"1e-30\"/>"
+         "<MechanicalObject template=\"Rigid3d\" position=\"0 0.7 0  0 0 0 1\"/><UniformMass totalMass=\"1\"/>" + model + "</Node>"
+         "<Node name=\"post\"><MechanicalObject position=\"0 0 0\"/><SphereCollisionModel radius=\"0.5\" simulated=\"0\"/></Node>";
+}
+
+TEST(CollisionScene, RigidSpheresMeetWhereSofaHasARuleForThem) {
+  // DiscreteIntersection: the post's point is its centre, the ball's its surface point (SOFA's
+  // getContactPointByNormal), pushed by k (d − gap), d = r₁ + r₂ as the mappers add them.
+  LoadedScene discrete = build_scene_text(rigid_ball("<DiscreteIntersection/>"), "dt=\"0.01\" gravity=\"0 0 0\"");
+  ASSERT_TRUE(discrete.simulation.collisions);
+  discrete.simulation.step();
+  EXPECT_EQ(discrete.simulation.collision_report().contacts, 1);
+  const auto& x = discrete.simulation.objects[0].system.state.position;
+  // Implicit Euler from rest, m = 1: v = h k pen / (m + h² k), k = 10·10 / 0.8, pen = 0.8 − (0.7 − 0.3).
+  const double h = 0.01, k = 100 / 0.8, pen = 0.8 - 0.4;
+  EXPECT_NEAR(x[0].y(), 0.7 + h * h * k * pen / (1 + h * h * k), 1e-12) << "pushed from its surface point";
+  // LocalMinDistance registers its sphere rules for Vec3 spheres only: no pair, no contact.
+  LoadedScene lmd = build_scene_text(rigid_ball("<LocalMinDistance alarmDistance=\"1\" contactDistance=\"0.1\"/>"), "dt=\"0.01\" gravity=\"0 0 0\"");
+  lmd.simulation.step();
+  EXPECT_EQ(lmd.simulation.collision_report().contacts, 0);
+  EXPECT_EQ(lmd.simulation.objects[0].system.state.position[0].y(), 0.7);
+  // Other models on a Rigid3 state need its points under a RigidMapping: said, not simulated.
+  LoadedScene point = build_scene_text(rigid_ball("<DiscreteIntersection/>", "<PointCollisionModel/>"), "dt=\"0.01\"");
+  EXPECT_FALSE(point.simulation.collisions);
+  bool said = false;
+  for (const auto& line : point.warnings) said = said || line.find("a PointCollisionModel on a Rigid3 state") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(CollisionScene, BadInputIsRefusedNamingTheComponent) {

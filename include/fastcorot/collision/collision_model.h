@@ -25,8 +25,12 @@ class CollisionPoints {
   static CollisionPoints mapped(std::size_t object, std::shared_ptr<MechanicalMapping<Real>> mapping);
   // Points that nothing moves (an obstacle: a MechanicalObject no ODE solver integrates).
   static CollisionPoints still(std::vector<Vec3<Real>> points);
+  // The centres of simulated object `object`'s rigid bodies, given by their linear blocks (the
+  // angular block follows each): SOFA's RigidSphereModel.
+  static CollisionPoints rigid(std::size_t object, std::vector<Index> linear_blocks);
 
   bool is_still() const { return still_; }
+  bool is_rigid() const { return rigid_; }
   std::size_t object() const { return object_; }
   std::size_t size() const { return x_.size(); }
   const std::vector<Vec3<Real>>& positions() const { return x_; }
@@ -34,10 +38,15 @@ class CollisionPoints {
   void update(std::span<const SimulatedObject<Real>> objects);
   // out += weight × J's row blocks of point i on the object's blocks (nothing for still points).
   void add_row_blocks(std::size_t i, Real weight, std::vector<std::pair<Index, Mat3<Real>>>& out) const;
+  // Rigid centres only: out += J's row blocks of the point at offset r (world frame) from centre i,
+  // carried by its rigid as SOFA's RigidContactMapper carries a contact point: I on the linear
+  // block, −[r]× on the angular one.
+  void add_rigid_point_blocks(std::size_t i, const Vec3<Real>& r, std::vector<std::pair<Index, Mat3<Real>>>& out) const;
 
  private:
   std::size_t object_ = 0;
   bool still_ = false;
+  bool rigid_ = false;
   std::vector<Index> blocks_;
   std::shared_ptr<MechanicalMapping<Real>> mapping_;
   std::vector<Vec3<Real>> x_;
@@ -45,7 +54,7 @@ class CollisionPoints {
 };
 
 // SOFA's PointCollisionModel, LineCollisionModel, TriangleCollisionModel, SphereCollisionModel
-// (Vec3: a sphere per point).
+// (a sphere per point, or per rigid body on a Rigid3 state: points->is_rigid()).
 enum class CollisionElements { points, lines, triangles, spheres };
 
 template <class Real>

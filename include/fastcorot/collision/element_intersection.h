@@ -46,6 +46,10 @@ int element_rank(CollisionElements kind);
 // Whether `settings.method` has a rule for models of kinds (a, b), a of rank ≥ b's.
 template <class Real>
 bool has_rule(const IntersectionSettings<Real>& settings, CollisionElements a, CollisionElements b);
+// The same for two models, a first: LocalMinDistance has no rule for rigid spheres (SOFA registers
+// its sphere rules for Vec3 spheres only).
+template <class Real>
+bool has_rule(const IntersectionSettings<Real>& settings, const CollisionModel<Real>& a, const CollisionModel<Real>& b);
 
 // The distances of a pair of models (without sphere radii, which the rules add).
 template <class Real>
