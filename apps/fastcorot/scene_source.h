@@ -29,6 +29,9 @@ class SceneSource {
   // Whether state outside the simulation (a controller's own) takes part: a checkpoint then holds
   // only part of what the run depends on.
   virtual bool has_controllers() const { return false; }
+  // True once after the scene was built again in place (a script's controller added or removed
+  // nodes while it runs): what was derived from its objects is to be derived again.
+  virtual bool take_rebuilt() { return false; }
 };
 
 // True for a scene argument that names a Python script (.py).

@@ -33,8 +33,14 @@ void ViewerSession::load(bool again) {
   warnings = scene.warnings;
   if (options_.dt) scene.simulation.dt = *options_.dt;
   scene.simulation.threads = threads_to_run(options_.threads, false, simulated_points(scene.simulation));
+  derive_materials(scene.simulation);
+  scene_ = &scene;
+  removed_ = 0;
+}
+
+void ViewerSession::derive_materials(const Simulation<double>& simulation) {
   materials.clear();
-  for (const auto& object : scene.simulation.objects) {
+  for (const auto& object : simulation.objects) {
     ObjectMaterial material;
     if (!object.system.force_fields.empty()) {
       const auto& field = object.system.force_fields.front();
@@ -50,16 +56,20 @@ void ViewerSession::load(bool again) {
     }
     materials.push_back(material);
   }
-  scene_ = &scene;
-  removed_ = 0;
+}
+
+void ViewerSession::follow_rebuilt_scene() {
+  if (source_->take_rebuilt()) derive_materials(scene_->simulation);
 }
 
 void ViewerSession::step() {
   const auto start = std::chrono::steady_clock::now();
   try {
     source_->begin_step();
+    follow_rebuilt_scene();
     scene_->simulation.step();
     source_->end_step();
+    follow_rebuilt_scene();
     message.clear();
   } catch (const Error& error) {
     playing = false;
@@ -93,6 +103,7 @@ void ViewerSession::reload() {
 void ViewerSession::key_pressed(char key) {
   try {
     source_->key_pressed(key);
+    follow_rebuilt_scene();
   } catch (const Error& error) {
     playing = false;
     message = error.what();

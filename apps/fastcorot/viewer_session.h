@@ -85,6 +85,10 @@ class ViewerSession {
 
  private:
   void load(bool again);
+  // One material entry per object of `simulation`, as its first force field has it.
+  void derive_materials(const Simulation<double>& simulation);
+  // After a script rebuilt the scene in place (its tree changed while running): the materials again.
+  void follow_rebuilt_scene();
 
   ViewOptions options_;
   std::unique_ptr<SceneSource> source_;

@@ -171,10 +171,11 @@ class Node:
                 raise ValueError(f"addChild: node '{child.getName()}' already has a parent")
             object.__setattr__(child._node, "_parent", self._node)
             self._node._children.append(child._node)
+            self._changed_while_running()
             return child
         if not isinstance(child, str):
             raise TypeError(f"addChild: expected a name (str) or a Sofa.Core.Node, got {type(child).__name__}")
-        self._refuse_when_running("addChild")
+        self._changed_while_running()
         node = fastcorot.Node(child)
         object.__setattr__(node, "_location", _scene._caller_location())
         object.__setattr__(node, "_parent", self._node)
@@ -188,7 +189,7 @@ class Node:
         as Data, objects or nodes), or a Python Controller or ForceField. Checked against fastcorot's component
         table: an unknown type is a ValueError naming the closest; unknown data warn (SceneWarning)."""
         if isinstance(type_name, _PythonComponent):
-            self._refuse_when_running("addObject")
+            self._changed_while_running()
             type_name.__dict__["_sofa_context"] = self
             self._python_objects.append(type_name)
             return type_name
@@ -197,10 +198,11 @@ class Node:
                             f"{type(type_name).__name__}")
         if args:
             raise TypeError(f"addObject('{type_name}'): data are keyword arguments, got {len(args)} positional")
-        self._refuse_when_running("addObject")
+        self._changed_while_running()
         location = _scene._caller_location()
         values = {key: _value_for_scene(value) for key, value in data.items()}
-        if str(values.get("template", "")).startswith("Rigid"):
+        if str(values.get("template", "")).startswith("Rigid") or (type_name != "MechanicalObject" and "template" not in values
+                                                                    and self._context_template().startswith("Rigid")):
             # 7 numbers per rigid frame: kept as text, for the builder to refuse where it is simulated
             values = {key: value if isinstance(value, str) else to_text(value) for key, value in values.items()}
         wrapped = _scene.Object(self._node, type_name, values, location, strict=False)
@@ -209,12 +211,23 @@ class Node:
 
     createObject = addObject
 
-    def _refuse_when_running(self, what):
+    def _context_template(self):
+        """The template of the node's context state (its first MechanicalObject, or the nearest
+        ancestor's), which SOFA gives the components created without one ("" for none)."""
+        node = self._node
+        while node is not None:
+            for obj in node._objects:
+                if obj.type == "MechanicalObject":
+                    return str(obj._data.get("template", "Vec3d"))
+            node = node._parent
+        return ""
+
+    def _changed_while_running(self):
+        """The tree changed after Sofa.Simulation.init: the simulation is built again, the running
+        state carried over, at the next init() of a node or before the next step."""
         root = self.getRoot()
         if root._simulation is not None:
-            raise NotImplementedError(f"{self.getPathName()}: {what} after Sofa.Simulation.init: fastcorot builds "
-                                      "the scene once; add everything in createScene (or call Sofa.Simulation.unload "
-                                      "and init again)")
+            root._extra["_grown"] = True
 
     def getRoot(self):
         node = self._node
@@ -265,10 +278,13 @@ class Node:
         return "@" + self.getPathName()
 
     def init(self):
-        """SOFA initialises a node added at run time; fastcorot builds the scene once (Sofa.Simulation.init)."""
-        if self.getRoot()._simulation is not None:
-            raise NotImplementedError(f"{self.getPathName()}: init() of a node added at run time: fastcorot builds "
-                                      "the scene once, in Sofa.Simulation.init")
+        """SOFA initialises a node added while the scene runs: here the scene is built again from
+        the grown tree and the running state carried over (fastcorot.Simulation.rebuild); before
+        Sofa.Simulation.init, nothing to do."""
+        root = self.getRoot()
+        if root._simulation is not None and root._extra.get("_grown"):
+            from . import Simulation
+            Simulation._regrow(root)
 
     def getData(self, name):
         return Data(self, name) if name in _NODE_DATA else None
@@ -293,23 +309,25 @@ class Node:
         return fields[index] if 0 <= index < len(fields) else None
 
     def removeChild(self, child):
-        """Removes a child node (a Node or its name) before Sofa.Simulation.init."""
-        self._refuse_when_running("removeChild")
+        """Removes a child node (a Node or its name); while the scene runs, the simulation is built
+        again without it before the next step."""
         node = child._node if isinstance(child, Node) else next((c for c in self._node._children if c.name == child), None)
         if node is None or node not in self._node._children:
             raise ValueError(f"{self.getPathName()}: removeChild: no child {child!r}")
         self._node._children.remove(node)
         object.__setattr__(node, "_parent", None)
+        self._changed_while_running()
 
     def removeObject(self, obj):
-        """Removes an object (or a Python controller or force field) before Sofa.Simulation.init."""
-        self._refuse_when_running("removeObject")
+        """Removes an object (or a Python controller or force field); while the scene runs, the
+        simulation is built again without it before the next step."""
         if isinstance(obj, BaseObject) and obj._object in self._node._objects:
             self._node._objects.remove(obj._object)
         elif obj in self._python_objects:
             self._python_objects.remove(obj)
         else:
             raise ValueError(f"{self.getPathName()}: removeObject: {obj!r} is not in this node")
+        self._changed_while_running()
 
     # --- data (the owner protocol of Data) ----------------------------------------------------------
     def _data_value(self, name):

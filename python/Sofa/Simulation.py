@@ -6,8 +6,10 @@ sends AnimateBeginEvent to the controllers, steps once, and sends AnimateEndEven
 DefaultAnimationLoop does.
 """
 
+import warnings
+
 import fastcorot
-from fastcorot.scene import walk
+from fastcorot.scene import SceneWarning, walk
 
 from ._matrices import bound_state, canonical_type
 from .Core import ForceField, Node
@@ -23,6 +25,16 @@ def _start(root, strict=False):
     simulation = fastcorot.Simulation(root.fastcorot_node, strict=strict, allow_empty=True)
     object.__setattr__(root, "_simulation", simulation)
     root._extra.pop("_time_offset", None)
+    root._extra.pop("_grown", None)
+    for component in root._all_python_components():
+        component.__dict__.pop("_fastcorot_initialised", None)
+    _attach(root, simulation)
+    return simulation
+
+
+def _attach(root, simulation):
+    """What the built simulation takes from the Python side: its Python force fields, the solves the
+    linear systems read; then each Python component not yet initialised gets its init()."""
     if any(canonical_type(obj.type) == "MatrixLinearSystem" for node in walk(root.fastcorot_node) for obj in node._objects):
         simulation._core.record_solves()  # for the linear systems' get_system_matrix and the like
     for component in root._all_python_components():
@@ -32,8 +44,21 @@ def _start(root, strict=False):
                 core, k, start, stop = state
                 core.add_python_force_field(k, component, component.getName(), start, stop)
     for component in root._all_python_components():
-        component.init()
-    return simulation
+        if not component.__dict__.get("_fastcorot_initialised"):
+            component.__dict__["_fastcorot_initialised"] = True
+            component.init()
+
+
+def _regrow(root):
+    """The tree changed while running (nodes or objects added or removed): the simulation is built
+    again from it, the running state carried over (fastcorot.Simulation.rebuild), and the new Python
+    components initialised, as SOFA initialises a node added at run time."""
+    root._extra.pop("_grown", None)
+    simulation = root._simulation
+    report = simulation.rebuild()
+    for note in report["notes"]:
+        warnings.warn(f"the scene was built again while running: {note}", SceneWarning, stacklevel=3)
+    _attach(root, simulation)
 
 
 def init(node):
@@ -56,6 +81,8 @@ def animate(node, dt=0.0):
     """One step of `dt` (0: the root's dt) with the controllers' AnimateBeginEvent and AnimateEndEvent."""
     root = _root(node)
     simulation = simulation_of(root)
+    if root._extra.get("_grown"):
+        _regrow(root)
     step = float(dt) if dt else simulation.dt
     if not step > 0:
         raise ValueError(f"Sofa.Simulation.animate: dt = {dt!r}: must be > 0")

@@ -75,12 +75,22 @@ class ScriptRun:
 
     def begin_step(self):
         self._send("AnimateBeginEvent", dt=self.core.dt)
+        if self.root._extra.get("_grown"):  # a controller changed the tree and did not init() it
+            try:
+                Simulation._regrow(self.root)
+            except Exception as error:
+                raise ScriptError(_one_line(error, self.script) + " (building the scene again after a controller changed it)") from None
 
     def end_step(self):
         self._send("AnimateEndEvent", dt=self.core.dt)
 
     def key_pressed(self, key):
         self._send("KeypressedEvent", key=key)
+        if self.root._extra.get("_grown"):
+            try:
+                Simulation._regrow(self.root)
+            except Exception as error:
+                raise ScriptError(_one_line(error, self.script) + " (building the scene again after a controller changed it)") from None
 
     def reload(self):
         if self._rebuild is None:

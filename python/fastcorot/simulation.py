@@ -35,6 +35,23 @@ class Simulation:
         if threads is None:
             threads = _core.default_thread_count(sum(size for _, _, _, size in core.state_parts))
         core.threads = threads
+        self._strict = strict
+        self._allow_empty = allow_empty
+        self._bind(root, core, objects)
+
+    def rebuild(self):
+        """Builds the scene again from its tree, grown or pruned since (nodes and objects added or
+        removed between steps, as SofaPython3 scripts do), and carries the running state over: the
+        step count, and the positions, velocities and solver states of every object still in the
+        tree (matched by node path); new objects start from the scene. Returns a dict: "carried"
+        and "fresh" (node paths) and "notes" (what starts afresh). The previous state stays valid
+        for arrays that view it (they no longer follow the simulation)."""
+        objects = []
+        report = self._core.rebuild(self._root._tree(objects), self._strict, self._allow_empty)
+        self._bind(self._root, self._core, objects)
+        return report
+
+    def _bind(self, root, core, objects):
         for node in walk(root):
             object.__setattr__(node, "_core", None)
             for obj in node._objects:

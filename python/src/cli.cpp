@@ -39,13 +39,24 @@ class PythonScript final : public cli::SceneSource {
   void begin_step() override { call("begin_step"); }
   void end_step() override { call("end_step"); }
   void key_pressed(char key) override { call("key_pressed", std::string(1, key)); }
+  bool take_rebuilt() override {
+    py::gil_scoped_acquire gil;
+    fetch_core();
+    const bool rebuilt = core_->rebuilds != seen_rebuilds_;
+    seen_rebuilds_ = core_->rebuilds;
+    return rebuilt;
+  }
   bool has_controllers() const override {
     py::gil_scoped_acquire gil;
     return run_.attr("has_controllers").cast<bool>();
   }
 
  private:
-  void fetch_core() { core_ = run_.attr("core").cast<SimulationCore*>(); }
+  void fetch_core() {
+    SimulationCore* core = run_.attr("core").cast<SimulationCore*>();
+    if (core != core_) seen_rebuilds_ = core->rebuilds;  // a reload: a new scene, not one rebuilt
+    core_ = core;
+  }
 
   template <class... Arguments>
   void call(const char* method, const Arguments&... arguments) {
@@ -59,6 +70,7 @@ class PythonScript final : public cli::SceneSource {
 
   py::object run_;
   SimulationCore* core_ = nullptr;
+  std::size_t seen_rebuilds_ = 0;
 };
 
 int cli_main(const std::vector<std::string>& arguments, py::object loader) {

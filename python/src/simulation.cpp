@@ -10,6 +10,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/core/machine.h"
 #include "fastcorot/fem/tetrahedron_fem_force_field.h"
+#include "fastcorot/io/carried_state.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include <pybind11/stl.h>
@@ -22,11 +23,33 @@ namespace fastcorot::python {
 
 namespace {
 
-std::unique_ptr<SimulationCore> build(py::handle tree, bool strict, bool allow_empty) {
+LoadedScene build_tree(py::handle tree, bool strict, bool allow_empty) {
   SceneOptions options;
   options.strict = strict;
   options.allow_empty = allow_empty;
-  return std::make_unique<SimulationCore>(build_scene(scene_node_from_tree(tree), options));
+  return build_scene(scene_node_from_tree(tree), options);
+}
+
+std::unique_ptr<SimulationCore> build(py::handle tree, bool strict, bool allow_empty) {
+  return std::make_unique<SimulationCore>(build_tree(tree, strict, allow_empty));
+}
+
+// The scene built again from its grown (or pruned) tree, with the running state carried over
+// (io/carried_state.h); the running scene is kept, retired, so that arrays viewing it stay valid.
+py::dict rebuild(SimulationCore& core, py::handle tree, bool strict, bool allow_empty) {
+  LoadedScene fresh = build_tree(tree, strict, allow_empty);
+  fresh.simulation.threads = core.simulation().threads;
+  fresh.simulation.divergence_factor = core.simulation().divergence_factor;
+  std::lock_guard lock(core.stepping);
+  const CarriedState carried = carry_state(core.simulation(), fresh.simulation);
+  core.retired.push_back(std::make_unique<LoadedScene>(std::move(core.scene)));
+  core.scene = std::move(fresh);
+  ++core.rebuilds;
+  py::dict out;
+  out["carried"] = carried.carried;
+  out["fresh"] = carried.fresh;
+  out["notes"] = carried.notes;
+  return out;
 }
 
 void step(SimulationCore& core, long count) {
@@ -121,6 +144,9 @@ void bind_simulation(py::module_& m) {
   bind_contacts(core);
   bind_python_force_fields(core);
   core.def(py::init(&build), py::arg("tree"), py::arg("strict") = true, py::arg("allow_empty") = false)
+      .def("rebuild", &rebuild, py::arg("tree"), py::arg("strict") = true, py::arg("allow_empty") = false,
+           "The scene built again from `tree` (grown or pruned while running), the running state carried over: "
+           "a dict of the objects carried, those new, and notes on what starts afresh.")
       .def_property_readonly("warnings", [](SimulationCore& c) { return c.scene.warnings; })
       .def("step", &step, py::arg("n") = 1, "Advances n time steps (the GIL is released while stepping).")
       .def_property(

@@ -7,14 +7,19 @@
 
 #include "fastcorot/scene/scene_builder.h"
 
+#include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 namespace fastcorot::python {
 
 struct SimulationCore {
   LoadedScene scene;
   std::mutex stepping;  // one step at a time, whichever Python thread asks
+  // Scenes replaced by rebuild() (a tree grown while running): kept for the arrays that view them.
+  std::vector<std::unique_ptr<LoadedScene>> retired;
+  std::size_t rebuilds = 0;  // how many times rebuild() replaced the scene
 
   explicit SimulationCore(LoadedScene loaded) : scene(std::move(loaded)) {}
 

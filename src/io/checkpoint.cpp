@@ -245,6 +245,8 @@ std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t hash) {
   return hash;
 }
 
+ObjectFingerprint object_fingerprint(const SimulatedObject<double>& object) { return fingerprint(object); }
+
 std::vector<ObjectFingerprint> scene_fingerprints(const Simulation<double>& simulation) {
   std::vector<ObjectFingerprint> prints;
   for (const auto& object : simulation.objects) prints.push_back(fingerprint(object));

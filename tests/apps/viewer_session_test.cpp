@@ -15,6 +15,7 @@
 #include <fstream>
 #include <limits>
 #include <numeric>
+#include <utility>
 
 namespace fastcorot::cli {
 namespace {
@@ -267,14 +268,22 @@ class KeyedSource final : public SceneSource {
   void key_pressed(char key) override {
     if (key == 'X') throw make_error("script.py:3: ValueError: no X (in a controller's KeypressedEvent)");
     events_.push_back(std::string("key ") + key);
+    if (key == 'G') {  // a controller adding a node: the scene built again in place, with a second beam
+      scene_ = build(2);
+      rebuilt_ = true;
+    }
   }
+  bool take_rebuilt() override { return std::exchange(rebuilt_, false); }
 
  private:
-  static LoadedScene build() {
-    return build_scene(parse_scene_text("<Node name=\"root\">" + testing::small_beam() + "</Node>", "script.py"));
+  static LoadedScene build(int beams = 1) {
+    std::string nodes;
+    for (int b = 0; b < beams; ++b) nodes += "<Node name=\"beam" + std::to_string(b) + "\">" + testing::small_beam() + "</Node>";
+    return build_scene(parse_scene_text("<Node name=\"root\">" + nodes + "</Node>", "script.py"));
   }
   std::vector<std::string>& events_;
   LoadedScene scene_;
+  bool rebuilt_ = false;
 };
 
 TEST(ViewerSession, AScriptsControllersGetTheStepsAndTheKeys) {
@@ -289,13 +298,17 @@ TEST(ViewerSession, AScriptsControllersGetTheStepsAndTheKeys) {
     ViewerSession session(options);
     session.step();
     session.key_pressed('L');
+    ASSERT_EQ(session.materials.size(), 1u);
+    session.key_pressed('G');
+    EXPECT_EQ(session.materials.size(), 2u) << "the viewer follows a scene its script built again";
+    session.step();
     session.reload();
     EXPECT_EQ(session.simulation().steps_done(), 0);
     session.key_pressed('X');
     EXPECT_NE(session.message.find("no X"), std::string::npos);
   }
   set_script_loader(nullptr);
-  EXPECT_EQ(events, (std::vector<std::string>{"begin", "end", "key L", "reload"}));
+  EXPECT_EQ(events, (std::vector<std::string>{"begin", "end", "key L", "key G", "begin", "end", "reload"}));
 }
 
 }  // namespace

@@ -56,6 +56,9 @@ struct ObjectFingerprint {
   bool operator==(const ObjectFingerprint&) const = default;
 };
 
+// One object's fingerprint.
+ObjectFingerprint object_fingerprint(const SimulatedObject<double>& object);
+
 // Every object's fingerprint, in scene order. A distributed run (sim/distribution.h) takes them
 // before its objects are shared out, since each rank then holds only part of the elements and
 // masses; it passes them to write_checkpoint and restore_checkpoint below.
