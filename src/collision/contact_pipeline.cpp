@@ -37,6 +37,25 @@ ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<Collis
       penalties_(std::move(penalties)),
       explicit_pairs_(std::move(explicit_pairs)),
       explicit_forces_(std::move(explicit_forces)) {
+  check_pairs([&](std::size_t o) { return o < penalties_.size() && penalties_[o]; });
+}
+
+template <class Real>
+ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                                       std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks, std::vector<char> explicit_pairs,
+                                       std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces)
+    : parameters_(parameters),
+      models_(std::move(models)),
+      explicit_pairs_(std::move(explicit_pairs)),
+      explicit_forces_(std::move(explicit_forces)),
+      sticks_(std::move(sticks)) {
+  check_pairs([&](std::size_t o) { return o < sticks_.size() && sticks_[o]; });
+  stick_springs_.resize(pairs_.size());
+  last_positions_.resize(sticks_.size());
+}
+
+template <class Real>
+void ContactPipeline<Real>::check_pairs(const std::function<bool(std::size_t)>& has_implicit_field) {
   for (const auto& m : models_) {
     if (!m.points) throw make_error(m.where, ": a collision model without points");
   }
@@ -48,13 +67,13 @@ ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<Collis
     const bool is_explicit = explicit_pairs_[k] != 0;
     if (!is_explicit && !a.is_still() && !b.is_still() && a.object() != b.object()) {
       throw make_error(models_[pairs_[k].first].where, " and ", models_[pairs_[k].second].where,
-                       " are on two bodies each integrated by its own ODE solver: their penalty contacts can only be explicit");
+                       " are on two bodies each integrated by its own ODE solver: their contacts can only be explicit");
     }
     for (const auto* side : {&a, &b}) {
       if (side->is_still()) continue;
       const auto o = side->object();
-      const bool present = is_explicit ? o < explicit_forces_.size() && explicit_forces_[o] : o < penalties_.size() && penalties_[o];
-      if (!present) throw make_error(models_[pairs_[k].first].where, ": no penalty force field on its object");
+      const bool present = is_explicit ? o < explicit_forces_.size() && explicit_forces_[o] : has_implicit_field(o);
+      if (!present) throw make_error(models_[pairs_[k].first].where, ": no contact force field on its object");
     }
   }
 }
@@ -157,11 +176,7 @@ Real ContactPipeline<Real>::contact_distance(const ModelPair& pair, const Output
 }
 
 template <class Real>
-int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Output>& outputs,
-                                            std::vector<std::vector<PenaltyContact<Real>>>& contacts) {
-  const ModelPair& pair = pairs_[k];
-  // SOFA's penalty response keeps one output per id: the smallest value, the first on ties; the
-  // contacts follow the kept outputs' order.
+std::vector<std::size_t> ContactPipeline<Real>::kept_by_id(const std::vector<Output>& outputs) {
   std::map<std::int64_t, std::size_t> kept;
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     const auto [it, inserted] = kept.emplace(outputs[i].id, i);
@@ -170,6 +185,14 @@ int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Out
   std::vector<std::size_t> order;
   for (const auto& [id, i] : kept) order.push_back(i);
   std::sort(order.begin(), order.end());
+  return order;
+}
+
+template <class Real>
+int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Output>& outputs,
+                                            std::vector<std::vector<PenaltyContact<Real>>>& contacts) {
+  const ModelPair& pair = pairs_[k];
+  const std::vector<std::size_t> order = kept_by_id(outputs);
   const auto& a = *models_[pair.first].points;
   const auto& b = *models_[pair.second].points;
   for (const std::size_t i : order) {
@@ -232,6 +255,58 @@ int ContactPipeline<Real>::friction_response(std::size_t k, const std::vector<Ou
 }
 
 template <class Real>
+int ContactPipeline<Real>::stick_response(std::size_t k, const std::vector<Output>& outputs, std::span<const SimulatedObject<Real>> objects,
+                                          std::vector<std::vector<StickSpring<Real>>>& springs) {
+  const ModelPair& pair = pairs_[k];
+  const auto& m1 = models_[pair.first];
+  const auto& m2 = models_[pair.second];
+  const auto& a = *m1.points;
+  const auto& b = *m2.points;
+  auto& alive = stick_springs_[k];
+  const auto positions = [&](const CollisionPoints<Real>& side) -> std::span<const Vec3<Real>> {
+    return objects[side.object()].system.state.position;
+  };
+  if (!outputs.empty()) {
+    // SOFA's BarycentricStickContact: the springs made again from this step's outputs, each at rest
+    // (R = the second point minus the first), ks₁ + ks₂, damping cf₁ + cf₂.
+    alive.clear();
+    for (const std::size_t i : kept_by_id(outputs)) {
+      const auto& p = outputs[i].proximity;
+      StickSpring<Real> spring;
+      spring.y1 = add_side(m1, outputs[i].first, p.point[0], spring.side1);
+      spring.y2 = add_side(m2, outputs[i].second, p.point[1], spring.side2);
+      spring.rest = p.point[1] - p.point[0];
+      spring.stiffness = m1.contact_stiffness + m2.contact_stiffness;
+      spring.damping = m1.contact_friction + m2.contact_friction;
+      alive.push_back(std::move(spring));
+      detected_.push_back({{p.point[0], p.point[1]}, p.normal});
+    }
+  } else {
+    // No output: SOFA keeps the contact alive with its springs, their ends following the bodies.
+    for (auto& spring : alive) {
+      if (!a.is_still()) spring.y1 = contact_point<Real>(spring.side1, spring.y1, positions(a), last_positions_[a.object()]);
+      if (!b.is_still()) spring.y2 = contact_point<Real>(spring.side2, spring.y2, positions(b), last_positions_[b.object()]);
+    }
+  }
+  const auto velocity = [&](const CollisionPoints<Real>& side, const ContactBlocks<Real>& blocks) -> Vec3<Real> {
+    if (side.is_still()) return Vec3<Real>::Zero();
+    return contact_apply_j<Real>(blocks, std::span<const Vec3<Real>>(objects[side.object()].system.state.velocity));
+  };
+  for (auto& spring : alive) {
+    spring.relative_velocity = velocity(b, spring.side2) - velocity(a, spring.side1);
+    if (!explicit_pairs_[k]) {
+      springs[a.is_still() ? b.object() : a.object()].push_back(spring);
+      continue;
+    }
+    // Between two bodies' solvers: the force at the step's start positions, a load on both sides.
+    const Vec3<Real> force = (spring.y2 - spring.y1 - spring.rest) * spring.stiffness + spring.relative_velocity * spring.damping;
+    for (const auto& [block, j] : spring.side1) explicit_forces_[a.object()]->add(block, j.transpose() * force);
+    for (const auto& [block, j] : spring.side2) explicit_forces_[b.object()]->add(block, j.transpose() * -force);
+  }
+  return static_cast<int>(alive.size());
+}
+
+template <class Real>
 CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real>> objects, Real, double) {
   const auto start = std::chrono::steady_clock::now();
   CollisionReport report;
@@ -251,12 +326,25 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
   for (auto& forces : explicit_forces_) {
     if (forces) forces->clear();
   }
+  std::vector<std::vector<StickSpring<Real>>> springs(sticks_.size());
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const std::vector<Output> outputs = narrow_phase(pairs_[k], report);
-    report.contacts += constraints_.empty() ? penalty_response(k, outputs, contacts) : friction_response(k, outputs);
+    if (!constraints_.empty()) {
+      report.contacts += friction_response(k, outputs);
+    } else if (!sticks_.empty()) {
+      report.contacts += stick_response(k, outputs, objects, springs);
+    } else {
+      report.contacts += penalty_response(k, outputs, contacts);
+    }
   }
   for (std::size_t o = 0; o < penalties_.size(); ++o) {
     if (penalties_[o]) penalties_[o]->set_contacts(std::move(contacts[o]), objects[o].system.state.position);
+  }
+  for (std::size_t o = 0; o < sticks_.size(); ++o) {
+    if (sticks_[o]) sticks_[o]->set_springs(std::move(springs[o]), objects[o].system.state.position);
+  }
+  for (std::size_t o = 0; o < last_positions_.size(); ++o) {
+    last_positions_[o].assign(objects[o].system.state.position.begin(), objects[o].system.state.position.end());
   }
   report.detection_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;

@@ -29,26 +29,8 @@ void PenaltyContactForceField<Real>::set_contacts(std::vector<PenaltyContact<Rea
 }
 
 template <class Real>
-Vec3<Real> PenaltyContactForceField<Real>::apply_j(const std::vector<std::pair<Index, Mat3<Real>>>& side, std::span<const Vec3<Real>> dx) const {
-  Vec3<Real> out = Vec3<Real>::Zero();
-  for (const auto& [block, j] : side) out += j * dx[static_cast<std::size_t>(block)];
-  return out;
-}
-
-template <class Real>
-Vec3<Real> PenaltyContactForceField<Real>::point(const std::vector<std::pair<Index, Mat3<Real>>>& side, const Vec3<Real>& y_t,
-                                                 std::span<const Vec3<Real>> x) const {
-  Vec3<Real> y = y_t;
-  for (const auto& [block, j] : side) {
-    const auto b = static_cast<std::size_t>(block);
-    y += j * (x[b] - x_t_[b]);
-  }
-  return y;
-}
-
-template <class Real>
-void PenaltyContactForceField<Real>::add_jt(const std::vector<std::pair<Index, Mat3<Real>>>& side, const Vec3<Real>& f, std::span<Vec3<Real>> out) {
-  for (const auto& [block, j] : side) out[static_cast<std::size_t>(block)] += j.transpose() * f;
+Vec3<Real> PenaltyContactForceField<Real>::point(const ContactBlocks<Real>& side, const Vec3<Real>& y_t, std::span<const Vec3<Real>> x) const {
+  return contact_point<Real>(side, y_t, x, x_t_);
 }
 
 template <class Real>
@@ -60,8 +42,8 @@ void PenaltyContactForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
     active_[c] = pen > 0;
     forces_[c] = active_[c] ? Vec3<Real>(contact.normal * (contact.stiffness * pen)) : Vec3<Real>::Zero();
     if (!active_[c]) continue;
-    add_jt(contact.side1, -forces_[c], f);
-    add_jt(contact.side2, forces_[c], f);
+    contact_add_jt<Real>(contact.side1, -forces_[c], f);
+    contact_add_jt<Real>(contact.side2, forces_[c], f);
   }
 }
 
@@ -70,10 +52,10 @@ void PenaltyContactForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, 
   for (std::size_t c = 0; c < contacts_.size(); ++c) {
     if (!active_[c]) continue;
     const auto& contact = contacts_[c];
-    const Vec3<Real> gap = apply_j(contact.side2, dx) - apply_j(contact.side1, dx);
+    const Vec3<Real> gap = contact_apply_j<Real>(contact.side2, dx) - contact_apply_j<Real>(contact.side1, dx);
     const Vec3<Real> change = contact.normal * (-k_factor * contact.stiffness * contact.normal.dot(gap));
-    add_jt(contact.side1, -change, df);
-    add_jt(contact.side2, change, df);
+    contact_add_jt<Real>(contact.side1, -change, df);
+    contact_add_jt<Real>(contact.side2, change, df);
   }
 }
 
@@ -83,18 +65,8 @@ void PenaltyContactForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real 
     if (!active_[c]) continue;
     const auto& contact = contacts_[c];
     const Mat3<Real> k = (-k_factor * contact.stiffness) * (contact.normal * contact.normal.transpose());
-    // d f₂ / d y₂ = k, d f₂ / d y₁ = −k, and f₁ = −f₂: block (a, b) = s_a s_b J_aᵀ k J_b, s₁ = −1, s₂ = +1.
-    const std::pair<const std::vector<std::pair<Index, Mat3<Real>>>*, Real> sides[2] = {{&contact.side1, Real(-1)},
-                                                                                          {&contact.side2, Real(1)}};
-    for (const auto& [rows, sign_r] : sides) {
-      for (const auto& [cols, sign_c] : sides) {
-        for (const auto& [br, jr] : *rows) {
-          for (const auto& [bc, jc] : *cols) {
-            sink.add_block(offset + 3 * br, offset + 3 * bc, (sign_r * sign_c) * (jr.transpose() * k * jc));
-          }
-        }
-      }
-    }
+    // d f₂ / d y₂ = k, d f₂ / d y₁ = −k, and f₁ = −f₂.
+    contact_add_stiffness<Real>(sink, contact.side1, contact.side2, k, offset);
   }
 }
 
@@ -104,17 +76,7 @@ void PenaltyContactForceField<Real>::add_diagonal_blocks(std::span<Mat3<Real>> d
     if (!active_[c]) continue;
     const auto& contact = contacts_[c];
     const Mat3<Real> k = (-k_factor * contact.stiffness) * (contact.normal * contact.normal.transpose());
-    // The diagonal blocks of the matrix add_stiffness assembles (a block both sides read sums them).
-    for (const auto* rows : {&contact.side1, &contact.side2}) {
-      for (const auto* cols : {&contact.side1, &contact.side2}) {
-        const Real sign = rows == cols ? Real(1) : Real(-1);
-        for (const auto& [br, jr] : *rows) {
-          for (const auto& [bc, jc] : *cols) {
-            if (br == bc) diagonal[static_cast<std::size_t>(br)] += sign * (jr.transpose() * k * jc);
-          }
-        }
-      }
-    }
+    contact_add_diagonal<Real>(diagonal, contact.side1, contact.side2, k);
   }
 }
 

@@ -91,14 +91,18 @@ class CollisionBuilder {
     method_ = p.method;
     response_name_ = data_.text(*response, "response", "PenalityContactForceField");
     const bool friction = response_name_ == "FrictionContactConstraint";
-    if (!friction && response_name_ != "PenalityContactForceField") {
-      throw NotSimulated{"the response " + response_name_ + " is not simulated yet (PenalityContactForceField and FrictionContactConstraint are)"};
+    const bool stick = response_name_ == "StickContactForceField";
+    if (!friction && !stick && response_name_ != "PenalityContactForceField") {
+      throw NotSimulated{"the response " + response_name_ +
+                         " is not simulated yet (PenalityContactForceField, StickContactForceField and FrictionContactConstraint are)"};
     }
     if (friction && !loop_) {
       throw NotSimulated{response->where() + ": FrictionContactConstraint makes Lagrangian constraints, which only a "
                          "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
     }
-    if (!friction && loop_) throw NotSimulated{"penalty contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
+    if (!friction && loop_) {
+      throw NotSimulated{response_name_ + " contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
+    }
     std::vector<CollisionModel<double>> models;
     std::vector<const GraphNode*> nodes;
     for (Component* c : components) {
@@ -114,7 +118,11 @@ class CollisionBuilder {
       }
     }
     std::vector<std::shared_ptr<PenaltyContactForceField<double>>> penalties(simulation_.objects.size());
+    std::vector<std::shared_ptr<StickContactForceField<double>>> sticks(simulation_.objects.size());
     for (const auto& model : models) {
+      if (stick && model.kind == CollisionElements::spheres && model.points->is_rigid()) {
+        throw NotSimulated{model.where + ": SOFA has no StickContactForceField response for rigid spheres"};
+      }
       if (!model.points->is_still() && !simulation_.objects[model.points->object()].topology_scripts.empty()) {
         throw NotSimulated{model.where + " is on " + simulation_.objects[model.points->object()].path +
                            ", whose topology a TopologicalChangeProcessor changes: contacts on a changing topology are not simulated yet"};
@@ -133,17 +141,20 @@ class CollisionBuilder {
         if (models[m].points->is_still()) continue;
         const std::size_t o = models[m].points->object();
         if (explicit_pairs[k] && !explicit_forces[o]) explicit_forces[o] = std::make_shared<ExplicitContactForces<double>>(empty_mesh(o));
-        if (!explicit_pairs[k] && !penalties[o]) penalties[o] = std::make_shared<PenaltyContactForceField<double>>(empty_mesh(o));
+        if (!explicit_pairs[k] && stick && !sticks[o]) sticks[o] = std::make_shared<StickContactForceField<double>>(empty_mesh(o));
+        if (!explicit_pairs[k] && !stick && !penalties[o]) penalties[o] = std::make_shared<PenaltyContactForceField<double>>(empty_mesh(o));
       }
     }
     std::shared_ptr<ContactPipeline<double>> pipeline;
     try {
-      pipeline = std::make_shared<ContactPipeline<double>>(p, std::move(models), penalties, explicit_pairs, explicit_forces);
+      pipeline = stick ? std::make_shared<ContactPipeline<double>>(p, std::move(models), sticks, explicit_pairs, explicit_forces)
+                       : std::make_shared<ContactPipeline<double>>(p, std::move(models), penalties, explicit_pairs, explicit_forces);
     } catch (const Error& error) {
       throw NotSimulated{error.what()};
     }
     for (std::size_t o = 0; o < penalties.size(); ++o) {
       for (const std::shared_ptr<ForceField<double>> field : {std::shared_ptr<ForceField<double>>(penalties[o]),
+                                                               std::shared_ptr<ForceField<double>>(sticks[o]),
                                                                std::shared_ptr<ForceField<double>>(explicit_forces[o])}) {
         if (!field) continue;
         simulation_.objects[o].system.force_fields.push_back(field);
@@ -328,15 +339,23 @@ class CollisionBuilder {
     }
     m.contact_distance = data_.real(c, c.has("proximity") && !c.has("contactDistance") ? "proximity" : "contactDistance", 0.0);
     m.contact_stiffness = data_.real(c, "contactStiffness", 10.0);
-    if (!(m.contact_distance >= 0) || !(m.contact_stiffness >= 0)) {
-      throw error_at(c.where(), make_error("contactDistance and contactStiffness must be ≥ 0"));
+    m.contact_friction = data_.real(c, "contactFriction", 0.0);
+    if (!(m.contact_distance >= 0) || !(m.contact_stiffness >= 0) || !(m.contact_friction >= 0)) {
+      throw error_at(c.where(), make_error("contactDistance, contactStiffness and contactFriction must be ≥ 0"));
     }
     for (const double g : data_.data(c, "group")) m.groups.push_back(static_cast<int>(g));
     Component& state = state_of(c);
     m.points = points_of(state, c);
     if (m.kind == CollisionElements::spheres) {
       // SOFA's radii: listRadius where it has one, radius (1) for the points beyond it.
-      const Numbers listed = data_.data(c, "listRadius");
+      Numbers listed;
+      try {
+        listed = data_.data(c, "listRadius");
+      } catch (const Error& error) {
+        // SOFA leaves a data whose link it cannot resolve at its default (SOFA's own
+        // StickContactForceField.scn links listRadius to a loader that is not there).
+        data_.warn(std::string(error.what()) + ": listRadius left empty, as SOFA leaves it: every sphere takes radius");
+      }
       const double fallback = data_.real(c, "radius", 1.0);
       for (std::size_t i = 0; i < m.points->size(); ++i) {
         const double r = i < listed.size() ? listed[i] : fallback;

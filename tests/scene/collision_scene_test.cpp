@@ -47,6 +47,17 @@ TEST(CollisionScene, SpheresOnSpheresFollowSofa) {
                                      {.contacts = false, .rows = false});
 }
 
+TEST(CollisionScene, StickSpringsFollowSofaAndStayAliveWhileNothingIsFound) {
+  // StickContactForceField: springs at rest where detection finds the pair, kept while it finds
+  // nothing (steps 3 to 33 in SOFA), pulling the cube back.
+  testing::expect_contact_trajectory("stick_on_spheres.scn", "stick_on_spheres_trajectory.json", 1e-9, {.contacts = false, .rows = false});
+  LoadedScene scene = load_scene_file(testing::sofa_reference_path("stick_on_spheres.scn"));
+  const auto reference = testing::load_sofa_trajectory("stick_on_spheres_trajectory.json");
+  for (int step = 1; step <= 10; ++step) scene.simulation.step();
+  ASSERT_EQ(reference["steps"]["10"]["contacts"].get<int>(), 0) << "SOFA finds nothing at step 10";
+  EXPECT_GT(scene.simulation.collision_report().contacts, 0) << "the springs of step 2, kept alive";
+}
+
 TEST(CollisionScene, RigidSpheresFollowSofaWithTheRadiusCountedTwice) {
   // SOFA's RigidSphereModel: the contact point is the sphere's surface point, carried by the rigid,
   // and the radius is added to the contact distance too. A ball meets the cube's Vec3 spheres
@@ -200,7 +211,7 @@ TEST(CollisionScene, BadInputIsRefusedNamingTheComponent) {
   std::string negative = point_over_floor(0.4);
   negative.replace(negative.find("<PointCollisionModel contactStiffness=\"20\"/>"), std::string("<PointCollisionModel contactStiffness=\"20\"/>").size(),
                    "<PointCollisionModel contactDistance=\"-1\"/>");
-  EXPECT_NE(scene_error(negative).find("contactDistance and contactStiffness must be ≥ 0"), std::string::npos) << scene_error(negative);
+  EXPECT_NE(scene_error(negative).find("contactDistance, contactStiffness and contactFriction must be ≥ 0"), std::string::npos) << scene_error(negative);
   std::string outside = point_over_floor(0.4);
   outside.replace(outside.find("triangles=\"0 2 1\""), std::string("triangles=\"0 2 1\"").size(), "triangles=\"0 2 7\"");
   EXPECT_NE(scene_error(outside).find("names point 7, outside the 3 points"), std::string::npos) << scene_error(outside);

@@ -68,6 +68,7 @@ struct CollisionModel {
   std::vector<int> groups;  // two models sharing a group never collide
   Real contact_distance = 0;
   Real contact_stiffness = 10;
+  Real contact_friction = 0;  // StickContactForceField's damping (cf₁ + cf₂); other responses ignore it
   std::shared_ptr<CollisionPoints<Real>> points;  // shared by the models of one node
   std::vector<Edge> edges;                        // lines
   std::vector<Triangle> triangles;                // triangles

@@ -15,9 +15,11 @@
 #include "fastcorot/collision/element_intersection.h"
 #include "fastcorot/collision/explicit_contact_forces.h"
 #include "fastcorot/collision/penalty_contact_force_field.h"
+#include "fastcorot/collision/stick_contact_force_field.h"
 #include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 #include "fastcorot/sim/collision_stage.h"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
@@ -44,6 +46,14 @@ class ContactPipeline final : public CollisionStage<Real> {
   ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
                   std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints);
 
+  // SOFA's StickContactForceField response: springs at rest where detection finds the pair
+  // (replaced at every step that finds it, kept while a step finds nothing: SOFA's keepAlive),
+  // into `sticks[o]` (object o's implicit field) or, for rule pair k with explicit_pairs[k] set,
+  // evaluated once at the step's start into both sides' explicit_forces.
+  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                  std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks, std::vector<char> explicit_pairs,
+                  std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces);
+
   CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) override;
   std::span<const DetectedContact<Real>> contacts() const override { return detected_; }
 
@@ -64,6 +74,14 @@ class ContactPipeline final : public CollisionStage<Real> {
   // constraint. Both return the contacts kept.
   int penalty_response(std::size_t k, const std::vector<Output>& outputs, std::vector<std::vector<PenaltyContact<Real>>>& contacts);
   int friction_response(std::size_t k, const std::vector<Output>& outputs);
+  int stick_response(std::size_t k, const std::vector<Output>& outputs, std::span<const SimulatedObject<Real>> objects,
+                     std::vector<std::vector<StickSpring<Real>>>& springs);
+  // The outputs SOFA's penalty and stick responses keep: one per id (the smallest value, the first
+  // on ties), in the order they were found.
+  static std::vector<std::size_t> kept_by_id(const std::vector<Output>& outputs);
+  // Every model, and each rule pair's objects: an implicit pair on one object only, with the field
+  // `has_implicit_field(o)` says it has, an explicit one with both sides' explicit_forces.
+  void check_pairs(const std::function<bool(std::size_t)>& has_implicit_field);
   // The distance a contact keeps: the method's contact distance, the models', the spheres' radii.
   Real contact_distance(const ModelPair& pair, const Output& output) const;
   // The weights of `p` (a point of element `element` of `model`) on the element's points, their J
@@ -78,6 +96,9 @@ class ContactPipeline final : public CollisionStage<Real> {
   std::vector<char> explicit_pairs_;
   std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces_;
   std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints_;
+  std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks_;
+  std::vector<std::vector<StickSpring<Real>>> stick_springs_;  // per rule pair, alive from step to step
+  std::vector<std::vector<Vec3<Real>>> last_positions_;       // per object, at the last step's start
   std::vector<DetectedContact<Real>> detected_;
 };
 

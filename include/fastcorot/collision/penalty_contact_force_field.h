@@ -11,6 +11,7 @@
 // docs/collision.md (§2.5, §5).
 #pragma once
 
+#include "fastcorot/collision/contact_jacobian.h"
 #include "fastcorot/fem/force_field.h"
 
 #include <memory>
@@ -64,9 +65,7 @@ class PenaltyContactForceField final : public ForceField<Real> {
 
  private:
   // y of one side at x (the linearised point).
-  Vec3<Real> point(const std::vector<std::pair<Index, Mat3<Real>>>& side, const Vec3<Real>& y_t, std::span<const Vec3<Real>> x) const;
-  Vec3<Real> apply_j(const std::vector<std::pair<Index, Mat3<Real>>>& side, std::span<const Vec3<Real>> dx) const;
-  static void add_jt(const std::vector<std::pair<Index, Mat3<Real>>>& side, const Vec3<Real>& f, std::span<Vec3<Real>> out);
+  Vec3<Real> point(const ContactBlocks<Real>& side, const Vec3<Real>& y_t, std::span<const Vec3<Real>> x) const;
 
   std::shared_ptr<const TetMesh> mesh_;
   std::vector<PenaltyContact<Real>> contacts_;
