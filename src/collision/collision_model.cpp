@@ -136,7 +136,7 @@ void CollisionModel<Real>::update_neighbourhood() {
 template <class Real>
 bool can_collide(const CollisionModel<Real>& a, const CollisionModel<Real>& b) {
   if (!a.simulated && !b.simulated) return false;
-  if (a.node == b.node) return false;
+  if (a.node == b.node) return a.self_collision && b.self_collision;
   for (int g : a.groups) {
     if (std::find(b.groups.begin(), b.groups.end(), g) != b.groups.end()) return false;
   }

@@ -1,5 +1,7 @@
 #include "fastcorot/collision/contact_pipeline.h"
 
+#include "fastcorot/collision/self_collision.h"
+
 #include "fastcorot/core/error.h"
 
 #include <algorithm>
@@ -12,6 +14,9 @@ std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::ru
                                                                                          const Parameters& p) {
   std::vector<ModelPair> pairs;
   for (std::size_t later = 0; later < models.size(); ++later) {
+    // SOFA's broad phase pairs a simulated model with selfCollision with itself first.
+    const auto& m = models[later];
+    if (m.self_collision && m.simulated && !m.points->is_still() && has_rule(p, m, m)) pairs.push_back({later, later});
     for (std::size_t earlier = 0; earlier < later; ++earlier) {
       if (!can_collide(models[earlier], models[later])) continue;
       if (models[earlier].points->is_still() && models[later].points->is_still()) continue;  // nothing can move
@@ -97,11 +102,21 @@ std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narro
   const auto& m2 = models_[pair.second];
   const ProximityDistances<Real> d = pair_distances(parameters_, m1, m2);
   std::vector<std::pair<Index, Index>> candidates;
-  AabbTree<Real>::pairs(m1.tree(), m2.tree(), d.alarm, candidates);
+  if (pair.first == pair.second) {
+    // A model against itself: SOFA's CollisionElementIterator::canCollideWith takes each pair once,
+    // (i, j) with i < j, before the elements' own rules prune it.
+    m1.tree().self_pairs(d.alarm, candidates);
+  } else {
+    AabbTree<Real>::pairs(m1.tree(), m2.tree(), d.alarm, candidates);
+  }
+  const bool one_node = m1.node == m2.node;
   if (!candidates.empty()) ++report.model_pairs;
   report.element_pairs += static_cast<long>(candidates.size());
   std::vector<Output> outputs;
-  for (const auto& [e1, e2] : candidates) intersect_elements(parameters_, m1, e1, m2, e2, d, outputs);
+  for (const auto& [e1, e2] : candidates) {
+    if (one_node && (!can_collide_elements<Real>(models_, pair.first, e1, pair.second, e2) || elements_touch(m1, e1, m2, e2))) continue;
+    intersect_elements(parameters_, m1, e1, m2, e2, d, outputs);
+  }
   return outputs;
 }
 

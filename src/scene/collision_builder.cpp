@@ -4,11 +4,13 @@
 #include "fastcorot/collision/contact_pipeline.h"
 #include "fastcorot/collision/explicit_contact_forces.h"
 #include "fastcorot/collision/new_proximity.h"
+#include "fastcorot/collision/self_collision.h"
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/core/error.h"
 
 #include <stdexcept>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -113,6 +115,12 @@ class CollisionBuilder {
       if (!data_.boolean(*c, "active", true)) continue;
       models.push_back(model(*c));
       nodes.push_back(c->node);
+      // SOFA's mpoints / m_pointModels: the node's first PointCollisionModel.
+      auto& added = models.back();
+      added.node_point_model = added.kind == CollisionElements::points &&
+                               std::none_of(models.begin(), models.end() - 1, [&](const CollisionModel<double>& other) {
+                                 return other.node == added.node && other.kind == CollisionElements::points;
+                               });
       if (models.back().kind != CollisionElements::points && models.back().size() == 0) {
         data_.warn(c->where() + ": its topology gives it no elements: it takes part in no contact");
       }
@@ -331,7 +339,7 @@ class CollisionBuilder {
     m.both_side = data_.boolean(c, "bothSide", false);
     m.simulated = data_.boolean(c, "simulated", true);
     m.moving = data_.boolean(c, "moving", true);
-    if (data_.boolean(c, "selfCollision", false)) throw NotSimulated{c.where() + " asks for selfCollision, which is not simulated yet"};
+    m.self_collision = data_.boolean(c, "selfCollision", false);
     const std::string reply = data_.text(c, "contactResponse", "");
     if (!reply.empty() && reply != response_name_) {
       throw NotSimulated{c.where() + " asks for the response " + reply + ", the pipeline's is " + response_name_ +
@@ -367,6 +375,13 @@ class CollisionBuilder {
     Component* topology = topology_of(c);
     if (m.kind == CollisionElements::points) {
       if (method_ == IntersectionMethod::local_min_distance && topology) cone_topology(c, *topology, m);
+      if (m.self_collision && topology) {
+        // SOFA's VerticesAroundVertex: along the topology's edges (its triangles' and quads' without a list).
+        auto edges = tuples<2>(data_, *topology, "edges");
+        if (edges.empty()) edges = surface_edges(tuples<3>(data_, *topology, "triangles"), tuples<4>(data_, *topology, "quads"));
+        m.self_topology = std::make_shared<const SelfCollisionTopology>(
+            self_collision_topology(static_cast<Index>(m.points->size()), edges));
+      }
       return m;
     }
     if (!topology) throw error_at(c.where(), make_error("no topology in its node or above to take its elements from"));
@@ -406,6 +421,9 @@ class CollisionBuilder {
     };
     check(m.triangles, "triangle");
     check(m.edges, "edge");
+    if (m.self_collision && m.kind == CollisionElements::lines) {
+      m.self_topology = std::make_shared<const SelfCollisionTopology>(self_collision_topology(n, m.edges));
+    }
     if (m.kind == CollisionElements::triangles && method_ == IntersectionMethod::new_proximity) {
       // SOFA's ownership flags come from the topology's own triangles; those made from quads have none.
       const auto given = tuples<2>(data_, *topology, "edges");

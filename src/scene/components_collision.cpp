@@ -13,7 +13,7 @@ std::vector<AttributeSpec> model_attributes() {
   return {{"active", "bool", "true", "false: the model takes no part"},
           {"moving", "bool", "true", "false: its tree is built once (an obstacle)"},
           {"simulated", "bool", "true", "false: an obstacle (two obstacles never collide)"},
-          {"selfCollision", "bool", "false", "must be false: self-collision is not simulated yet"},
+          {"selfCollision", "bool", "false", "collide with the models of its node (both with it) and with itself, SOFA's neighbour pruning applied"},
           {"contactDistance", "real", "0", "added to the intersection's alarm and contact distances"},
           {"proximity", "real", "0", "SOFA's alias of contactDistance"},
           {"contactStiffness", "real", "10", "k of the penalty: k₁ k₂ / d per contact"},
@@ -56,7 +56,7 @@ std::vector<ComponentSpec> collision_components() {
   new_proximity.push_back({"useLineLine", "bool", "false", "edge–edge pairs (Line–Line, and between triangles' edges)"});
   return {
       {"CollisionPipeline", "collision",
-       "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection and the PenalityContactForceField response (implicit in a body's step, or explicit between two bodies' solvers) or FrictionContactConstraint under FreeMotionAnimationLoop; what is not (self-collision, Stick responses, tetrahedron models) is ignored with a warning saying why.",
+       "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection and the PenalityContactForceField response (implicit in a body's step, or explicit between two bodies' solvers), StickContactForceField, or FrictionContactConstraint under FreeMotionAnimationLoop; what is not (tetrahedron models, moving obstacles, grid and volume topologies as surfaces) is ignored with a warning saying why.",
        {{"depth", "int", "6", "accepted (fastcorot's tree has its own depth)"},
         {"verbose", "bool", "false", "accepted"},
         {"draw", "bool", "false", "accepted"}},

@@ -16,6 +16,8 @@
 
 namespace fastcorot {
 
+struct SelfCollisionTopology;
+
 template <class Real>
 class CollisionPoints {
  public:
@@ -65,6 +67,10 @@ struct CollisionModel {
   bool simulated = true;
   bool moving = true;
   bool self_collision = false;
+  // Self-collision (collision/self_collision.h): the model's neighbourhoods (null: no topology),
+  // and whether it is its node's first PointCollisionModel (SOFA's mpoints / m_pointModels).
+  std::shared_ptr<const SelfCollisionTopology> self_topology;
+  bool node_point_model = false;
   std::vector<int> groups;  // two models sharing a group never collide
   Real contact_distance = 0;
   Real contact_stiffness = 10;
@@ -102,8 +108,8 @@ struct CollisionModel {
   std::vector<char> degenerate_;
 };
 
-// Whether SOFA's broad phase pairs the two models: at least one simulated, not of one node (SOFA
-// pairs those only with selfCollision, which is not simulated here), no group in common.
+// Whether SOFA's broad phase pairs the two (distinct) models: at least one simulated; of one node only
+// when both have selfCollision; else no group in common.
 template <class Real>
 bool can_collide(const CollisionModel<Real>& a, const CollisionModel<Real>& b);
 
