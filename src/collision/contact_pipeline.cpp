@@ -1,6 +1,7 @@
 #include "fastcorot/collision/contact_pipeline.h"
 
 #include "fastcorot/collision/self_collision.h"
+#include "fastcorot/core/parallel.h"
 
 #include "fastcorot/core/error.h"
 
@@ -112,11 +113,20 @@ std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narro
   const bool one_node = m1.node == m2.node;
   if (!candidates.empty()) ++report.model_pairs;
   report.element_pairs += static_cast<long>(candidates.size());
+  // Fixed chunks of the sorted candidates, their outputs joined in chunk order.
+  const Chunks chunks(candidates.size());
+  std::vector<std::vector<Output>> found(chunks.count);
+  run_tasks(threads_, static_cast<int>(chunks.count), [&](int c) {
+    const auto k = static_cast<std::size_t>(c);
+    for (std::size_t i = chunks.begin(k); i < chunks.end(k); ++i) {
+      const auto [e1, e2] = candidates[i];
+      if (one_node && (!can_collide_elements<Real>(models_, pair.first, e1, pair.second, e2) || elements_touch(m1, e1, m2, e2))) continue;
+      intersect_elements(parameters_, m1, e1, m2, e2, d, found[k]);
+    }
+  });
+  if (found.size() == 1) return std::move(found.front());
   std::vector<Output> outputs;
-  for (const auto& [e1, e2] : candidates) {
-    if (one_node && (!can_collide_elements<Real>(models_, pair.first, e1, pair.second, e2) || elements_touch(m1, e1, m2, e2))) continue;
-    intersect_elements(parameters_, m1, e1, m2, e2, d, outputs);
-  }
+  for (auto& part : found) outputs.insert(outputs.end(), part.begin(), part.end());
   return outputs;
 }
 
@@ -325,17 +335,23 @@ template <class Real>
 CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real>> objects, Real, double) {
   const auto start = std::chrono::steady_clock::now();
   CollisionReport report;
+  // The models of a node share their points: each set of points updated once.
+  std::vector<CollisionPoints<Real>*> points;
   for (auto& m : models_) {
-    m.points->update(objects);
+    if (std::find(points.begin(), points.end(), m.points.get()) == points.end()) points.push_back(m.points.get());
   }
-  for (auto& m : models_) {
+  run_tasks(threads_, static_cast<int>(points.size()), [&](int i) { points[static_cast<std::size_t>(i)]->update(objects); });
+  std::vector<int> degenerate(models_.size(), 0);
+  run_tasks(threads_, static_cast<int>(models_.size()), [&](int i) {
+    auto& m = models_[static_cast<std::size_t>(i)];
     try {
-      report.degenerate_elements += m.update_tree();
+      degenerate[static_cast<std::size_t>(i)] = m.update_tree();
       m.update_neighbourhood();
     } catch (const Error& error) {
       throw error_at(m.where, error);
     }
-  }
+  });
+  for (const int d : degenerate) report.degenerate_elements += d;
   std::vector<std::vector<PenaltyContact<Real>>> contacts(penalties_.size());
   detected_.clear();
   for (auto& forces : explicit_forces_) {

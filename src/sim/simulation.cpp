@@ -157,6 +157,7 @@ StepReport Simulation<Real>::step() {
   apply_topology_changes(step_number, clock_);
   if (collisions) {
     try {
+      collisions->set_threads(threads);
       collision_report_ = collisions->begin_step(objects, dt, clock_);
     } catch (const Error& error) {
       throw Error(brief("at step ", step_number, " (t = ", clock_, "): ") + error.what());

@@ -2,6 +2,7 @@
 // against SOFA's own trajectory (tests/data/sofa_reference/cube_on_floor*), contacts counted as
 // SOFA counts them; a point mass resting on a triangle at the closed-form height d − m g / k for
 // 10,000 steps; what is not simulated yet warned in one line per component; bad input refused.
+#include "fastcorot/core/parallel.h"
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
 #include "fastcorot/state/rigid3.h"
@@ -213,6 +214,60 @@ TEST(CollisionScene, RigidSpheresMeetWhereSofaHasARuleForThem) {
   bool said = false;
   for (const auto& line : point.warnings) said = said || line.find("a PointCollisionModel on a Rigid3 state") != std::string::npos;
   EXPECT_TRUE(said);
+}
+
+// 1,600 points over a floor of 2 × 39 × 39 triangles: enough element pairs for several chunks of
+// the narrow phase.
+std::string rain_over_floor() {
+  std::string floor_points, triangles, drops;
+  const int n = 40;
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) floor_points += std::to_string(0.1 * i) + " 0 " + std::to_string(0.1 * j) + "  ";
+  }
+  for (int j = 0; j + 1 < n; ++j) {
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i, b = a + 1, c = a + n, d = c + 1;
+      triangles += std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(b) + "  " + std::to_string(b) + " " +
+                   std::to_string(c) + " " + std::to_string(d) + "  ";
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      drops += std::to_string(0.1 * i + 0.037) + " " + std::to_string(0.05 + 0.002 * ((i * 7 + j * 3) % 11)) + " " +
+               std::to_string(0.1 * j + 0.041) + "  ";
+    }
+  }
+  return "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+         "<MinProximityIntersection alarmDistance=\"0.1\" contactDistance=\"0.03\"/><CollisionResponse response=\"PenalityContactForceField\"/>"
+         "<Node name=\"rain\"><EulerImplicitSolver/><CGLinearSolver iterations=\"50\" tolerance=\"1e-12\" threshold=\"1e-20\"/>"
+         "<MechanicalObject position=\"" + drops + "\"/><UniformMass totalMass=\"1\"/><PointCollisionModel contactStiffness=\"30\"/></Node>"
+         "<Node name=\"floor\"><MeshTopology position=\"" + floor_points + "\" triangles=\"" + triangles + "\"/><MechanicalObject/>"
+         "<TriangleCollisionModel simulated=\"0\" moving=\"0\" contactStiffness=\"30\"/></Node>";
+}
+
+TEST(CollisionScene, OneAndTwoThreadsFindTheSameContactsBitwise) {
+  set_yield_cores_to_other_processes(false);  // two threads even on a busy machine
+  LoadedScene one = build_scene_text(rain_over_floor(), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  LoadedScene two = build_scene_text(rain_over_floor(), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  one.simulation.threads = 1;
+  two.simulation.threads = 2;
+  long pairs = 0;
+  for (int step = 0; step < 20; ++step) {
+    one.simulation.step();
+    two.simulation.step();
+    EXPECT_EQ(one.simulation.collision_report().contacts, two.simulation.collision_report().contacts) << step;
+    pairs = std::max(pairs, one.simulation.collision_report().element_pairs);
+  }
+  EXPECT_GT(pairs, 2 * 1024) << "several chunks";
+  EXPECT_GT(one.simulation.collision_report().contacts, 1000);
+  EXPECT_EQ(one.simulation.objects[0].system.state.position, two.simulation.objects[0].system.state.position);
+  const auto a = one.simulation.collisions->contacts(), b = two.simulation.collisions->contacts();
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t c = 0; c < a.size(); ++c) {
+    EXPECT_EQ(a[c].point[0], b[c].point[0]);
+    EXPECT_EQ(a[c].normal, b[c].normal);
+  }
+  set_yield_cores_to_other_processes(true);
 }
 
 TEST(CollisionScene, BadInputIsRefusedNamingTheComponent) {

@@ -56,6 +56,10 @@ class ContactPipeline final : public CollisionStage<Real> {
 
   CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) override;
   std::span<const DetectedContact<Real>> contacts() const override { return detected_; }
+  // The models' points, trees and neighbourhoods are updated one model per task, and each model
+  // pair's candidate element pairs are cut into chunks whose outputs are joined in order: the same
+  // contacts, in the same order, for any thread count.
+  void set_threads(int threads) override { threads_ = threads; }
 
   // The last step's contacts, per object with a penalty field (for drawing and outputs).
   const std::vector<CollisionModel<Real>>& models() const { return models_; }
@@ -100,6 +104,7 @@ class ContactPipeline final : public CollisionStage<Real> {
   std::vector<std::vector<StickSpring<Real>>> stick_springs_;  // per rule pair, alive from step to step
   std::vector<std::vector<Vec3<Real>>> last_positions_;       // per object, at the last step's start
   std::vector<DetectedContact<Real>> detected_;
+  int threads_ = 1;
 };
 
 }  // namespace fastcorot

@@ -40,6 +40,8 @@ class CollisionStage {
   virtual CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) = 0;
   // The contacts the last begin_step kept (after each response merged its outputs), in solve order.
   virtual std::span<const DetectedContact<Real>> contacts() const = 0;
+  // Threads for the next begin_step (the simulation's): results are bitwise the same for any count.
+  virtual void set_threads(int /*threads*/) {}
 };
 
 }  // namespace fastcorot
