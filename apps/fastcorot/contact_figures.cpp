@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <sstream>
 #include <ostream>
 #include <vector>
 
@@ -17,7 +18,7 @@ json contacts_to_json(const CollisionStage<double>& stage) {
   return {{"count", contacts.size()}, {"points", std::move(points)}, {"normals", std::move(normals)}};
 }
 
-void ContactTally::add(const CollisionReport& r) {
+std::string ContactTally::add(const CollisionReport& r) {
   ++steps;
   contacts += r.contacts;
   last = r.contacts;
@@ -26,6 +27,18 @@ void ContactTally::add(const CollisionReport& r) {
   element_pairs += r.element_pairs;
   degenerate = std::max<long>(degenerate, r.degenerate_elements);
   seconds += r.detection_seconds;
+  if (r.crossed == 0) return {};
+  const bool first = crossed == 0;
+  crossed += r.crossed;
+  deepest_crossing = std::max(deepest_crossing, r.deepest_crossing);
+  if (!first) return {};
+  first_crossing_step = steps;
+  first_crossing_models = r.crossed_models;
+  std::ostringstream line;
+  line << "step " << steps << ": " << r.crossed << " contact(s) ended the step crossed, the deepest by " << r.deepest_crossing
+       << " between " << r.crossed_models << " (deeper than the contact distance allows: a smaller time step, a larger "
+       << "contactDistance or a stiffer contact would hold them; SOFA lets them pass silently)";
+  return line.str();
 }
 
 void ContactTally::summarise(std::ostream& out) const {
@@ -34,6 +47,7 @@ void ContactTally::summarise(std::ostream& out) const {
       << max_contacts << ", last step " << last << "), " << static_cast<double>(element_pairs) / n
       << " element pairs tested per step, detection " << std::setprecision(3) << seconds << " s";
   if (degenerate > 0) out << "; " << degenerate << " degenerate element(s) skipped";
+  if (crossed > 0) out << "; " << crossed << " crossed (deepest " << std::setprecision(3) << deepest_crossing << ")";
   out << '\n';
 }
 
@@ -46,7 +60,9 @@ json ContactTally::to_json(double run_seconds) const {
           {"element_pairs_per_step", static_cast<double>(element_pairs) / n},
           {"degenerate_elements", degenerate},
           {"detection_seconds", seconds},
-          {"detection_share", run_seconds > 0 ? seconds / run_seconds : 0.0}};
+          {"detection_share", run_seconds > 0 ? seconds / run_seconds : 0.0},
+          {"crossed", crossed},
+          {"deepest_crossing", deepest_crossing}};
 }
 
 }  // namespace fastcorot::cli

@@ -4,6 +4,8 @@
 // docs/collision.md ("Seeing it"); formats: docs/cli.md.
 #pragma once
 
+#include <string>
+
 #include "json_io.h"
 
 #include "fastcorot/sim/simulation.h"
@@ -22,8 +24,16 @@ json contacts_to_json(const CollisionStage<double>& stage);
 struct ContactTally {
   long steps = 0, contacts = 0, last = 0, max_contacts = 0, model_pairs = 0, element_pairs = 0, degenerate = 0;
   double seconds = 0;
+  // Contacts that ended a step crossed (CollisionReport::crossed): how many over the run, the
+  // deepest, and where it was first seen.
+  long crossed = 0;
+  double deepest_crossing = 0;
+  long first_crossing_step = 0;
+  std::string first_crossing_models;
 
-  void add(const CollisionReport& r);
+  // Adds one step's report; returns the warning to print when this step is the first with a
+  // contact that crossed (empty otherwise).
+  std::string add(const CollisionReport& r);
   // One line: "contacts: M per step (at most X, last step L), E element pairs tested per step,
   // detection S s[; D degenerate element(s) skipped]".
   void summarise(std::ostream& out) const;

@@ -496,7 +496,10 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       solves += report.linear_solves;
       iterations += report.linear_iterations;
       if (simulation.constraints) constraints.add(simulation, step, writer && !options.quiet ? &err : nullptr);
-      if (simulation.collisions) contacts.add(simulation.collision_report());
+      if (simulation.collisions) {
+        const std::string crossing = contacts.add(simulation.collision_report());
+        if (!crossing.empty() && writer) err << "warning: " << crossing << '\n';
+      }
       const bool frame = (options.vtu || options.obj || !options.png_dir.empty()) &&
                          (step % options.every == 0 || step == options.steps);
       write_outputs(options.dump_steps.count(step) || (dump_last && step == options.steps), frame);

@@ -6,6 +6,7 @@
 #include "fastcorot/core/error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 
 namespace fastcorot {
@@ -223,7 +224,7 @@ int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Out
   for (const std::size_t i : order) {
     PenaltyContact<Real> c = contact(pair, outputs[i]);
     const auto& p = outputs[i].proximity;
-    detected_.push_back({{p.point[0], p.point[1]}, p.normal});
+    record(pair, outputs[i]);
     if (!explicit_pairs_[k]) {
       contacts[a.is_still() ? b.object() : a.object()].push_back(std::move(c));
       continue;
@@ -273,10 +274,85 @@ int ContactPipeline<Real>::friction_response(std::size_t k, const std::vector<Ou
     c.second.position = add_side(m2, o.second, o.proximity.point[1], c.second.blocks);
     c.normal = o.proximity.normal;
     c.distance = contact_distance(pair, o);
-    detected_.push_back({{o.proximity.point[0], o.proximity.point[1]}, o.proximity.normal});
+    record(pair, o);
   }
   constraints_[k]->set_contacts(std::move(contacts));
   return static_cast<int>(kept.size());
+}
+
+template <class Real>
+void ContactPipeline<Real>::record(const ModelPair& pair, const Output& output) {
+  const auto& p = output.proximity;
+  detected_.push_back({{p.point[0], p.point[1]}, p.normal});
+  Watch w;
+  w.normal = p.normal;
+  const Index elements[2] = {output.first, output.second};
+  const std::size_t models[2] = {pair.first, pair.second};
+  for (int side = 0; side < 2; ++side) {
+    const CollisionModel<Real>& m = models_[models[side]];
+    const auto& x = m.points->positions();
+    const auto at = [&](Index i) -> const Vec3<Real>& { return x[static_cast<std::size_t>(i)]; };
+    const auto e = static_cast<std::size_t>(elements[side]);
+    w.model[side] = models[side];
+    switch (m.kind) {
+      case CollisionElements::spheres: return;  // not watched
+      case CollisionElements::points:
+        w.points[side] = {elements[side], 0, 0};
+        w.weights[side] = {Real(1), Real(0), Real(0)};
+        w.count[side] = 1;
+        break;
+      case CollisionElements::lines: {
+        const Edge& s = m.edges[e];
+        const Vec3<Real> ab = at(s[1]) - at(s[0]);
+        const Real alpha = ab.squaredNorm() > 0 ? (p.point[side] - at(s[0])).dot(ab) / ab.squaredNorm() : Real(0);
+        w.points[side] = {s[0], s[1], 0};
+        w.weights[side] = {1 - alpha, alpha, Real(0)};
+        w.count[side] = 2;
+        break;
+      }
+      case CollisionElements::triangles: {
+        const Triangle& t = m.triangles[e];
+        const Vec3<Real> ab = at(t[1]) - at(t[0]), ac = at(t[2]) - at(t[0]), ap = p.point[side] - at(t[0]);
+        const Real a00 = ab.dot(ab), a11 = ac.dot(ac), a01 = ab.dot(ac), det = a00 * a11 - a01 * a01;
+        if (!(std::abs(det) > 0)) return;
+        const Real alpha = (ap.dot(ab) * a11 - ap.dot(ac) * a01) / det, beta = (ap.dot(ac) * a00 - ap.dot(ab) * a01) / det;
+        w.points[side] = t;
+        w.weights[side] = {1 - alpha - beta, alpha, beta};
+        w.count[side] = 3;
+        break;
+      }
+    }
+  }
+  watch_.push_back(w);
+}
+
+template <class Real>
+void ContactPipeline<Real>::end_step(std::span<SimulatedObject<Real>> objects, CollisionReport& report) {
+  if (watch_.empty()) return;
+  std::vector<CollisionPoints<Real>*> done;
+  for (const Watch& w : watch_) {
+    for (const std::size_t m : w.model) {
+      CollisionPoints<Real>* points = models_[m].points.get();
+      if (std::find(done.begin(), done.end(), points) != done.end()) continue;
+      points->update(objects);  // the end positions (begin_step updates them again)
+      done.push_back(points);
+    }
+  }
+  for (const Watch& w : watch_) {
+    Vec3<Real> y[2];
+    for (int side = 0; side < 2; ++side) {
+      const auto& x = models_[w.model[side]].points->positions();
+      y[side] = Vec3<Real>::Zero();
+      for (int i = 0; i < w.count[side]; ++i) y[side] += x[static_cast<std::size_t>(w.points[side][static_cast<std::size_t>(i)])] * w.weights[side][static_cast<std::size_t>(i)];
+    }
+    const Real gap = (y[1] - y[0]).dot(w.normal);
+    if (!(gap < 0)) continue;
+    ++report.crossed;
+    if (-gap > report.deepest_crossing) {
+      report.deepest_crossing = static_cast<double>(-gap);
+      report.crossed_models = models_[w.model[0]].where + " and " + models_[w.model[1]].where;
+    }
+  }
 }
 
 template <class Real>
@@ -304,7 +380,7 @@ int ContactPipeline<Real>::stick_response(std::size_t k, const std::vector<Outpu
       spring.stiffness = m1.contact_stiffness + m2.contact_stiffness;
       spring.damping = m1.contact_friction + m2.contact_friction;
       alive.push_back(std::move(spring));
-      detected_.push_back({{p.point[0], p.point[1]}, p.normal});
+      record(pair, outputs[i]);
     }
   } else {
     // No output: SOFA keeps the contact alive with its springs, their ends following the bodies.
@@ -354,6 +430,7 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
   for (const int d : degenerate) report.degenerate_elements += d;
   std::vector<std::vector<PenaltyContact<Real>>> contacts(penalties_.size());
   detected_.clear();
+  watch_.clear();
   for (auto& forces : explicit_forces_) {
     if (forces) forces->clear();
   }

@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 
 #include <algorithm>
+#include <array>
 
 namespace fastcorot {
 
@@ -100,21 +101,28 @@ bool can_collide_elements(std::span<const CollisionModel<Real>> models, std::siz
 template <class Real>
 bool elements_touch(const CollisionModel<Real>& a, Index e1, const CollisionModel<Real>& b, Index e2) {
   if (a.points != b.points) return false;
-  const auto corners = [](const CollisionModel<Real>& m, Index e) -> std::vector<Index> {
-    switch (m.kind) {
-      case CollisionElements::triangles: {
-        const Triangle& t = m.triangles[static_cast<std::size_t>(e)];
-        return {t[0], t[1], t[2]};
-      }
-      case CollisionElements::lines: {
-        const Edge& s = m.edges[static_cast<std::size_t>(e)];
-        return {s[0], s[1]};
-      }
-      default: return {};
-    }
-  };
   if (a.kind != CollisionElements::triangles && b.kind != CollisionElements::triangles) return false;
-  return shares_any(corners(a, e1), corners(b, e2));
+  // A triangle's or segment's corners (at most three), without allocating: this runs per pair.
+  const auto corners = [](const CollisionModel<Real>& m, Index e, std::array<Index, 3>& out) -> int {
+    if (m.kind == CollisionElements::triangles) {
+      out = m.triangles[static_cast<std::size_t>(e)];
+      return 3;
+    }
+    if (m.kind == CollisionElements::lines) {
+      const Edge& s = m.edges[static_cast<std::size_t>(e)];
+      out = {s[0], s[1], s[1]};
+      return 2;
+    }
+    return 0;
+  };
+  std::array<Index, 3> p{}, q{};
+  const int np = corners(a, e1, p), nq = corners(b, e2, q);
+  for (int i = 0; i < np; ++i) {
+    for (int j = 0; j < nq; ++j) {
+      if (p[static_cast<std::size_t>(i)] == q[static_cast<std::size_t>(j)]) return true;
+    }
+  }
+  return false;
 }
 
 template bool can_collide_elements(std::span<const CollisionModel<double>>, std::size_t, Index, std::size_t, Index);

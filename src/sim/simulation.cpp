@@ -225,6 +225,7 @@ StepReport Simulation<Real>::step() {
     });
   }
   rethrow_first();
+  if (collisions) collisions->end_step(objects, collision_report_);
   StepReport total;
   for (const auto& report : reports) {
     total.linear_solves += report.linear_solves;

@@ -81,10 +81,34 @@ TEST(ContactFigures, DumpHoldsEachStepsContactsAsSofaCountsThemWithTheSummary) {
   EXPECT_EQ(figures["model_pairs_per_step"].get<double>(), 1.0);  // the cube's points, the floor's triangles
   EXPECT_GT(figures["element_pairs_per_step"].get<double>(), 0.0);
   EXPECT_EQ(figures["degenerate_elements"], 0);
+  EXPECT_EQ(figures["crossed"], 0) << "the cube rests on the floor, never through it";
   EXPECT_GE(figures["detection_share"].get<double>(), 0.0);
   EXPECT_LE(figures["detection_share"].get<double>(), 1.0);
   EXPECT_EQ(summary["steps"], 50);
   EXPECT_FALSE(summary.contains("constraints"));  // no FreeMotionAnimationLoop
+}
+
+// A point found over the floor moving down too fast for its contact to stop it within the step: one
+// warning, at the first step it happens, naming the models; the summary counts them.
+TEST(ContactFigures, AContactThatEndsAStepCrossedIsWarnedOnce) {
+  const auto dir = std::filesystem::path(FASTCOROT_TEST_OUTPUT_DIR) / "contacts_crossed";
+  std::filesystem::create_directories(dir);
+  const auto scene = dir / "fast_point.scn";
+  std::ofstream(scene) << R"(<Node name="root" dt="0.01" gravity="0 -9.81 0">
+  <CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>
+  <MinProximityIntersection alarmDistance="0.5" contactDistance="0.2"/><CollisionResponse response="PenalityContactForceField"/>
+  <Node name="ball"><EulerImplicitSolver/><CGLinearSolver iterations="100" tolerance="1e-30" threshold="1e-30"/>
+    <MechanicalObject position="0.1 0.4 0.2" velocity="0 -100 0"/><UniformMass totalMass="0.5"/><PointCollisionModel/></Node>
+  <Node name="floor"><MeshTopology position="-1 0 -1  1 0 -1  0 0 2" triangles="0 2 1"/><MechanicalObject/>
+    <TriangleCollisionModel simulated="0" moving="0"/></Node>
+</Node>)";
+  const auto result = testing::shell(std::string(FASTCOROT_EXECUTABLE) + " run " + scene.string() + " --steps 3 --json 2>&1");
+  ASSERT_EQ(result.status, 0) << result.output;
+  const std::string warning = "warning: step 1: 1 contact(s) ended the step crossed";
+  const auto first = result.output.find(warning);
+  EXPECT_NE(first, std::string::npos) << result.output;
+  EXPECT_EQ(result.output.find("ended the step crossed", first + warning.size()), std::string::npos) << "once per run";
+  EXPECT_NE(result.output.find("fast_point.scn:7: TriangleCollisionModel"), std::string::npos) << result.output;
 }
 
 // A run resumed from a checkpoint dumps the contacts of the steps it runs as the whole run does; the

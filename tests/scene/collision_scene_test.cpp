@@ -130,6 +130,26 @@ TEST(CollisionScene, APointMassRestsAtTheClosedFormHeightAndNeverSinks) {
   EXPECT_EQ(scene.simulation.collision_report().contacts, 1);
 }
 
+TEST(CollisionScene, APointThatCrossesTheFloorInOneStepIsReported) {
+  // Found 0.4 above the floor moving down at 100 m/s: the penalty cannot stop it within the step.
+  LoadedScene fast = build_scene_text(point_over_floor(0.4), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  fast.simulation.objects[0].system.state.velocity[0] = Vec3<double>(0, -100, 0);
+  fast.simulation.step();
+  const CollisionReport& report = fast.simulation.collision_report();
+  EXPECT_EQ(report.contacts, 1);
+  EXPECT_EQ(report.crossed, 1);
+  const double y = fast.simulation.objects[0].system.state.position[0].y();
+  ASSERT_LT(y, 0);
+  EXPECT_NEAR(report.deepest_crossing, -y, 1e-12) << "the floor is the plane y = 0";
+  EXPECT_NE(report.crossed_models.find("TriangleCollisionModel"), std::string::npos) << report.crossed_models;
+  // At rest on the floor: nothing crosses.
+  LoadedScene resting = build_scene_text(point_over_floor(0.4), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  for (int step = 0; step < 200; ++step) {
+    resting.simulation.step();
+    EXPECT_EQ(resting.simulation.collision_report().crossed, 0) << step;
+  }
+}
+
 TEST(CollisionScene, WhatIsNotSimulatedYetIsWarnedPerComponent) {
   // A model kind not simulated: the scene loads, its collisions ignored, each component saying why.
   std::string text = point_over_floor(0.4);

@@ -19,6 +19,7 @@
 #include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 #include "fastcorot/sim/collision_stage.h"
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -60,6 +61,11 @@ class ContactPipeline final : public CollisionStage<Real> {
   // pair's candidate element pairs are cut into chunks whose outputs are joined in order: the same
   // contacts, in the same order, for any thread count.
   void set_threads(int threads) override { threads_ = threads; }
+  // Beyond SOFA: each kept contact between points, segments and triangles measured again at the
+  // step's end positions (its points placed by the weights they had on their elements); those whose
+  // points crossed along the normal are counted in `report` (spheres are left out: DiscreteIntersection
+  // finds them only once they overlap).
+  void end_step(std::span<SimulatedObject<Real>> objects, CollisionReport& report) override;
 
   // The last step's contacts, per object with a penalty field (for drawing and outputs).
   const std::vector<CollisionModel<Real>>& models() const { return models_; }
@@ -80,6 +86,8 @@ class ContactPipeline final : public CollisionStage<Real> {
   int friction_response(std::size_t k, const std::vector<Output>& outputs);
   int stick_response(std::size_t k, const std::vector<Output>& outputs, std::span<const SimulatedObject<Real>> objects,
                      std::vector<std::vector<StickSpring<Real>>>& springs);
+  // A kept output: drawn and reported (detected_), and watched for crossing (watch_).
+  void record(const ModelPair& pair, const Output& output);
   // The outputs SOFA's penalty and stick responses keep: one per id (the smallest value, the first
   // on ties), in the order they were found.
   static std::vector<std::size_t> kept_by_id(const std::vector<Output>& outputs);
@@ -104,6 +112,15 @@ class ContactPipeline final : public CollisionStage<Real> {
   std::vector<std::vector<StickSpring<Real>>> stick_springs_;  // per rule pair, alive from step to step
   std::vector<std::vector<Vec3<Real>>> last_positions_;       // per object, at the last step's start
   std::vector<DetectedContact<Real>> detected_;
+  // A contact's two points as weights on their elements' points, for end_step.
+  struct Watch {
+    std::size_t model[2] = {0, 0};
+    std::array<Index, 3> points[2] = {};
+    std::array<Real, 3> weights[2] = {};
+    int count[2] = {0, 0};
+    Vec3<Real> normal = Vec3<Real>::UnitX();
+  };
+  std::vector<Watch> watch_;
   int threads_ = 1;
 };
 

@@ -8,6 +8,7 @@
 #include "fastcorot/core/types.h"
 
 #include <span>
+#include <string>
 
 namespace fastcorot {
 
@@ -21,6 +22,13 @@ struct CollisionReport {
   long element_pairs = 0;        // element pairs whose boxes passed (the pair rules' calls)
   int degenerate_elements = 0;   // triangles or segments with no extent, skipped (SOFA makes NaN)
   double detection_seconds = 0;  // trees, broad and narrow phases
+  // Beyond SOFA, after the step (end_step): contacts between points, segments and triangles whose
+  // points ended the step on the wrong side of each other along the contact's normal (the point
+  // crossed the surface: deeper than the contact distance allows), the deepest crossing, and the
+  // models of that contact.
+  int crossed = 0;
+  double deepest_crossing = 0;
+  std::string crossed_models;
 };
 
 // One contact of the last detection, for drawing and outputs: the points on the two elements (the
@@ -40,6 +48,8 @@ class CollisionStage {
   virtual CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) = 0;
   // The contacts the last begin_step kept (after each response merged its outputs), in solve order.
   virtual std::span<const DetectedContact<Real>> contacts() const = 0;
+  // After every object's step: the crossing figures of `report` (the one begin_step returned).
+  virtual void end_step(std::span<SimulatedObject<Real>> /*objects*/, CollisionReport& /*report*/) {}
   // Threads for the next begin_step (the simulation's): results are bitwise the same for any count.
   virtual void set_threads(int /*threads*/) {}
 };
