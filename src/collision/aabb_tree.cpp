@@ -9,6 +9,8 @@ namespace fastcorot {
 namespace {
 
 constexpr Index kLeafSize = 4;
+// SOFA's CollisionPipeline depth (its default, 6): the levels of cells below the root.
+constexpr int kMaxDepth = 6;
 
 }  // namespace
 
@@ -30,39 +32,50 @@ void AabbTree<Real>::build(std::span<const Aabb<Real>> boxes) {
   nodes_.clear();
   nodes_.reserve(2 * order_.size() / static_cast<std::size_t>(kLeafSize) + 2);
   nodes_.emplace_back();
-  if (!order_.empty()) split(0, static_cast<Index>(order_.size()));
+  nodes_.front().count = static_cast<Index>(order_.size());
+  fit(0);
+  if (order_.empty()) return;
+  // SOFA's CubeCollisionModel::computeBoundingTree: level by level from the root, each cell of the
+  // level holding more than a leaf's worth split in two cells of the next level (made one after
+  // the other, so siblings are adjacent); cells of the last level (kMaxDepth) are not split.
+  std::size_t level_begin = 0, level_end = 1;
+  for (int level = 0; level < kMaxDepth; ++level) {
+    for (std::size_t n = level_begin; n < level_end; ++n) {
+      if (nodes_[n].count <= kLeafSize) continue;
+      split(static_cast<Index>(n));
+    }
+    level_begin = level_end;
+    level_end = nodes_.size();
+  }
 }
 
-// Node 'nodes_.back()' (just added) over order_[first, first + count): its box, then its children
-// when it holds more than a leaf's worth, the elements sorted by their box centres along the
-// longest axis (index order on ties) and cut at (count + 1) / 2, as SOFA's tree.
+// Cell n's elements stably sorted by their box centres along its box's longest axis (SOFA's
+// comparisons: x only when it beats both y and z, y when it beats z, else z), so that ties keep
+// the order earlier splits left, then cut at (count + 1) / 2 into two new cells.
 template <class Real>
-Index AabbTree<Real>::split(Index first, Index count) {
-  const auto node = static_cast<Index>(nodes_.size() - 1);
-  Aabb<Real> box;
-  for (Index k = first; k < first + count; ++k) box.extend(boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])]);
-  nodes_[static_cast<std::size_t>(node)].box = box;
-  nodes_[static_cast<std::size_t>(node)].first = first;
-  nodes_[static_cast<std::size_t>(node)].count = count;
-  if (count <= kLeafSize) return node;
-  int axis = 0;
-  (box.max - box.min).maxCoeff(&axis);
+void AabbTree<Real>::split(Index n) {
+  const std::size_t node = static_cast<std::size_t>(n);
+  const Vec3<Real> l = nodes_[node].box.max - nodes_[node].box.min;
+  const int axis = l[0] > l[1] ? (l[0] > l[2] ? 0 : 2) : (l[1] > l[2] ? 1 : 2);
   const auto centre = [&](Index e) {
     const auto& b = boxes_[static_cast<std::size_t>(e)];
     return b.min[axis] + b.max[axis];
   };
-  std::sort(order_.begin() + first, order_.begin() + first + count, [&](Index a, Index b) {
-    const Real ca = centre(a), cb = centre(b);
-    return ca < cb || (ca == cb && a < b);
-  });
+  const Index first = nodes_[node].first, count = nodes_[node].count;
+  std::stable_sort(order_.begin() + first, order_.begin() + first + count,
+                   [&](Index a, Index b) { return centre(a) < centre(b); });
   const Index half = (count + 1) / 2;
+  const auto left = static_cast<Index>(nodes_.size());
   nodes_.emplace_back();
-  const Index left = split(first, half);
+  nodes_.back().first = first;
+  nodes_.back().count = half;
+  fit(left);
   nodes_.emplace_back();
-  const Index right = split(first + half, count - half);
-  nodes_[static_cast<std::size_t>(node)].left = left;
-  nodes_[static_cast<std::size_t>(node)].right = right;
-  return node;
+  nodes_.back().first = first + half;
+  nodes_.back().count = count - half;
+  fit(left + 1);
+  nodes_[node].left = left;
+  nodes_[node].right = left + 1;
 }
 
 template <class Real>
@@ -90,35 +103,46 @@ void AabbTree<Real>::fit(Index n) {
   node.box = box;
 }
 
+// SOFA's BVHNarrowPhase on two models' cube trees: from the pair (root's children, root's
+// children), a stack of pairs of ranges (two sibling cells, or a cell's elements); a popped pair
+// tests each item of the first range against each item of the second, in order, and for boxes
+// that pass pushes the pair of their children (an element kept as itself against a cell's
+// children), or, for two elements, reports the pair at once. The order of the element pairs is
+// SOFA's order of computeIntersection calls, which decides the penalty's "first on ties".
 template <class Real>
 void AabbTree<Real>::pairs(const AabbTree& a, const AabbTree& b, Real margin, std::vector<Pair>& out) {
   if (a.size() == 0 || b.size() == 0) return;
-  const std::size_t begin = out.size();
-  std::vector<std::pair<Index, Index>> stack{{0, 0}};
+  if (!a.nodes_.front().box.overlaps(b.nodes_.front().box, margin)) return;  // the broad phase's root test
+  // A range: cells [first, first + count) of nodes_ (cells), or elements order_[first, first + count).
+  struct Range {
+    bool cells = false;
+    Index first = 0, count = 0;
+  };
+  const auto children = [](const AabbTree& t, Index n) {
+    const Node& node = t.nodes_[static_cast<std::size_t>(n)];
+    return node.left >= 0 ? Range{true, node.left, 2} : Range{false, node.first, node.count};
+  };
+  const auto box = [](const AabbTree& t, const Range& r, Index k) -> const Aabb<Real>& {
+    const auto i = static_cast<std::size_t>(r.first + k);
+    return r.cells ? t.nodes_[i].box : t.boxes_[static_cast<std::size_t>(t.order_[i])];
+  };
+  std::vector<std::pair<Range, Range>> stack{{children(a, 0), children(b, 0)}};
   while (!stack.empty()) {
-    const auto [i, j] = stack.back();
+    const auto [ra, rb] = stack.back();
     stack.pop_back();
-    const Node& na = a.nodes_[static_cast<std::size_t>(i)];
-    const Node& nb = b.nodes_[static_cast<std::size_t>(j)];
-    if (!na.box.overlaps(nb.box, margin)) continue;
-    const bool leaf_a = na.left < 0, leaf_b = nb.left < 0;
-    if (leaf_a && leaf_b) {
-      for (Index p = na.first; p < na.first + na.count; ++p) {
-        const Index ea = a.order_[static_cast<std::size_t>(p)];
-        for (Index q = nb.first; q < nb.first + nb.count; ++q) {
-          const Index eb = b.order_[static_cast<std::size_t>(q)];
-          if (a.boxes_[static_cast<std::size_t>(ea)].overlaps(b.boxes_[static_cast<std::size_t>(eb)], margin)) out.emplace_back(ea, eb);
+    for (Index i = 0; i < ra.count; ++i) {
+      for (Index j = 0; j < rb.count; ++j) {
+        if (!box(a, ra, i).overlaps(box(b, rb, j), margin)) continue;
+        if (ra.cells) {
+          stack.emplace_back(children(a, ra.first + i), rb.cells ? children(b, rb.first + j) : Range{false, rb.first + j, 1});
+        } else if (rb.cells) {
+          stack.emplace_back(Range{false, ra.first + i, 1}, children(b, rb.first + j));
+        } else {
+          out.emplace_back(a.order_[static_cast<std::size_t>(ra.first + i)], b.order_[static_cast<std::size_t>(rb.first + j)]);
         }
       }
-    } else if (leaf_b || (!leaf_a && na.count >= nb.count)) {
-      stack.push_back({na.left, j});
-      stack.push_back({na.right, j});
-    } else {
-      stack.push_back({i, nb.left});
-      stack.push_back({i, nb.right});
     }
   }
-  std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end());
 }
 
 template <class Real>

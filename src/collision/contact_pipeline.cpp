@@ -114,7 +114,7 @@ std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narro
   const bool one_node = m1.node == m2.node;
   if (!candidates.empty()) ++report.model_pairs;
   report.element_pairs += static_cast<long>(candidates.size());
-  // Fixed chunks of the sorted candidates, their outputs joined in chunk order.
+  // Fixed chunks of the candidates (in SOFA's traversal order), their outputs joined in chunk order.
   const Chunks chunks(candidates.size());
   std::vector<std::vector<Output>> found(chunks.count);
   run_tasks(threads_, static_cast<int>(chunks.count), [&](int c) {

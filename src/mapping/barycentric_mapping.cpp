@@ -37,6 +37,35 @@ Cell cell_of(const Vec3<Real>& p, Real inverse_size) {
           static_cast<int>(std::floor(p[2] * inverse_size))};
 }
 
+// SOFA's 3x3 inverse (type/Mat.h invertMatrix: its determinant's six products, each cofactor
+// divided by it) and matrix-vector product (row by row, left to right), so that the barycentric
+// coordinates, and the mapped points, are SOFA's to the bit (Eigen's inverse multiplies by the
+// determinant's reciprocal: last-bit differences, which decide exact ties downstream, e.g. which
+// of two mirror contacts with one id a penalty keeps).
+template <class Real>
+Mat3<Real> sofa_inverse(const Mat3<Real>& m) {
+  const Real det = m(0, 0) * m(1, 1) * m(2, 2) + m(1, 0) * m(2, 1) * m(0, 2) + m(2, 0) * m(0, 1) * m(1, 2) -
+                   m(0, 0) * m(2, 1) * m(1, 2) - m(1, 0) * m(0, 1) * m(2, 2) - m(2, 0) * m(1, 1) * m(0, 2);
+  Mat3<Real> r;
+  r(0, 0) = (m(1, 1) * m(2, 2) - m(2, 1) * m(1, 2)) / det;
+  r(1, 0) = (m(1, 2) * m(2, 0) - m(2, 2) * m(1, 0)) / det;
+  r(2, 0) = (m(1, 0) * m(2, 1) - m(2, 0) * m(1, 1)) / det;
+  r(0, 1) = (m(2, 1) * m(0, 2) - m(0, 1) * m(2, 2)) / det;
+  r(1, 1) = (m(2, 2) * m(0, 0) - m(0, 2) * m(2, 0)) / det;
+  r(2, 1) = (m(2, 0) * m(0, 1) - m(0, 0) * m(2, 1)) / det;
+  r(0, 2) = (m(0, 1) * m(1, 2) - m(1, 1) * m(0, 2)) / det;
+  r(1, 2) = (m(0, 2) * m(1, 0) - m(1, 2) * m(0, 0)) / det;
+  r(2, 2) = (m(0, 0) * m(1, 1) - m(1, 0) * m(0, 1)) / det;
+  return r;
+}
+
+template <class Real>
+Vec3<Real> sofa_product(const Mat3<Real>& m, const Vec3<Real>& v) {
+  Vec3<Real> r;
+  for (int i = 0; i < 3; ++i) r[i] = m(i, 0) * v[0] + m(i, 1) * v[1] + m(i, 2) * v[2];
+  return r;
+}
+
 template <class Real>
 struct Nearest {
   Vec3<Real> coordinates = Vec3<Real>::Zero();
@@ -58,7 +87,7 @@ BarycentricMapping<Real> map_onto_tetrahedra(const TetMesh& mesh, std::span<cons
     const auto p = tetrahedron_points<Real>(mesh.tetrahedron(static_cast<Index>(t)), x);
     Mat3<Real> edges;
     for (int k = 0; k < 3; ++k) edges.col(k) = p[static_cast<std::size_t>(k) + 1] - p[0];
-    bases[t] = edges.inverse();
+    bases[t] = sofa_inverse(edges);
     centres[t] = (p[0] + p[1] + p[2] + p[3]) * Real(0.25);
   }
   // The grid: cells of the mean edge length, each listing the tetrahedra whose boxes meet it.
@@ -83,10 +112,13 @@ BarycentricMapping<Real> map_onto_tetrahedra(const TetMesh& mesh, std::span<cons
   }
   const auto check = [&](Index t, const Vec3<Real>& point, Nearest<Real>& nearest) {
     const auto ti = static_cast<std::size_t>(t);
-    const Vec3<Real> f = bases[ti] * (point - x[static_cast<std::size_t>(mesh.tetrahedron(t)[0])]);
+    const Vec3<Real> f = sofa_product(bases[ti], Vec3<Real>(point - x[static_cast<std::size_t>(mesh.tetrahedron(t)[0])]));
     // <= 0 inside (the smaller, the deeper), > 0 outside, where the centre's distance decides.
     Real distance = std::max(std::max(-f[0], -f[1]), std::max(-f[2], f[0] + f[1] + f[2] - 1));
-    if (distance > 0) distance = (point - centres[ti]).squaredNorm();
+    if (distance > 0) {
+      const Vec3<Real> d = point - centres[ti];
+      distance = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    }
     if (distance < nearest.distance) nearest = {f, distance, t};
   };
   BarycentricMapping<Real> mapping;

@@ -113,6 +113,8 @@ TEST(ContactFigures, AContactThatEndsAStepCrossedIsWarnedOnce) {
 
 // A run resumed from a checkpoint dumps the contacts of the steps it runs as the whole run does; the
 // resume step's own detection ran in the first run, so its entry is left out rather than made up.
+// The resumed run builds its trees at the resumed positions, and the contacts come in the order of
+// the traversal of those trees (SOFA's order): the same contacts, maybe in another order.
 TEST(ContactFigures, AResumedRunDumpsTheSameContacts) {
   const auto dir = std::filesystem::path(FASTCOROT_TEST_OUTPUT_DIR) / "contacts_resume";
   std::filesystem::remove_all(dir);
@@ -129,7 +131,14 @@ TEST(ContactFigures, AResumedRunDumpsTheSameContacts) {
   EXPECT_TRUE(second["steps"].contains("15"));
   EXPECT_FALSE(second["contacts"].contains("15"));
   ASSERT_GT(first["contacts"]["20"]["count"].get<int>(), 0);
-  EXPECT_EQ(second["contacts"]["20"], first["contacts"]["20"]);
+  const auto as_set = [](const json& contacts) {
+    std::vector<std::string> items;
+    for (std::size_t c = 0; c < contacts["points"].size(); ++c) items.push_back(contacts["points"][c].dump() + contacts["normals"][c].dump());
+    std::sort(items.begin(), items.end());
+    return items;
+  };
+  EXPECT_EQ(as_set(second["contacts"]["20"]), as_set(first["contacts"]["20"]));
+  EXPECT_EQ(second["steps"]["20"], first["steps"]["20"]) << "the same positions";
 }
 
 TEST(ContactFigures, SceneWithoutCollisionHasNoContactsEntry) {

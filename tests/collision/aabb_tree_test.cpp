@@ -1,12 +1,14 @@
 // AabbTree's candidate pairs against the all-pairs box test on random boxes: two trees and one
 // tree with itself, before and after refits that move the boxes (the structure kept), after a
-// rebuild for a new element count, at several margins; sorted output; bad boxes refused.
+// rebuild for a new element count, at several margins; SOFA's traversal order on a small case;
+// bad boxes refused.
 #include "fastcorot/collision/aabb_tree.h"
 
 #include "fastcorot/core/error.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 namespace fastcorot {
@@ -46,7 +48,7 @@ Pairs all_self_pairs(const std::vector<Box>& a, double margin) {
   return out;
 }
 
-TEST(AabbTree, PairsOfTwoTreesAreTheOverlappingElementPairsSorted) {
+TEST(AabbTree, PairsOfTwoTreesAreTheOverlappingElementPairs) {
   std::mt19937 rng(7);
   for (const int n : {1, 3, 5, 40, 300}) {
     const auto a = random_boxes(rng, n, 10, 1.5), b = random_boxes(rng, n + 7, 10, 1.0);
@@ -56,9 +58,44 @@ TEST(AabbTree, PairsOfTwoTreesAreTheOverlappingElementPairsSorted) {
     for (const double margin : {0.0, 0.3, 2.0}) {
       Pairs found;
       AabbTree<double>::pairs(ta, tb, margin, found);
+      std::sort(found.begin(), found.end());  // found in SOFA's traversal order
       EXPECT_EQ(found, all_pairs(a, b, margin)) << n << " boxes, margin " << margin;
     }
   }
+}
+
+// SOFA's order (CubeCollisionModel's splits, BVHNarrowPhase's stack): a cell's two halves pushed
+// in order and popped last first, each half's elements in their sorted order.
+TEST(AabbTree, PairsComeInSofasTraversalOrder) {
+  const auto unit_box = [](double x, double y) {
+    Box b;
+    b.extend(Vec3<double>(x, y, 0));
+    b.extend(Vec3<double>(x + 1, y + 1, 1));
+    return b;
+  };
+  Box big;
+  big.extend(Vec3<double>(-10, -10, -10));
+  big.extend(Vec3<double>(10, 10, 10));
+  AabbTree<double> other;
+  other.build(std::vector<Box>{big});
+  // The root box as long in x as in y: SOFA splits along y (x only when strictly longest), where
+  // the elements come in the reverse order.
+  std::vector<Box> diagonal;
+  for (int k = 0; k < 6; ++k) diagonal.push_back(unit_box(k, 5 - k));
+  AabbTree<double> tree;
+  tree.build(diagonal);
+  Pairs found;
+  AabbTree<double>::pairs(tree, other, 0.0, found);
+  EXPECT_EQ(found, (Pairs{{2, 0}, {1, 0}, {0, 0}, {5, 0}, {4, 0}, {3, 0}}));
+  // Equal centres keep their order (a stable sort); equal extents split along z.
+  tree.build(std::vector<Box>(5, unit_box(0, 0)));
+  found.clear();
+  AabbTree<double>::pairs(tree, other, 0.0, found);
+  EXPECT_EQ(found, (Pairs{{3, 0}, {4, 0}, {0, 0}, {1, 0}, {2, 0}}));
+  // Against the first tree's order: its pairs as the outer loop of each popped pair.
+  found.clear();
+  AabbTree<double>::pairs(other, tree, 0.0, found);
+  EXPECT_EQ(found, (Pairs{{0, 3}, {0, 4}, {0, 0}, {0, 1}, {0, 2}}));
 }
 
 TEST(AabbTree, SelfPairsAndRefitsFollowTheBoxes) {

@@ -1,12 +1,13 @@
 // AabbTree<Real>: a bounding-volume hierarchy of axis-aligned boxes over a collision model's
 // elements (one box per triangle, segment, point or sphere), for the narrow phase: which element
 // pairs of two models (or of one model with itself) have boxes that overlap within a margin.
-// Built once (median splits along the longest axis of each node's box, leaves of at most four
-// elements), then refitted each step (node boxes recomputed bottom-up from the new element boxes,
-// the structure kept), rebuilt when the element count changes (docs/collision.md, §2.3 and §7).
-// SOFA's tree decides cost only, never which pairs are found: the candidate pairs are exactly the
-// element pairs whose boxes overlap, and they come out sorted (first element, then second), so
-// results do not depend on the tree's shape.
+// Built once as SOFA's CubeCollisionModel (median splits along the longest axis of each cell's
+// box, cells of more than four elements split, six levels below the root at most), then refitted
+// each step (cell boxes recomputed bottom-up from the new element boxes, the structure kept),
+// rebuilt when the element count changes (docs/collision.md, §2.3 and §7). The tree decides
+// neither which pairs are found (exactly the element pairs whose boxes overlap) nor, for two
+// models, anything but their order, which is SOFA's (BVHNarrowPhase's traversal): a response
+// that keeps the first of equal outputs depends on it.
 #pragma once
 
 #include "fastcorot/core/types.h"
@@ -51,8 +52,8 @@ class AabbTree {
   std::size_t size() const { return order_.size(); }
   const Aabb<Real>& bounds() const { return nodes_.front().box; }
 
-  // Element pairs (i in a, j in b) whose boxes overlap within `margin`, appended to `out` sorted by
-  // (i, j).
+  // Element pairs (i in a, j in b) whose boxes overlap within `margin`, appended to `out` in the
+  // order SOFA's BVHNarrowPhase visits them.
   static void pairs(const AabbTree& a, const AabbTree& b, Real margin, std::vector<Pair>& out);
   // Pairs (i, j), i < j, of this tree's elements whose boxes overlap within `margin`, sorted.
   void self_pairs(Real margin, std::vector<Pair>& out) const;
@@ -63,7 +64,7 @@ class AabbTree {
     Index first = 0, count = 0;  // a leaf: elements order_[first, first + count)
     Index left = -1, right = -1;  // an inner node: its children
   };
-  Index split(Index first, Index count);
+  void split(Index node);
   void fit(Index node);
   static void check(std::span<const Aabb<Real>> boxes);
 

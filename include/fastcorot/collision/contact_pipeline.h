@@ -3,8 +3,9 @@
 // response, as a CollisionStage: at each step's start every model's points and tree are updated;
 // the broad phase pairs the models in scene order (each with every earlier one it can collide with,
 // their root boxes within the alarm distance); the narrow phase hands every element pair whose
-// boxes pass to MinProximity's rule (collision/intersections.h), in canonical order (model pairs in
-// broad-phase order, element pairs sorted), so results do not depend on trees or threads; each model
+// boxes pass to MinProximity's rule (collision/intersections.h), in SOFA's order (model pairs in
+// broad-phase order, element pairs in BVHNarrowPhase's traversal of SOFA's trees, aabb_tree.h), so
+// results do not depend on threads; each model
 // pair's outputs are merged by id (the smallest value kept, the first on ties) and become contacts of
 // the penalty force field of the object they act on: implicit, in that object's step (SOFA's
 // placement when its response node is under the body's solver; the scene builder checks that).
