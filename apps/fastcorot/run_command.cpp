@@ -368,6 +368,16 @@ void progress(std::ostream& err, long done, long total, double seconds) {
       << remaining << " s left " << std::flush;
 }
 
+// A script's controller changed the scene's tree while it runs (Sofa/_script.py builds it again):
+// the outputs set up per object at the start cannot follow another set of objects.
+void refuse_rebuilt(SceneSource& source, const RunOptions& options) {
+  if (!source.take_rebuilt()) return;
+  if (options.vtu || options.obj || options.checkpoint_every > 0) {
+    throw make_error(options.scene, ": a controller added or removed nodes while the scene runs; --vtu, --obj and "
+                     "--checkpoint-every follow the objects the scene started with, so they cannot be used with it");
+  }
+}
+
 }  // namespace
 
 void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
@@ -490,8 +500,10 @@ void run(const RunOptions& options, std::ostream& out, std::ostream& err) {
       StepReport report;
       on_every_rank([&] {
         source->begin_step();
+        refuse_rebuilt(*source, options);
         report = simulation.step();
         source->end_step();
+        refuse_rebuilt(*source, options);
       });
       solves += report.linear_solves;
       iterations += report.linear_iterations;

@@ -53,17 +53,26 @@ def _regrow(root):
     """The tree changed while running (nodes or objects added or removed): the simulation is built
     again from it, the running state carried over (fastcorot.Simulation.rebuild), and the new Python
     components initialised, as SOFA initialises a node added at run time."""
-    root._extra.pop("_grown", None)
     simulation = root._simulation
-    report = simulation.rebuild()
+    report = simulation.rebuild()  # raises, the running scene kept, when the grown tree cannot run
+    root._extra.pop("_grown", None)
+    for line in report["warnings"]:
+        warnings.warn(line, SceneWarning, stacklevel=3)
     for note in report["notes"]:
         warnings.warn(f"the scene was built again while running: {note}", SceneWarning, stacklevel=3)
     _attach(root, simulation)
 
 
 def init(node):
-    """Builds the simulation of node's scene (unknown attributes were warnings at addObject)."""
-    _start(_root(node))
+    """Builds the simulation of node's scene (unknown attributes were warnings at addObject). On a
+    scene already running (SOFA initialises a node added to it), the tree's changes are taken in
+    with the running state carried over; nothing restarts."""
+    root = _root(node)
+    if root._simulation is not None:
+        if root._extra.get("_grown"):
+            _regrow(root)
+        return
+    _start(root)
 
 
 initRoot = init

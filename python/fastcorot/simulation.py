@@ -52,12 +52,17 @@ class Simulation:
         return report
 
     def _bind(self, root, core, objects):
+        # Objects bound before and removed from the tree since must not view the rebuilt state.
+        for obj in getattr(self, "_bound", ()):
+            for key in ("_binding", "_mapped", "_lagrangian"):
+                object.__setattr__(obj, key, None)
         for node in walk(root):
             object.__setattr__(node, "_core", None)
             for obj in node._objects:
                 object.__setattr__(obj, "_binding", None)
                 object.__setattr__(obj, "_mapped", None)
                 object.__setattr__(obj, "_lagrangian", None)
+        self._bound = list(objects)
         # Each MechanicalObject views its range of its simulated object's state (several objects
         # under one solver are one state, theirs one after the other).
         for rank, k, offset, size in core.state_parts:
@@ -137,7 +142,7 @@ class Simulation:
 
     def collision_report(self):
         """What the last step's collision detection did: a dict {"contacts", "model_pairs",
-        "element_pairs", "degenerate_elements", "detection_seconds"} (the run summary's figures;
+        "element_pairs", "degenerate_elements", "detection_seconds", "crossed", "deepest_crossing"} (the run summary's figures;
         zeros without a collision pipeline)."""
         return self._core.collision_report()
 

@@ -52,6 +52,8 @@ void bind_contacts(py::class_<SimulationCore>& core) {
             d["element_pairs"] = r.element_pairs;
             d["degenerate_elements"] = r.degenerate_elements;
             d["detection_seconds"] = r.detection_seconds;
+            d["crossed"] = r.crossed;
+            d["deepest_crossing"] = r.deepest_crossing;
             return d;
           },
           "What the last step's collision detection did (all zero without a collision pipeline).");

@@ -38,6 +38,20 @@ std::unique_ptr<SimulationCore> build(py::handle tree, bool strict, bool allow_e
 // (io/carried_state.h); the running scene is kept, retired, so that arrays viewing it stay valid.
 py::dict rebuild(SimulationCore& core, py::handle tree, bool strict, bool allow_empty) {
   LoadedScene fresh = build_tree(tree, strict, allow_empty);
+  // What the running scene did not say already (a new node's unknown data, a collision component
+  // its new models make the pipeline refuse, ...).
+  std::vector<std::string> said;
+  for (const auto& line : fresh.warnings) {
+    if (std::find(core.scene.warnings.begin(), core.scene.warnings.end(), line) == core.scene.warnings.end()) said.push_back(line);
+  }
+  const auto refuse = [&](const char* what) {
+    std::string why;
+    for (const auto& line : said) why += "\n  " + line;
+    throw py::value_error(std::string("the scene built again with the nodes added or removed while it runs would lose its ") + what +
+                          ", so it was left as it was" + why);
+  };
+  if (core.simulation().collisions && !fresh.simulation.collisions) refuse("collision pipeline");
+  if (core.simulation().constraints && !fresh.simulation.constraints) refuse("Lagrangian constraints");
   fresh.simulation.threads = core.simulation().threads;
   fresh.simulation.divergence_factor = core.simulation().divergence_factor;
   std::lock_guard lock(core.stepping);
@@ -49,6 +63,7 @@ py::dict rebuild(SimulationCore& core, py::handle tree, bool strict, bool allow_
   out["carried"] = carried.carried;
   out["fresh"] = carried.fresh;
   out["notes"] = carried.notes;
+  out["warnings"] = said;
   return out;
 }
 

@@ -65,4 +65,4 @@ def test_a_scene_without_collision_has_no_contacts(repository):
     assert sim.contacts()["count"] == 0
     assert sim.contacts()["points"].shape == (0, 2, 3)
     assert sim.collision_report() == {"contacts": 0, "model_pairs": 0, "element_pairs": 0, "degenerate_elements": 0,
-                                      "detection_seconds": 0.0}
+                                      "detection_seconds": 0.0, "crossed": 0, "deepest_crossing": 0.0}

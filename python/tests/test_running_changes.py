@@ -55,6 +55,45 @@ def test_a_node_added_while_running_starts_now_and_the_rest_carries_on_bitwise()
     assert np.array_equal(body.position.array(), reference.position.array())
     assert grown.late.point.position.value[0][1] == pytest.approx(2 - h * h * G * 15, abs=1e-12)
     assert len(Sofa.Simulation.simulation_of(grown).objects) == 2
+    # The removed node's state no longer views the simulation (its index now belongs to another).
+    assert particle.position.value.tolist() == [[5, 5, 5]]
+    # Sofa.Simulation.init on the running scene takes its changes in; nothing restarts.
+    add_particle(grown, "third", 3.0)
+    Sofa.Simulation.init(grown)
+    assert grown.time.value == pytest.approx(0.20)
+    assert np.array_equal(body.position.array(), reference.position.array())
+
+
+def test_a_change_that_would_switch_the_contacts_off_is_refused_and_the_scene_kept():
+    root = Sofa.Core.Node("root")
+    root.dt = 0.01
+    for component in ("CollisionPipeline", "BruteForceBroadPhase", "BVHNarrowPhase"):
+        root.addObject(component)
+    root.addObject("MinProximityIntersection", alarmDistance=0.2, contactDistance=0.1)
+    root.addObject("CollisionResponse", response="PenalityContactForceField")
+    node, _ = add_particle(root, "a", 1.0)
+    node.addObject("PointCollisionModel")
+    floor = root.addChild("floor")
+    floor.addObject("MechanicalObject", position=[[4, 0.9, 4], [6, 0.9, 4], [5, 0.9, 6]])
+    floor.addObject("MeshTopology", triangles=[0, 2, 1])
+    floor.addObject("TriangleCollisionModel", simulated=False, moving=False)
+    Sofa.Simulation.init(root)
+    steps(root, 2)
+    assert Sofa.Simulation.simulation_of(root).collision_report()["contacts"] == 1
+    # A rigid body's PointCollisionModel (SOFA wants its points under a RigidMapping): the pipeline
+    # would be switched off.
+    bad = root.addChild("bad")
+    bad.addObject("EulerImplicitSolver")
+    bad.addObject("CGLinearSolver")
+    bad.addObject("MechanicalObject", template="Rigid3d", position=[[0, 5, 0, 0, 0, 0, 1]])
+    bad.addObject("UniformMass", totalMass=1)
+    bad.addObject("PointCollisionModel")
+    with pytest.raises(ValueError, match="would lose its collision pipeline"):
+        bad.init()
+    assert root.time.value == pytest.approx(0.02)
+    root.removeChild(bad)
+    steps(root, 1)
+    assert Sofa.Simulation.simulation_of(root).collision_report()["contacts"] == 1
 
 
 @pytest.mark.skipif(not PYTHON_EXAMPLES.is_dir(), reason="no ../shared/sofa-scenes")

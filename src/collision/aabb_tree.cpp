@@ -47,6 +47,42 @@ void AabbTree<Real>::build(std::span<const Aabb<Real>> boxes) {
     level_begin = level_end;
     level_end = nodes_.size();
   }
+  index_leaves();
+}
+
+template <class Real>
+void AabbTree<Real>::index_leaves() {
+  by_x_.resize(order_.size());
+  leaf_width_.assign(nodes_.size(), Real(0));
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    const Node& node = nodes_[n];
+    if (node.left >= 0) continue;
+    const auto begin = by_x_.begin() + node.first, end = begin + node.count;
+    for (Index p = node.first; p < node.first + node.count; ++p) by_x_[static_cast<std::size_t>(p)] = p;
+    const auto min_x = [&](Index p) { return boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])].min.x(); };
+    std::sort(begin, end, [&](Index a, Index b) { return min_x(a) < min_x(b) || (min_x(a) == min_x(b) && a < b); });
+    Real width = 0;
+    for (Index p = node.first; p < node.first + node.count; ++p) {
+      const auto& b = boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])];
+      width = std::max(width, b.max.x() - b.min.x());
+    }
+    leaf_width_[n] = width;
+  }
+}
+
+template <class Real>
+void AabbTree<Real>::leaf_overlaps(const Node& node, const Aabb<Real>& box, Real margin, std::vector<Index>& out) const {
+  const std::size_t begin = out.size();
+  const auto first = by_x_.begin() + node.first, last = first + node.count;
+  const auto n = static_cast<std::size_t>(&node - nodes_.data());
+  // Boxes whose min x lies in [box.min.x − margin − widest, box.max.x + margin] may overlap.
+  const Real low = box.min.x() - margin - leaf_width_[n], high = box.max.x() + margin;
+  const auto min_x = [&](Index p) { return boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])].min.x(); };
+  auto it = std::lower_bound(first, last, low, [&](Index p, Real value) { return min_x(p) < value; });
+  for (; it != last && min_x(*it) <= high; ++it) {
+    if (boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(*it)])].overlaps(box, margin)) out.push_back(*it);
+  }
+  std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end());
 }
 
 // Cell n's elements stably sorted by their box centres along its box's longest axis (SOFA's
@@ -88,6 +124,7 @@ void AabbTree<Real>::refit(std::span<const Aabb<Real>> boxes) {
   boxes_.assign(boxes.begin(), boxes.end());
   // Children come after their parent in nodes_: bottom-up is the reverse order.
   for (std::size_t n = nodes_.size(); n-- > 0;) fit(static_cast<Index>(n));
+  index_leaves();
 }
 
 template <class Real>
@@ -117,26 +154,40 @@ void AabbTree<Real>::pairs(const AabbTree& a, const AabbTree& b, Real margin, st
   struct Range {
     bool cells = false;
     Index first = 0, count = 0;
+    Index leaf = -1;  // the leaf whose elements these are (−1: one element kept as itself)
   };
   const auto children = [](const AabbTree& t, Index n) {
     const Node& node = t.nodes_[static_cast<std::size_t>(n)];
-    return node.left >= 0 ? Range{true, node.left, 2} : Range{false, node.first, node.count};
+    return node.left >= 0 ? Range{true, node.left, 2, -1} : Range{false, node.first, node.count, n};
   };
   const auto box = [](const AabbTree& t, const Range& r, Index k) -> const Aabb<Real>& {
     const auto i = static_cast<std::size_t>(r.first + k);
     return r.cells ? t.nodes_[i].box : t.boxes_[static_cast<std::size_t>(t.order_[i])];
   };
   std::vector<std::pair<Range, Range>> stack{{children(a, 0), children(b, 0)}};
+  std::vector<Index> found;
   while (!stack.empty()) {
     const auto [ra, rb] = stack.back();
     stack.pop_back();
+    if (!ra.cells && !rb.cells && rb.leaf >= 0 && rb.count > 8) {
+      // Two element ranges: each of the first against the second's elements in order, those
+      // overlapping found through the second leaf's x order (the same pairs, in the same order).
+      const Node& leaf = b.nodes_[static_cast<std::size_t>(rb.leaf)];
+      for (Index i = 0; i < ra.count; ++i) {
+        const Index ea = a.order_[static_cast<std::size_t>(ra.first + i)];
+        found.clear();
+        b.leaf_overlaps(leaf, a.boxes_[static_cast<std::size_t>(ea)], margin, found);
+        for (const Index p : found) out.emplace_back(ea, b.order_[static_cast<std::size_t>(p)]);
+      }
+      continue;
+    }
     for (Index i = 0; i < ra.count; ++i) {
       for (Index j = 0; j < rb.count; ++j) {
         if (!box(a, ra, i).overlaps(box(b, rb, j), margin)) continue;
         if (ra.cells) {
-          stack.emplace_back(children(a, ra.first + i), rb.cells ? children(b, rb.first + j) : Range{false, rb.first + j, 1});
+          stack.emplace_back(children(a, ra.first + i), rb.cells ? children(b, rb.first + j) : Range{false, rb.first + j, 1, -1});
         } else if (rb.cells) {
-          stack.emplace_back(Range{false, ra.first + i, 1}, children(b, rb.first + j));
+          stack.emplace_back(Range{false, ra.first + i, 1, -1}, children(b, rb.first + j));
         } else {
           out.emplace_back(a.order_[static_cast<std::size_t>(ra.first + i)], b.order_[static_cast<std::size_t>(rb.first + j)]);
         }
@@ -149,9 +200,8 @@ template <class Real>
 void AabbTree<Real>::self_pairs(Real margin, std::vector<Pair>& out) const {
   if (size() < 2) return;
   const std::size_t begin = out.size();
-  const auto test = [&](Index ea, Index eb) {
-    if (boxes_[static_cast<std::size_t>(ea)].overlaps(boxes_[static_cast<std::size_t>(eb)], margin)) out.emplace_back(std::min(ea, eb), std::max(ea, eb));
-  };
+  const auto add = [&](Index ea, Index eb) { out.emplace_back(std::min(ea, eb), std::max(ea, eb)); };
+  std::vector<Index> found;
   std::vector<std::pair<Index, Index>> stack{{0, 0}};
   while (!stack.empty()) {
     const auto [i, j] = stack.back();
@@ -161,7 +211,11 @@ void AabbTree<Real>::self_pairs(Real margin, std::vector<Pair>& out) const {
     if (i == j) {
       if (n1.left < 0) {
         for (Index p = n1.first; p < n1.first + n1.count; ++p) {
-          for (Index q = p + 1; q < n1.first + n1.count; ++q) test(order_[static_cast<std::size_t>(p)], order_[static_cast<std::size_t>(q)]);
+          found.clear();
+          leaf_overlaps(n1, boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])], margin, found);
+          for (const Index q : found) {
+            if (q > p) add(order_[static_cast<std::size_t>(p)], order_[static_cast<std::size_t>(q)]);
+          }
         }
       } else {
         stack.push_back({n1.left, n1.left});
@@ -174,7 +228,9 @@ void AabbTree<Real>::self_pairs(Real margin, std::vector<Pair>& out) const {
     const bool leaf1 = n1.left < 0, leaf2 = n2.left < 0;
     if (leaf1 && leaf2) {
       for (Index p = n1.first; p < n1.first + n1.count; ++p) {
-        for (Index q = n2.first; q < n2.first + n2.count; ++q) test(order_[static_cast<std::size_t>(p)], order_[static_cast<std::size_t>(q)]);
+        found.clear();
+        leaf_overlaps(n2, boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])], margin, found);
+        for (const Index q : found) add(order_[static_cast<std::size_t>(p)], order_[static_cast<std::size_t>(q)]);
       }
     } else if (leaf2 || (!leaf1 && n1.count >= n2.count)) {
       stack.push_back({n1.left, j});

@@ -284,6 +284,7 @@ template <class Real>
 void ContactPipeline<Real>::record(const ModelPair& pair, const Output& output) {
   const auto& p = output.proximity;
   detected_.push_back({{p.point[0], p.point[1]}, p.normal});
+  if (p.null_distance) return;  // its normal is arbitrary: no side to cross
   Watch w;
   w.normal = p.normal;
   const Index elements[2] = {output.first, output.second};

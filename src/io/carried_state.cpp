@@ -39,6 +39,11 @@ CarriedState carry_state(const Simulation<double>& from, Simulation<double>& to)
         result.notes.push_back(object.path + ": its linear solver starts afresh (another kind than the running one's)");
       }
     }
+    for (const auto& field : old.system.force_fields) {
+      if (const std::string unsaved = field->unsaved_state(); !unsaved.empty()) {
+        result.notes.push_back(object.path + ": its " + field->component() + "'s " + unsaved + " start again");
+      }
+    }
     object.system.state.position = old.system.state.position;
     object.system.state.velocity = old.system.state.velocity;
     if (auto& frames = object.system.rigids) {

@@ -86,6 +86,10 @@ class CollisionBuilder {
         intersection = intersection ? intersection : c;
       }
       if (type == "CollisionResponse") response = response ? response : c;
+      if ((type == "CollisionPipeline" || type == "DefaultPipeline") && c->has("depth") && data_.real(*c, "depth", 6.0) != 6.0) {
+        data_.warn(c->where() + ": depth " + data_.text(*c, "depth", "6") + " is not followed: fastcorot's trees have SOFA's default "
+                   "depth 6, which decides only the order of contacts that tie exactly (the first of equal ones is kept)");
+      }
       if (type == "BruteForceBroadPhase" && c->has("box")) throw NotSimulated{c->where() + ": its box (a region of interest) is not simulated yet"};
     }
     if (!intersection) throw NotSimulated{"the scene has no intersection method (MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection)"};

@@ -57,7 +57,7 @@ std::vector<ComponentSpec> collision_components() {
   return {
       {"CollisionPipeline", "collision",
        "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection and the PenalityContactForceField response (implicit in a body's step, or explicit between two bodies' solvers), StickContactForceField, or FrictionContactConstraint under FreeMotionAnimationLoop; what is not (tetrahedron models, moving obstacles, grid and volume topologies as surfaces) is ignored with a warning saying why.",
-       {{"depth", "int", "6", "accepted (fastcorot's tree has its own depth)"},
+       {{"depth", "int", "6", "SOFA's tree depth: 6 is followed; another value is warned (it orders exactly tied contacts only)"},
         {"verbose", "bool", "false", "accepted"},
         {"draw", "bool", "false", "accepted"}},
        {"DefaultPipeline"}},
