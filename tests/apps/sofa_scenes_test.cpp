@@ -1,6 +1,6 @@
 // A fast subset of SOFA's own example scenes (../shared/sofa-scenes beside the project, where
-// scripts/sofa-scenes runs them all): each runs 100 steps from its folder, as runSofa runs it, to
-// finite positions; a scene that needs what fastcorot lacks is refused with status 2 and one error
+// scripts/sofa-scenes runs them all): each runs 100 steps (FASTCOROT_TEST_SCENE_STEPS when set:
+// scripts/test --sanitize sets 20) from its folder, as runSofa runs it, to finite positions; a scene that needs what fastcorot lacks is refused with status 2 and one error
 // line naming it. Skipped where the scenes are not beside the checkout.
 #include "fastcorot/core/error.h"
 #include "support/command.h"
@@ -12,6 +12,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <filesystem>
 #include <fstream>
@@ -23,21 +24,28 @@ std::filesystem::path sofa_examples() {
   return std::filesystem::path(FASTCOROT_SOURCE_DIR) / "../shared/sofa-scenes/examples";
 }
 
+std::string scene_steps() {
+  const char* set = std::getenv("FASTCOROT_TEST_SCENE_STEPS");
+  const int steps = set != nullptr ? std::atoi(set) : 0;
+  return std::to_string(steps > 0 ? steps : 100);
+}
+
 class SofaScene : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(SofaScene, RunsAHundredStepsToFinitePositions) {
+TEST_P(SofaScene, RunsToFinitePositions) {
+  const std::string steps = scene_steps();
   const auto scene = sofa_examples() / GetParam();
   if (!std::filesystem::exists(scene)) GTEST_SKIP() << "no " << scene;
   const auto dump = std::filesystem::temp_directory_path() /
                     ("fastcorot_sofa_scene_" + std::to_string(::getpid()) + "_" + scene.stem().string() + ".json");
   const auto result = testing::shell("cd '" + scene.parent_path().string() + "' && " FASTCOROT_EXECUTABLE " run '" +
-                                     scene.filename().string() + "' --steps 100 --quiet --dump-state '" + dump.string() +
-                                     "' --dump-steps 100 2>&1");
+                                     scene.filename().string() + "' --steps " + steps + " --quiet --dump-state '" + dump.string() +
+                                     "' --dump-steps " + steps + " 2>&1");
   ASSERT_EQ(result.status, 0) << result.output;
   const auto state = nlohmann::json::parse(std::ifstream(dump));
   std::filesystem::remove(dump);
   std::size_t values = 0;
-  for (const auto& [object, points] : state["steps"]["100"].items()) {
+  for (const auto& [object, points] : state["steps"][steps].items()) {
     for (const auto& p : points) {
       for (const auto& v : p) {
         ASSERT_TRUE(std::isfinite(v.get<double>())) << object;
