@@ -1,18 +1,12 @@
 #include "collision_builder.h"
-#include "hexahedron_builders.h"
+#include "collision_model_reader.h"
 
 #include "fastcorot/collision/contact_pipeline.h"
 #include "fastcorot/collision/explicit_contact_forces.h"
-#include "fastcorot/collision/new_proximity.h"
-#include "fastcorot/collision/self_collision.h"
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/core/error.h"
 
-#include <stdexcept>
-
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,11 +15,6 @@
 namespace fastcorot::scene_detail {
 
 namespace {
-
-// Why the scene's collisions cannot be simulated (thrown inside the builder, turned into warnings).
-struct NotSimulated {
-  std::string reason;
-};
 
 void collect(GraphNode& node, std::vector<Component*>& spec, std::vector<Component*>& other, bool& free_motion) {
   for (const auto& c : node.components) {
@@ -37,35 +26,6 @@ void collect(GraphNode& node, std::vector<Component*>& spec, std::vector<Compone
     }
   }
   for (const auto& child : node.children) collect(*child, spec, other, free_motion);
-}
-
-// SOFA's MeshTopology edges from its surface: each triangle's (t[j+1], t[j+2]) as oriented, then
-// each quad's sorted, the first occurrence of each pair kept.
-std::vector<Edge> surface_edges(const std::vector<Triangle>& triangles, const std::vector<std::array<Index, 4>>& quads) {
-  std::vector<Edge> edges;
-  std::set<std::pair<Index, Index>> seen;
-  const auto add = [&](Index a, Index b, bool sorted) {
-    if (!seen.insert({std::min(a, b), std::max(a, b)}).second) return;
-    edges.push_back(sorted ? Edge{std::min(a, b), std::max(a, b)} : Edge{a, b});
-  };
-  for (const auto& t : triangles) {
-    for (int j = 0; j < 3; ++j) add(t[static_cast<std::size_t>((j + 1) % 3)], t[static_cast<std::size_t>((j + 2) % 3)], false);
-  }
-  for (const auto& q : quads) {
-    for (int j = 0; j < 4; ++j) add(q[static_cast<std::size_t>((j + 1) % 4)], q[static_cast<std::size_t>((j + 2) % 4)], true);
-  }
-  return edges;
-}
-
-template <std::size_t N>
-std::vector<std::array<Index, N>> tuples(SceneData& data, Component& topology, const char* name) {
-  const std::vector<Index> flat = data.indices(topology, name);
-  if (flat.size() % N != 0) throw make_error(topology.where(), ": ", name, " needs ", N, " indices each");
-  std::vector<std::array<Index, N>> out(flat.size() / N);
-  for (std::size_t e = 0; e < out.size(); ++e) {
-    for (std::size_t j = 0; j < N; ++j) out[e][j] = flat[N * e + j];
-  }
-  return out;
 }
 
 class CollisionBuilder {
@@ -96,6 +56,7 @@ class CollisionBuilder {
     const typename ContactPipeline<double>::Parameters p = intersection_settings(*intersection);
     method_ = p.method;
     response_name_ = data_.text(*response, "response", "PenalityContactForceField");
+    reader_.emplace(data_, simulation_, locate_, method_, response_name_);
     const bool friction = response_name_ == "FrictionContactConstraint";
     const bool stick = response_name_ == "StickContactForceField";
     if (!friction && !stick && response_name_ != "PenalityContactForceField") {
@@ -117,7 +78,7 @@ class CollisionBuilder {
         continue;
       }
       if (!data_.boolean(*c, "active", true)) continue;
-      models.push_back(model(*c));
+      models.push_back(reader_->model(*c));
       nodes.push_back(c->node);
       // SOFA's mpoints / m_pointModels: the node's first PointCollisionModel.
       auto& added = models.back();
@@ -165,7 +126,7 @@ class CollisionBuilder {
       throw NotSimulated{error.what()};
     }
     for (std::size_t o = 0; o < penalties.size(); ++o) {
-      for (const std::shared_ptr<ForceField<double>> field : {std::shared_ptr<ForceField<double>>(penalties[o]),
+      for (const std::shared_ptr<ForceField<double>>& field : {std::shared_ptr<ForceField<double>>(penalties[o]),
                                                                std::shared_ptr<ForceField<double>>(sticks[o]),
                                                                std::shared_ptr<ForceField<double>>(explicit_forces[o])}) {
         if (!field) continue;
@@ -330,214 +291,6 @@ class CollisionBuilder {
     return true;
   }
 
-  CollisionModel<double> model(Component& c) {
-    CollisionModel<double> m;
-    m.where = c.where();
-    // Node identity (two sibling nodes may share a name).
-    m.node = c.node->path + "#" + std::to_string(reinterpret_cast<std::uintptr_t>(c.node));
-    const std::string_view type = c.type();
-    m.kind = type == "TriangleCollisionModel" ? CollisionElements::triangles
-             : type == "LineCollisionModel"   ? CollisionElements::lines
-             : type == "SphereCollisionModel" ? CollisionElements::spheres
-                                              : CollisionElements::points;
-    m.both_side = data_.boolean(c, "bothSide", false);
-    m.simulated = data_.boolean(c, "simulated", true);
-    m.moving = data_.boolean(c, "moving", true);
-    m.self_collision = data_.boolean(c, "selfCollision", false);
-    const std::string reply = data_.text(c, "contactResponse", "");
-    if (!reply.empty() && reply != response_name_) {
-      throw NotSimulated{c.where() + " asks for the response " + reply + ", the pipeline's is " + response_name_ +
-                         " (a model's own response is not simulated yet)"};
-    }
-    m.contact_distance = data_.real(c, c.has("proximity") && !c.has("contactDistance") ? "proximity" : "contactDistance", 0.0);
-    m.contact_stiffness = data_.real(c, "contactStiffness", 10.0);
-    m.contact_friction = data_.real(c, "contactFriction", 0.0);
-    if (!(m.contact_distance >= 0) || !(m.contact_stiffness >= 0) || !(m.contact_friction >= 0)) {
-      throw error_at(c.where(), make_error("contactDistance, contactStiffness and contactFriction must be ≥ 0"));
-    }
-    for (const double g : data_.data(c, "group")) m.groups.push_back(static_cast<int>(g));
-    Component& state = state_of(c);
-    m.points = points_of(state, c);
-    if (m.kind == CollisionElements::spheres) {
-      // SOFA's radii: listRadius where it has one, radius (1) for the points beyond it.
-      Numbers listed;
-      try {
-        listed = data_.data(c, "listRadius");
-      } catch (const Error& error) {
-        // SOFA leaves a data whose link it cannot resolve at its default (SOFA's own
-        // StickContactForceField.scn links listRadius to a loader that is not there).
-        data_.warn(std::string(error.what()) + ": listRadius left empty, as SOFA leaves it: every sphere takes radius");
-      }
-      const double fallback = data_.real(c, "radius", 1.0);
-      for (std::size_t i = 0; i < m.points->size(); ++i) {
-        const double r = i < listed.size() ? listed[i] : fallback;
-        if (!(r >= 0) || !std::isfinite(r)) throw error_at(c.where(), make_error("the radius of sphere ", i, " is ", r, ": it must be finite and ≥ 0"));
-        m.radii.push_back(r);
-      }
-      return m;
-    }
-    Component* topology = topology_of(c);
-    if (m.kind == CollisionElements::points) {
-      if (method_ == IntersectionMethod::local_min_distance && topology) cone_topology(c, *topology, m);
-      if (m.self_collision && topology) {
-        // SOFA's VerticesAroundVertex: along the topology's edges (its triangles' and quads' without a list).
-        auto edges = tuples<2>(data_, *topology, "edges");
-        if (edges.empty()) edges = surface_edges(tuples<3>(data_, *topology, "triangles"), tuples<4>(data_, *topology, "quads"));
-        m.self_topology = std::make_shared<const SelfCollisionTopology>(
-            self_collision_topology(static_cast<Index>(m.points->size()), edges));
-      }
-      return m;
-    }
-    if (!topology) throw error_at(c.where(), make_error("no topology in its node or above to take its elements from"));
-    // SOFA takes a grid's faces, and a volume's edges and faces, from its cells: not made here.
-    if (is_grid_topology(topology->type()) || !data_.indices(*topology, "tetrahedra").empty() ||
-        topology->type() == "HexahedronSetTopologyContainer") {
-      throw NotSimulated{c.where() + ": its topology " + topology->where() + " is a grid or a volume, whose surface elements SOFA "
-                         "derives from its cells: not made here yet (give it a surface topology)"};
-    }
-    std::vector<Triangle> triangles = tuples<3>(data_, *topology, "triangles");
-    const auto quads = tuples<4>(data_, *topology, "quads");
-    if (m.kind == CollisionElements::triangles && !quads.empty() && !m.points->is_still()) {
-      throw NotSimulated{c.where() + ": quads on a moving surface (SOFA maps their contact points bilinearly over the quad) are not "
-                         "simulated yet"};
-    }
-    if (m.kind == CollisionElements::triangles) {
-      // SOFA's TriangleCollisionModel: the triangles, then each quad as (1, 2, 0) and (3, 0, 2).
-      for (const auto& q : quads) {
-        triangles.push_back({q[1], q[2], q[0]});
-        triangles.push_back({q[3], q[0], q[2]});
-      }
-      m.triangles = std::move(triangles);
-    } else {
-      const auto given = tuples<2>(data_, *topology, "edges");
-      m.edges = given.empty() ? surface_edges(triangles, quads) : given;
-    }
-    const auto n = static_cast<Index>(m.points->size());
-    const auto check = [&](const auto& elements, const char* what) {
-      for (std::size_t e = 0; e < elements.size(); ++e) {
-        for (Index v : elements[e]) {
-          if (v < 0 || v >= n) {
-            throw error_at(c.where(), make_error(what, " ", e, " of ", topology->where(), " names point ", v, ", outside the ", n,
-                                                 " points of its MechanicalObject"));
-          }
-        }
-      }
-    };
-    check(m.triangles, "triangle");
-    check(m.edges, "edge");
-    if (m.self_collision && m.kind == CollisionElements::lines) {
-      m.self_topology = std::make_shared<const SelfCollisionTopology>(self_collision_topology(n, m.edges));
-    }
-    if (m.kind == CollisionElements::triangles && method_ == IntersectionMethod::new_proximity) {
-      // SOFA's ownership flags come from the topology's own triangles; those made from quads have none.
-      const auto given = tuples<2>(data_, *topology, "edges");
-      const std::size_t own = m.triangles.size() - 2 * quads.size();
-      try {
-        m.triangle_flags = triangle_flags(std::span<const Triangle>(m.triangles.data(), own), m.points->size(), given);
-      } catch (const Error& error) {
-        throw error_at(c.where(), error);
-      }
-      m.triangle_flags.resize(m.triangles.size(), 0);
-    }
-    if (method_ == IntersectionMethod::local_min_distance) cone_topology(c, *topology, m);
-    return m;
-  }
-
-  // LocalMinDistance's neighbourhood topology for model m: the triangles and edges of its topology
-  // (the line model's own edge list), and whether a point model's filter applies (SOFA finds a
-  // LineCollisionModel in the node or above).
-  void cone_topology(Component& c, Component& topology, CollisionModel<double>& m) {
-    std::vector<Triangle> triangles = tuples<3>(data_, topology, "triangles");
-    const auto quads = tuples<4>(data_, topology, "quads");
-    std::vector<Edge> edges = m.kind == CollisionElements::lines ? m.edges : tuples<2>(data_, topology, "edges");
-    if (edges.empty()) edges = surface_edges(triangles, quads);
-    m.cone_topology = std::make_shared<const LocalMinDistanceTopology>(
-        local_min_distance_topology(static_cast<Index>(m.points->size()), triangles, edges));
-    if (m.kind != CollisionElements::points) return;
-    for (const GraphNode* node = c.node; node && !m.point_filter; node = node->parent) {
-      for (const auto& other : node->components) m.point_filter = m.point_filter || other->type() == "LineCollisionModel";
-    }
-  }
-
-  // SOFA's context topology: the model's `topology` link, else the nearest topology container of its
-  // node or above (a TriangleSetTopologyContainer included).
-  Component* topology_of(Component& c) {
-    if (c.has("topology")) return data_.topology_of(c);
-    for (const GraphNode* node = c.node; node; node = node->parent) {
-      Component* found = nullptr;
-      for (const auto& other : node->components) {
-        if (other->spec && (other->spec->category == "topology" || other->spec->category == "trianglecontainer")) found = other.get();
-      }
-      if (found) return found;
-    }
-    return nullptr;
-  }
-
-  // SOFA's context state: the first MechanicalObject of the node or of the nearest ancestor.
-  Component& state_of(Component& c) {
-    for (const GraphNode* node = c.node; node; node = node->parent) {
-      const auto states = node->of_category("state");
-      if (!states.empty()) return *states.front();
-    }
-    throw error_at(c.where(), make_error("no MechanicalObject in its node or above"));
-  }
-
-  std::shared_ptr<CollisionPoints<double>> points_of(Component& state, Component& user) {
-    if (const auto it = points_.find(&state); it != points_.end()) {
-      if (it->second->is_rigid() && user.type() != "SphereCollisionModel") {
-        throw NotSimulated{user.where() + ": a " + std::string(user.type()) + " on a Rigid3 state (put its points under a RigidMapping)"};
-      }
-      return it->second;
-    }
-    std::shared_ptr<CollisionPoints<double>> points;
-    if (const auto where = locate_(state)) {
-      const auto& object = simulation_.objects[where->object];
-      if (where->mapped) {
-        if (where->mapped->through || where->mapped->coordinates != 3) {
-          throw NotSimulated{user.where() + ": its state " + state.where() + " is below a SubsetMultiMapping, several rigid bodies or a DistanceMapping"};
-        }
-        points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::mapped(
-            where->object, std::shared_ptr<MechanicalMapping<double>>(mechanical_mapping(where->mapped->map, where->mapped->rigid))));
-      } else {
-        std::vector<Index> blocks;
-        if (where->rigid) {
-          // SOFA's RigidSphereModel: a SphereCollisionModel in a Rigid3 state's context.
-          if (user.type() != "SphereCollisionModel") {
-            throw NotSimulated{user.where() + ": a " + std::string(user.type()) + " on a Rigid3 state (put its points under a RigidMapping)"};
-          }
-          for (Index i = 0; i < where->size; i += 2) blocks.push_back(where->offset + i);
-          points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::rigid(where->object, std::move(blocks)));
-        } else {
-          for (Index i = 0; i < where->size; ++i) blocks.push_back(where->offset + i);
-          points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::own(where->object, std::move(blocks)));
-        }
-      }
-      static_cast<void>(object);
-    } else {
-      for (const GraphNode* node = state.node; node; node = node->parent) {
-        if (!node->of_category("odesolver").empty()) {
-          throw NotSimulated{user.where() + ": its state " + state.where() + " is under an ODE solver but not one fastcorot follows"};
-        }
-      }
-      for (Component* m : state.node->of_category("visualmapping")) {
-        throw NotSimulated{user.where() + ": its still state " + state.where() + " is filled by " + m->where()};
-      }
-      for (const auto& c : state.node->components) {
-        const std::string_view type = c->type();
-        if (type.find("Movement") != std::string_view::npos || type.find("Oscillator") != std::string_view::npos) {
-          throw NotSimulated{user.where() + ": its state " + state.where() + " is moved by " + c->where() +
-                             " (SOFA projects it every step): moving obstacles are not simulated yet"};
-        }
-      }
-      if (is_rigid_template(data_.text(state, "template", "Vec3d"))) throw NotSimulated{user.where() + ": a collision model on a Rigid3 state"};
-      auto x = data_.points(state, "position");  // placed as the state places them
-      if (x.empty()) throw error_at(user.where(), make_error("its MechanicalObject ", state.where(), " has no points"));
-      points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::still(std::move(x)));
-    }
-    points_.emplace(&state, points);
-    return points;
-  }
-
   SceneData& data_;
   Simulation<double>& simulation_;
   const LocateState& locate_;
@@ -546,7 +299,7 @@ class CollisionBuilder {
   FreeMotionAnimationLoop<double>* loop_ = nullptr;
   IntersectionMethod method_ = IntersectionMethod::min_proximity;
   std::string response_name_ = "PenalityContactForceField";
-  std::map<const Component*, std::shared_ptr<CollisionPoints<double>>> points_;
+  std::optional<CollisionModelReader> reader_;
 };
 
 }  // namespace
