@@ -223,7 +223,6 @@ int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Out
   const auto& b = *models_[pair.second].points;
   for (const std::size_t i : order) {
     PenaltyContact<Real> c = contact(pair, outputs[i]);
-    const auto& p = outputs[i].proximity;
     record(pair, outputs[i]);
     if (!explicit_pairs_[k]) {
       contacts[a.is_still() ? b.object() : a.object()].push_back(std::move(c));

@@ -6,7 +6,7 @@
 // sets it at each step's start; the object's solve adds it to f. Design: docs/collision.md (§1, §2.5).
 #pragma once
 
-#include "fastcorot/fem/force_field.h"
+#include "fastcorot/collision/contact_force_field.h"
 
 #include <memory>
 #include <vector>
@@ -14,9 +14,9 @@
 namespace fastcorot {
 
 template <class Real>
-class ExplicitContactForces final : public ForceField<Real> {
+class ExplicitContactForces final : public ContactForceField<Real> {
  public:
-  explicit ExplicitContactForces(std::shared_ptr<const TetMesh> mesh) : mesh_(std::move(mesh)), forces_(static_cast<std::size_t>(mesh_->num_points()), Vec3<Real>::Zero()) {}
+  explicit ExplicitContactForces(std::shared_ptr<const TetMesh> mesh) : ContactForceField<Real>(std::move(mesh)), forces_(static_cast<std::size_t>(this->mesh_->num_points()), Vec3<Real>::Zero()) {}
 
   // Zeroes the loads (at each step's start, before the contacts add theirs).
   void clear();
@@ -27,27 +27,18 @@ class ExplicitContactForces final : public ForceField<Real> {
 
   std::string component() const override { return "PenalityContactForceField"; }
   std::string method_name() const override { return "explicit penalty contacts"; }
-  const TetMesh& mesh() const override { return *mesh_; }
   void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
-  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override { add_force(x, f); }
   void add_dforce(std::span<const Vec3<Real>>, std::span<Vec3<Real>>, Real, Real = 0) const override {}
   void add_stiffness(MatrixSink<Real>&, Real, Index = 0, Real = 0) const override {}
   void add_diagonal_blocks(std::span<Mat3<Real>>, Real, Real = 0) const override {}
   // A load held for the step: -Σ f·x, as a constant force's.
   Real potential_energy(std::span<const Vec3<Real>> x) const override;
-  std::vector<Mat3<Real>> rotations() const override { return {}; }
-  void check_new_tetrahedra(std::span<const Tetrahedron>) const override {}
-  void apply(const TopologyChange&) override {}
-  std::vector<double> model_values() const override { return {}; }
-  void set_threads(int threads) override { threads_ = threads; }
-  int threads() const override { return threads_; }
-  void set_phase_times(PhaseTimes*) override {}
   std::size_t memory_bytes() const override { return forces_.size() * sizeof(Vec3<Real>); }
 
  private:
-  std::shared_ptr<const TetMesh> mesh_;
+  using ContactForceField<Real>::mesh_;
+  using ContactForceField<Real>::threads_;
   std::vector<Vec3<Real>> forces_;
-  int threads_ = 1;
 };
 
 }  // namespace fastcorot

@@ -11,8 +11,8 @@
 // docs/collision.md (§2.5, §5).
 #pragma once
 
+#include "fastcorot/collision/contact_force_field.h"
 #include "fastcorot/collision/contact_jacobian.h"
-#include "fastcorot/fem/force_field.h"
 
 #include <memory>
 #include <utility>
@@ -30,9 +30,9 @@ struct PenaltyContact {
 };
 
 template <class Real>
-class PenaltyContactForceField final : public ForceField<Real> {
+class PenaltyContactForceField final : public ContactForceField<Real> {
  public:
-  explicit PenaltyContactForceField(std::shared_ptr<const TetMesh> mesh) : mesh_(std::move(mesh)) {}
+  explicit PenaltyContactForceField(std::shared_ptr<const TetMesh> mesh) : ContactForceField<Real>(std::move(mesh)) {}
 
   // This step's contacts, made at the object's positions `x` (copied: the linearisation point).
   // Throws fastcorot::Error for a block outside the object, a non-finite value or a negative k.
@@ -43,36 +43,27 @@ class PenaltyContactForceField final : public ForceField<Real> {
 
   std::string component() const override { return "PenalityContactForceField"; }
   std::string method_name() const override { return "penalty contacts"; }
-  const TetMesh& mesh() const override { return *mesh_; }
 
   void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
-  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override { add_force(x, f); }
   void add_dforce(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> df, Real k_factor, Real b_factor = 0) const override;
   void add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset = 0, Real b_factor = 0) const override;
   void add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor = 0) const override;
   // ½ k pen² over the contacts pushing at x.
   Real potential_energy(std::span<const Vec3<Real>> x) const override;
-  std::vector<Mat3<Real>> rotations() const override { return {}; }
-  void check_new_tetrahedra(std::span<const Tetrahedron>) const override {}
-  void apply(const TopologyChange&) override {}
   // Contacts are found again from the positions at every step's start: nothing to save.
   std::string unsaved_state() const override { return {}; }
-  std::vector<double> model_values() const override { return {}; }
-  void set_threads(int threads) override { threads_ = threads; }
-  int threads() const override { return threads_; }
-  void set_phase_times(PhaseTimes*) override {}
   std::size_t memory_bytes() const override;
 
  private:
+  using ContactForceField<Real>::mesh_;
+  using ContactForceField<Real>::threads_;
   // y of one side at x (the linearised point).
   Vec3<Real> point(const ContactBlocks<Real>& side, const Vec3<Real>& y_t, std::span<const Vec3<Real>> x) const;
 
-  std::shared_ptr<const TetMesh> mesh_;
   std::vector<PenaltyContact<Real>> contacts_;
   std::vector<Vec3<Real>> x_t_;
   std::vector<char> active_;
   std::vector<Vec3<Real>> forces_;
-  int threads_ = 1;
 };
 
 }  // namespace fastcorot

@@ -10,8 +10,8 @@
 // Design: docs/collision.md (§2.5).
 #pragma once
 
+#include "fastcorot/collision/contact_force_field.h"
 #include "fastcorot/collision/contact_jacobian.h"
-#include "fastcorot/fem/force_field.h"
 
 #include <memory>
 #include <vector>
@@ -29,9 +29,9 @@ struct StickSpring {
 };
 
 template <class Real>
-class StickContactForceField final : public ForceField<Real> {
+class StickContactForceField final : public ContactForceField<Real> {
  public:
-  explicit StickContactForceField(std::shared_ptr<const TetMesh> mesh) : mesh_(std::move(mesh)) {}
+  explicit StickContactForceField(std::shared_ptr<const TetMesh> mesh) : ContactForceField<Real>(std::move(mesh)) {}
   // This step's springs, their points at the object's positions `x` (copied: the linearisation
   // point). Throws fastcorot::Error for a block outside the object, a non-finite value or a
   // negative stiffness or damping.
@@ -39,30 +39,21 @@ class StickContactForceField final : public ForceField<Real> {
   const std::vector<StickSpring<Real>>& springs() const { return springs_; }
   std::string component() const override { return "StickContactForceField"; }
   std::string method_name() const override { return "stick contacts"; }
-  const TetMesh& mesh() const override { return *mesh_; }
   void add_force(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override;
-  void add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) override { add_force(x, f); }
   void add_dforce(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> df, Real k_factor, Real b_factor = 0) const override;
   void add_stiffness(MatrixSink<Real>& sink, Real k_factor, Index offset = 0, Real b_factor = 0) const override;
   void add_diagonal_blocks(std::span<Mat3<Real>> diagonal, Real k_factor, Real b_factor = 0) const override;
   // ½ ks |y₂ − y₁ − R|² over the springs.
   Real potential_energy(std::span<const Vec3<Real>> x) const override;
-  std::vector<Mat3<Real>> rotations() const override { return {}; }
-  void check_new_tetrahedra(std::span<const Tetrahedron>) const override {}
-  void apply(const TopologyChange&) override {}
   // The springs persist from step to step (SOFA keeps them alive while detection finds nothing).
   std::string unsaved_state() const override { return springs_.empty() ? std::string() : "stick contact springs"; }
-  std::vector<double> model_values() const override { return {}; }
-  void set_threads(int threads) override { threads_ = threads; }
-  int threads() const override { return threads_; }
-  void set_phase_times(PhaseTimes*) override {}
   std::size_t memory_bytes() const override;
 
  private:
-  std::shared_ptr<const TetMesh> mesh_;
+  using ContactForceField<Real>::mesh_;
+  using ContactForceField<Real>::threads_;
   std::vector<StickSpring<Real>> springs_;
   std::vector<Vec3<Real>> x_t_;
-  int threads_ = 1;
 };
 
 }  // namespace fastcorot
