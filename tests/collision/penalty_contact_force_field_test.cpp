@@ -6,6 +6,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include "support/linearisation.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -68,28 +70,9 @@ TEST(PenaltyContactForceField, StiffnessIsTheForcesDerivative) {
   EXPECT_NEAR(field.forces()[0].norm(), 7 * 0.4, 1e-12);
   std::vector<V> dx(5);
   for (auto& p : dx) p = V(u(rng), u(rng), u(rng));
-  std::vector<V> df(5, V::Zero());
-  field.add_dforce(dx, df, 1.0);
-  const double h = 1e-6;
-  std::vector<V> xp(x), xm(x), fp(5, V::Zero()), fm(5, V::Zero());
-  for (std::size_t i = 0; i < 5; ++i) xp[i] += h * dx[i], xm[i] -= h * dx[i];
   PenaltyContactForceField<double> probe(points(5));
   probe.set_contacts({c}, x);
-  probe.add_force(xp, fp);
-  probe.add_force(xm, fm);
-  for (std::size_t i = 0; i < 5; ++i) EXPECT_LT((df[i] - (fp[i] - fm[i]) / (2 * h)).norm(), 1e-8) << i;
-  // Assembled, and its diagonal blocks, the same operator.
-  const Eigen::MatrixXd k(field.stiffness_matrix(2.0));
-  Eigen::VectorXd flat(15);
-  for (std::size_t i = 0; i < 5; ++i) flat.segment<3>(static_cast<Eigen::Index>(3 * i)) = dx[i];
-  const Eigen::VectorXd kdx = k * flat;
-  std::vector<Mat3<double>> diagonal(5, Mat3<double>::Zero());
-  field.add_diagonal_blocks(diagonal, 2.0);
-  for (std::size_t i = 0; i < 5; ++i) {
-    const auto b = static_cast<Eigen::Index>(3 * i);
-    EXPECT_LT((kdx.segment<3>(b) - 2.0 * df[i]).norm(), 1e-12);
-    EXPECT_LT((Mat3<double>(k.block(b, b, 3, 3)) - diagonal[i]).norm(), 1e-12);
-  }
+  testing::expect_linearisation_is_the_forces_derivative(field, probe, x, dx);
   // The energy's derivative is minus the force.
   EXPECT_NEAR(field.potential_energy(x), 0.5 * 7 * 0.4 * 0.4, 1e-12);
 }

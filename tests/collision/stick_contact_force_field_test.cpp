@@ -6,6 +6,8 @@
 
 #include "fastcorot/core/error.h"
 
+#include "support/linearisation.h"
+
 #include <gtest/gtest.h>
 
 #include <random>
@@ -61,25 +63,8 @@ TEST(StickContactForceField, StiffnessIsTheForcesDerivative) {
   field.set_springs({s}, x);
   std::vector<V> dx(5);
   for (auto& p : dx) p = V(u(rng), u(rng), u(rng));
-  std::vector<V> df(5, V::Zero());
-  field.add_dforce(dx, df, 1.0);
-  const double h = 1e-6;
-  std::vector<V> xp(x), xm(x), fp(5, V::Zero()), fm(5, V::Zero());
-  for (std::size_t i = 0; i < 5; ++i) xp[i] += h * dx[i], xm[i] -= h * dx[i];
-  field.add_force(xp, fp);
-  field.add_force(xm, fm);
-  for (std::size_t i = 0; i < 5; ++i) EXPECT_LT((df[i] - (fp[i] - fm[i]) / (2 * h)).norm(), 1e-8) << i;
+  testing::expect_linearisation_is_the_forces_derivative(field, field, x, dx);
   const Eigen::MatrixXd k(field.stiffness_matrix(2.0));
-  Eigen::VectorXd flat(15);
-  for (std::size_t i = 0; i < 5; ++i) flat.segment<3>(static_cast<Eigen::Index>(3 * i)) = dx[i];
-  const Eigen::VectorXd kdx = k * flat;
-  std::vector<M> diagonal(5, M::Zero());
-  field.add_diagonal_blocks(diagonal, 2.0);
-  for (std::size_t i = 0; i < 5; ++i) {
-    const auto b = static_cast<Eigen::Index>(3 * i);
-    EXPECT_LT((kdx.segment<3>(b) - 2.0 * df[i]).norm(), 1e-12);
-    EXPECT_LT((M(k.block(b, b, 3, 3)) - diagonal[i]).norm(), 1e-12);
-  }
   EXPECT_LT((Eigen::MatrixXd(k) - Eigen::MatrixXd(k).transpose()).norm(), 1e-12) << "symmetric";
 }
 
