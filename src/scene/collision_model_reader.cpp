@@ -4,6 +4,7 @@
 #include "fastcorot/collision/new_proximity.h"
 #include "fastcorot/collision/self_collision.h"
 #include "fastcorot/core/error.h"
+#include "fastcorot/topology/tetrahedron_faces.h"
 
 #include <cmath>
 #include <cstdint>
@@ -98,23 +99,36 @@ CollisionModel<double> CollisionModelReader::model(Component& c) {
   if (m.kind == CollisionElements::points) {
     if (method_ == IntersectionMethod::local_min_distance && topology) cone_topology(c, *topology, m);
     if (m.self_collision && topology) {
-      // SOFA's VerticesAroundVertex: along the topology's edges (its triangles' and quads' without a list).
-      auto edges = tuples<2>(data_, *topology, "edges");
-      if (edges.empty()) edges = surface_edges(tuples<3>(data_, *topology, "triangles"), tuples<4>(data_, *topology, "quads"));
+      // SOFA's VerticesAroundVertex: along the topology's edges (made from its cells without a list).
       m.self_topology = std::make_shared<const SelfCollisionTopology>(
-          self_collision_topology(static_cast<Index>(m.points->size()), edges));
+          self_collision_topology(static_cast<Index>(m.points->size()), elements(*topology).edges));
     }
     return m;
   }
   if (!topology) throw error_at(c.where(), make_error("no topology in its node or above to take its elements from"));
-  // SOFA takes a grid's faces, and a volume's edges and faces, from its cells: not made here.
-  if (is_grid_topology(topology->type()) || !data_.indices(*topology, "tetrahedra").empty() ||
-      topology->type() == "HexahedronSetTopologyContainer") {
+  // SOFA takes a grid's faces, and a MeshTopology's or hexahedra's edges and faces, from their cells
+  // in orders of their own: not made here. (A surface container's tetrahedra, those of a container
+  // its src links to, are not its own.)
+  const std::string_view topology_type = topology->object->type;  // as written (MeshTopology is an alias here)
+  const bool surface_container = topology_type == "TriangleSetTopologyContainer" ||
+                                 topology_type == "QuadSetTopologyContainer" || topology_type == "EdgeSetTopologyContainer";
+  if (is_grid_topology(topology_type) || topology_type == "HexahedronSetTopologyContainer" ||
+      (!surface_container && topology_type != "TetrahedronSetTopologyContainer" &&
+       !data_.indices(*topology, "tetrahedra").empty())) {
     throw NotSimulated{c.where() + ": its topology " + topology->where() + " is a grid or a volume, whose surface elements SOFA "
                        "derives from its cells: not made here yet (give it a surface topology)"};
   }
-  std::vector<Triangle> triangles = tuples<3>(data_, *topology, "triangles");
-  const auto quads = tuples<4>(data_, *topology, "quads");
+  if (topology_type == "TetrahedronSetTopologyContainer") {
+    // Tried with SOFA 2a278d891f: docs/collision.md §9, quirk 20.
+    data_.warn(c.where() + " takes every triangle and edge of the tetrahedra of " + topology->where() +
+               ", inner ones included, as SOFA does; SOFA's contact mappers do not follow such a model (its "
+               "LineCollisionModel crashes SOFA, its TriangleCollisionModel throws the body away): fastcorot's "
+               "contacts act on the elements' own points, so results differ from SOFA's. A surface topology "
+               "(a Tetra2TriangleTopologicalMapping below the volume) gives the same contacts in both");
+  }
+  TopologyElements given = elements(*topology);
+  std::vector<Triangle>& triangles = given.triangles;
+  const auto& quads = given.quads;
   if (m.kind == CollisionElements::triangles && !quads.empty() && !m.points->is_still()) {
     throw NotSimulated{c.where() + ": quads on a moving surface (SOFA maps their contact points bilinearly over the quad) are not "
                        "simulated yet"};
@@ -127,8 +141,7 @@ CollisionModel<double> CollisionModelReader::model(Component& c) {
     }
     m.triangles = std::move(triangles);
   } else {
-    const auto given = tuples<2>(data_, *topology, "edges");
-    m.edges = given.empty() ? surface_edges(triangles, quads) : given;
+    m.edges = std::move(given.edges);
   }
   const auto n = static_cast<Index>(m.points->size());
   const auto check = [&](const auto& elements, const char* what) {
@@ -148,10 +161,10 @@ CollisionModel<double> CollisionModelReader::model(Component& c) {
   }
   if (m.kind == CollisionElements::triangles && method_ == IntersectionMethod::new_proximity) {
     // SOFA's ownership flags come from the topology's own triangles; those made from quads have none.
-    const auto given = tuples<2>(data_, *topology, "edges");
+    const auto listed = tuples<2>(data_, *topology, "edges");
     const std::size_t own = m.triangles.size() - 2 * quads.size();
     try {
-      m.triangle_flags = triangle_flags(std::span<const Triangle>(m.triangles.data(), own), m.points->size(), given);
+      m.triangle_flags = triangle_flags(std::span<const Triangle>(m.triangles.data(), own), m.points->size(), listed);
     } catch (const Error& error) {
       throw error_at(c.where(), error);
     }
@@ -162,16 +175,29 @@ CollisionModel<double> CollisionModelReader::model(Component& c) {
 }
 
 void CollisionModelReader::cone_topology(Component& c, Component& topology, CollisionModel<double>& m) {
-  std::vector<Triangle> triangles = tuples<3>(data_, topology, "triangles");
-  const auto quads = tuples<4>(data_, topology, "quads");
-  std::vector<Edge> edges = m.kind == CollisionElements::lines ? m.edges : tuples<2>(data_, topology, "edges");
-  if (edges.empty()) edges = surface_edges(triangles, quads);
+  TopologyElements given = elements(topology);
+  if (m.kind == CollisionElements::lines) given.edges = m.edges;
   m.cone_topology = std::make_shared<const LocalMinDistanceTopology>(
-      local_min_distance_topology(static_cast<Index>(m.points->size()), triangles, edges));
+      local_min_distance_topology(static_cast<Index>(m.points->size()), given.triangles, given.edges));
   if (m.kind != CollisionElements::points) return;
   for (const GraphNode* node = c.node; node && !m.point_filter; node = node->parent) {
     for (const auto& other : node->components) m.point_filter = m.point_filter || other->type() == "LineCollisionModel";
   }
+}
+
+CollisionModelReader::TopologyElements CollisionModelReader::elements(Component& topology) {
+  TopologyElements e;
+  e.triangles = tuples<3>(data_, topology, "triangles");
+  e.quads = tuples<4>(data_, topology, "quads");
+  e.edges = tuples<2>(data_, topology, "edges");
+  if (e.edges.empty()) {
+    // SOFA's containers make their edge array from their largest cells: a TetrahedronSetTopologyContainer
+    // from its tetrahedra, the others (and MeshTopology) from their triangles and quads.
+    e.edges = topology.object->type == "TetrahedronSetTopologyContainer"
+                  ? tetrahedron_set_edges(tuples<4>(data_, topology, "tetrahedra"))
+                  : surface_edges(e.triangles, e.quads);
+  }
+  return e;
 }
 
 Component* CollisionModelReader::topology_of(Component& c) {

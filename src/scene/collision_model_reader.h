@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace fastcorot::scene_detail {
 
@@ -37,6 +38,14 @@ class CollisionModelReader {
   CollisionModel<double> model(Component& c);
 
  private:
+  // The triangles, quads and edges SOFA's container gives a model: its lists, and where it has no
+  // edges, those it makes from its cells.
+  struct TopologyElements {
+    std::vector<Triangle> triangles;
+    std::vector<std::array<Index, 4>> quads;
+    std::vector<Edge> edges;
+  };
+  TopologyElements elements(Component& topology);
   // LocalMinDistance's neighbourhood topology for model m: the triangles and edges of its topology
   // (the line model's own edge list), and whether a point model's filter applies (SOFA finds a
   // LineCollisionModel in the node or above).

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
+#include <utility>
 
 namespace fastcorot {
 
@@ -38,6 +40,20 @@ std::vector<Triangle> faces(std::span<const Tetrahedron> tetrahedra, std::vector
 }  // namespace
 
 std::vector<Triangle> tetrahedron_set_triangles(std::span<const Tetrahedron> tetrahedra) { return faces(tetrahedra, nullptr); }
+
+std::vector<Edge> tetrahedron_set_edges(std::span<const Tetrahedron> tetrahedra) {
+  // SOFA's edgesInTetrahedronArray.
+  constexpr int kEdges[6][2] = {{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  std::set<std::pair<Index, Index>> seen;
+  std::vector<Edge> edges;
+  for (const Tetrahedron& t : tetrahedra) {
+    for (const auto& e : kEdges) {
+      const Index a = std::min(t[e[0]], t[e[1]]), b = std::max(t[e[0]], t[e[1]]);
+      if (seen.insert({a, b}).second) edges.push_back({a, b});
+    }
+  }
+  return edges;
+}
 
 std::vector<Triangle> boundary_triangles(std::span<const Tetrahedron> tetrahedra, bool flip_normals) {
   std::vector<int> counts;

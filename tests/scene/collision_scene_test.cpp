@@ -2,10 +2,13 @@
 // against SOFA's own trajectory (tests/data/sofa_reference/cube_on_floor*), contacts counted as
 // SOFA counts them; a point mass resting on a triangle at the closed-form height d − m g / k for
 // 10,000 steps; what is not simulated yet warned in one line per component; bad input refused.
+#include "fastcorot/collision/contact_pipeline.h"
 #include "fastcorot/core/parallel.h"
 #include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
 #include "fastcorot/state/rigid3.h"
+#include "fastcorot/topology/regular_grid.h"
+#include "fastcorot/topology/tetrahedron_faces.h"
 
 #include "../support/scene_text.h"
 #include "support/contact_reference.h"
@@ -35,7 +38,9 @@ TEST(CollisionScene, SoftCubeFallsOnAFloorAsInSofa) {
     const auto d = testing::compare_points(x, testing::json_points(frame["points"]), rest);
     EXPECT_LE(d.difference, 1e-9 * d.displacement + 1e-15) << "step " << step;
     // SOFA counts its detection outputs; the penalty keeps one per point here, so the two agree.
-    if (step > 0) EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << "step " << step;
+    if (step > 0) {
+      EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << "step " << step;
+    }
   }
   const double lowest = std::min_element(x.begin(), x.end(), [](const auto& a, const auto& b) { return a.y() < b.y(); })->y();
   EXPECT_GT(lowest, -0.3) << "resting on the floor, not through it";
@@ -95,7 +100,9 @@ TEST(CollisionScene, RigidSpheresFollowSofaWithTheRadiusCountedTwice) {
       EXPECT_LE((coord.center - centre).norm(), 1e-9 * std::max(1.0, centre.norm())) << name << ", step " << step;
       EXPECT_LE(std::abs(std::abs(coord.orientation.dot(q)) - 1), 1e-12) << name << ", step " << step;
     }
-    if (step > 0) EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << "step " << step;
+    if (step > 0) {
+      EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << "step " << step;
+    }
     contacts += simulation.collision_report().contacts;
   }
   EXPECT_EQ(contacts, 2);  // each body's one contact
@@ -163,6 +170,60 @@ TEST(CollisionScene, WhatIsNotSimulatedYetIsWarnedPerComponent) {
   LoadedScene alone = build_scene_text("<Node name=\"b\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"0 0 0\"/>"
                                        "<UniformMass totalMass=\"1\"/><PointCollisionModel/></Node>");
   EXPECT_FALSE(alone.simulation.collisions);
+}
+
+TEST(CollisionScene, ModelsOnATetrahedronContainerTakeEveryFaceAndEdgeWithAWarning) {
+  // A soft cube whose Triangle, Line and Point models sit on its TetrahedronSetTopologyContainer (filled
+  // by a Hexa2TetraTopologicalMapping): SOFA's triangle and edge arrays of the tetrahedra, inner ones
+  // included, warned (SOFA's contact mappers do not follow such models); it lands and rests on a floor.
+  const std::string text =
+      "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+      "<MinProximityIntersection alarmDistance=\"0.3\" contactDistance=\"0.1\"/><CollisionResponse response=\"PenalityContactForceField\"/>"
+      "<Node name=\"cube\"><EulerImplicitSolver rayleighStiffness=\"0.1\" rayleighMass=\"0.1\"/><SparseLDLSolver/>"
+      "<RegularGridTopology name=\"grid\" n=\"3 3 3\" min=\"-0.5 0 -0.5\" max=\"0.5 1 0.5\"/><MechanicalObject name=\"points\"/>"
+      "<UniformMass totalMass=\"2\"/><TetrahedronFEMForceField youngModulus=\"2000\" poissonRatio=\"0.3\"/>"
+      "<Node name=\"volume\"><TetrahedronSetTopologyContainer name=\"tetrahedra\"/>"
+      "<Hexa2TetraTopologicalMapping input=\"@../grid\" output=\"@tetrahedra\"/>"
+      "<TriangleCollisionModel contactStiffness=\"30\"/><LineCollisionModel contactStiffness=\"30\"/>"
+      "<PointCollisionModel contactStiffness=\"30\"/></Node></Node>"
+      "<Node name=\"floor\"><MeshTopology position=\"-3 -0.3 -3  3 -0.3 -3  3 -0.3 3  -3 -0.3 3\" triangles=\"0 2 1  0 3 2\"/>"
+      "<MechanicalObject/><TriangleCollisionModel simulated=\"0\" moving=\"0\" contactStiffness=\"30\"/></Node>";
+  LoadedScene scene = build_scene_text(text, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const auto* pipeline = dynamic_cast<const ContactPipeline<double>*>(scene.simulation.collisions.get());
+  ASSERT_TRUE(pipeline);
+  // The mapping's tetrahedra: the grid's cells split as Hexa2TetraTopologicalMapping splits them.
+  RegularGrid grid;
+  grid.n = {3, 3, 3};
+  grid.min = Vec3<double>(-0.5, 0, -0.5);
+  grid.max = Vec3<double>(0.5, 1, 0.5);
+  const std::vector<Tetrahedron> tetrahedra = grid_tetrahedra(grid, false);
+  ASSERT_EQ(tetrahedra.size(), 48u);
+  ASSERT_EQ(pipeline->models().size(), 4u);
+  EXPECT_EQ(pipeline->models()[0].triangles, tetrahedron_set_triangles(tetrahedra));
+  EXPECT_EQ(pipeline->models()[1].edges, tetrahedron_set_edges(tetrahedra));
+  int warned = 0;
+  for (const auto& line : scene.warnings) warned += line.find("inner ones included") != std::string::npos;
+  EXPECT_EQ(warned, 2) << "the Triangle and Line models";
+  const auto& x = scene.simulation.objects[0].system.state.position;
+  int touching = 0;
+  for (int step = 0; step < 200; ++step) {
+    scene.simulation.step();
+    touching += scene.simulation.collision_report().contacts > 0;
+    for (const auto& p : x) ASSERT_GT(p.y(), -0.3) << "step " << step;
+  }
+  EXPECT_GT(touching, 100);
+  // A surface container whose src links the volume (SOFA's TrianglePressureForceField.scn) is a
+  // surface, not a volume: its tetrahedra are not its own.
+  const std::string surface = std::string(text).replace(
+      text.find("<TriangleCollisionModel contactStiffness"),
+      0, "<Node name=\"surface\"><TriangleSetTopologyContainer name=\"triangles\" src=\"@../tetrahedra\"/>"
+         "<Tetra2TriangleTopologicalMapping input=\"@../tetrahedra\" output=\"@triangles\"/>"
+         "<TriangleCollisionModel contactStiffness=\"30\"/></Node>");
+  LoadedScene with_surface = build_scene_text(surface, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const auto* surface_pipeline = dynamic_cast<const ContactPipeline<double>*>(with_surface.simulation.collisions.get());
+  ASSERT_TRUE(surface_pipeline);
+  EXPECT_FALSE(surface_pipeline->models()[0].triangles.empty());
+  for (const auto& line : with_surface.warnings) EXPECT_EQ(line.find("is a grid or a volume"), std::string::npos) << line;
 }
 
 // Two point masses closing head-on, each under its own solver, no gravity: SOFA's explicit penalty

@@ -30,8 +30,12 @@ inline void expect_contact_trajectory(const std::string& scene_file, const std::
     const auto d = compare_points(x, json_points(frame["points"]), rest);
     EXPECT_LE(d.difference, relative * d.displacement + 1e-15) << scene_file << " step " << step;
     if (step == 0) continue;
-    if (counts.contacts) EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << scene_file << " step " << step;
-    if (counts.rows) EXPECT_EQ(simulation.constraint_report().rows, frame["constraints"].get<int>()) << scene_file << " step " << step;
+    if (counts.contacts) {
+      EXPECT_EQ(simulation.collision_report().contacts, frame["contacts"].get<int>()) << scene_file << " step " << step;
+    }
+    if (counts.rows) {
+      EXPECT_EQ(simulation.constraint_report().rows, frame["constraints"].get<int>()) << scene_file << " step " << step;
+    }
   }
 }
 
