@@ -118,7 +118,9 @@ TEST(FrictionContactScene, APointOnASteeperInclineGainsCoulombsSpeedEachStep) {
       const auto lambda = simulation.constraints->constraint_forces();
       ASSERT_EQ(lambda.size(), mu > 0 ? 3u : 1u);
       EXPECT_NEAR(lambda[0], -kMass * gy * kH, 1e-12);
-      if (mu > 0) EXPECT_NEAR(std::hypot(lambda[1], lambda[2]), mu * lambda[0], 1e-12) << "on the disk's rim";
+      if (mu > 0) {
+        EXPECT_NEAR(std::hypot(lambda[1], lambda[2]), mu * lambda[0], 1e-12) << "on the disk's rim";
+      }
     }
     const double a = gx + mu * gy;  // g (sin θ − μ cos θ)
     EXPECT_NEAR(v[0].x(), steps * kH * a, 1e-10) << "mu " << mu;
