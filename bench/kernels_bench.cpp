@@ -1,9 +1,12 @@
 // Google Benchmarks of the force-field kernels on the benchmark beams: add_force (forces and the
 // stiffness refresh), add_force_only (forces alone: the refresh costs the difference), add_dforce,
 // for every method, float and double, 1 and 2 threads. Counters: ns per tetrahedron (add_force) or
-// per edge (add_dforce).
+// per edge (add_dforce). TetrahedronFEMForceField's add_force and add_force_only on the same bent
+// beams, for each of its methods ("tetrahedron_fem_add_force/40x10x10/polar/double/threads:1").
 //   build-release/bench/fastcorot_bench_kernels --benchmark_filter='qr/double/.*threads:1'
 #include "beams.h"
+
+#include "fastcorot/fem/tetrahedron_fem_force_field.h"
 
 #include <benchmark/benchmark.h>
 
@@ -32,6 +35,50 @@ void run_kernel(benchmark::State& state, const Beam& beam, RotationMethod method
 }
 
 template <class Real>
+void run_tetrahedron_fem(benchmark::State& state, const Beam& beam, TetrahedronFEMMethod method, int threads,
+                         Kernel kernel) {
+  // The beam's mesh and bent positions, under TetrahedronFEMForceField instead.
+  const BeamField<Real> b = make_beam_field<Real>(beam, RotationMethod::qr, threads);
+  typename TetrahedronFEMForceField<Real>::Parameters parameters;
+  parameters.young_modulus = {Real(2000)};
+  parameters.poisson_ratio = {Real(0.3)};
+  parameters.method = method;
+  TetrahedronFEMForceField<Real> field(b.mesh, b.rest, parameters);
+  field.set_threads(threads);
+  std::vector<Vec3<Real>> out = b.out;
+  for (auto _ : state) {
+    if (kernel == Kernel::add_force) {
+      field.add_force(b.x, out);
+    } else {
+      field.add_force_only(b.x, out);
+    }
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.counters["per_tet"] = benchmark::Counter(static_cast<double>(b.mesh->num_tetrahedra()),
+                                                 benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+template <class Real>
+void register_tetrahedron_fem(const char* real_name) {
+  for (const Beam& beam : beams()) {
+    for (const TetrahedronFEMMethod method :
+         {TetrahedronFEMMethod::small, TetrahedronFEMMethod::large, TetrahedronFEMMethod::polar, TetrahedronFEMMethod::svd}) {
+      for (const auto& [kernel, kernel_name] : {std::pair{Kernel::add_force, "tetrahedron_fem_add_force"},
+                                                std::pair{Kernel::add_force_only, "tetrahedron_fem_add_force_only"}}) {
+        for (const int threads : {1, 2}) {
+          const std::string name = std::string(kernel_name) + "/" + beam.name + "/" + to_string(method) + "/" + real_name +
+                                   "/threads:" + std::to_string(threads);
+          benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+            run_tetrahedron_fem<Real>(state, beam, method, threads, kernel);
+          })->Unit(benchmark::kMicrosecond)->UseRealTime();
+        }
+      }
+    }
+  }
+}
+
+template <class Real>
 void register_all(const char* real_name) {
   const std::pair<Kernel, const char*> kernels[] = {
       {Kernel::add_force, "add_force"}, {Kernel::add_force_only, "add_force_only"}, {Kernel::add_dforce, "add_dforce"}};
@@ -56,5 +103,6 @@ void register_all(const char* real_name) {
 int main(int argc, char** argv) {
   return fastcorot::bench::run_benchmarks(argc, argv, [](auto real, const char* name) {
     fastcorot::bench::register_all<decltype(real)>(name);
+    fastcorot::bench::register_tetrahedron_fem<decltype(real)>(name);
   });
 }
