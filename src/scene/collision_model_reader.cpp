@@ -1,5 +1,6 @@
 #include "collision_model_reader.h"
 #include "hexahedron_builders.h"
+#include "index_tuples.h"
 
 #include "fastcorot/collision/new_proximity.h"
 #include "fastcorot/collision/self_collision.h"
@@ -30,17 +31,6 @@ std::vector<Edge> surface_edges(const std::vector<Triangle>& triangles, const st
     for (int j = 0; j < 4; ++j) add(q[static_cast<std::size_t>((j + 1) % 4)], q[static_cast<std::size_t>((j + 2) % 4)], true);
   }
   return edges;
-}
-
-template <std::size_t N>
-std::vector<std::array<Index, N>> tuples(SceneData& data, Component& topology, const char* name) {
-  const std::vector<Index> flat = data.indices(topology, name);
-  if (flat.size() % N != 0) throw make_error(topology.where(), ": ", name, " needs ", N, " indices each");
-  std::vector<std::array<Index, N>> out(flat.size() / N);
-  for (std::size_t e = 0; e < out.size(); ++e) {
-    for (std::size_t j = 0; j < N; ++j) out[e][j] = flat[N * e + j];
-  }
-  return out;
 }
 
 }  // namespace
@@ -161,7 +151,7 @@ CollisionModel<double> CollisionModelReader::model(Component& c) {
   }
   if (m.kind == CollisionElements::triangles && method_ == IntersectionMethod::new_proximity) {
     // SOFA's ownership flags come from the topology's own triangles; those made from quads have none.
-    const auto listed = tuples<2>(data_, *topology, "edges");
+    const auto listed = index_tuples<2>(data_, *topology, "edges");
     const std::size_t own = m.triangles.size() - 2 * quads.size();
     try {
       m.triangle_flags = triangle_flags(std::span<const Triangle>(m.triangles.data(), own), m.points->size(), listed);
@@ -187,14 +177,14 @@ void CollisionModelReader::cone_topology(Component& c, Component& topology, Coll
 
 CollisionModelReader::TopologyElements CollisionModelReader::elements(Component& topology) {
   TopologyElements e;
-  e.triangles = tuples<3>(data_, topology, "triangles");
-  e.quads = tuples<4>(data_, topology, "quads");
-  e.edges = tuples<2>(data_, topology, "edges");
+  e.triangles = index_tuples<3>(data_, topology, "triangles");
+  e.quads = index_tuples<4>(data_, topology, "quads");
+  e.edges = index_tuples<2>(data_, topology, "edges");
   if (e.edges.empty()) {
     // SOFA's containers make their edge array from their largest cells: a TetrahedronSetTopologyContainer
     // from its tetrahedra, the others (and MeshTopology) from their triangles and quads.
     e.edges = topology.object->type == "TetrahedronSetTopologyContainer"
-                  ? tetrahedron_set_edges(tuples<4>(data_, topology, "tetrahedra"))
+                  ? tetrahedron_set_edges(index_tuples<4>(data_, topology, "tetrahedra"))
                   : surface_edges(e.triangles, e.quads);
   }
   return e;

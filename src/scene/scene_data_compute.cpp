@@ -5,6 +5,7 @@
 #include "engine_data.h"
 
 #include "hexahedron_builders.h"
+#include "index_tuples.h"
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/io/mesh_readers.h"
@@ -112,21 +113,12 @@ Numbers mesh2point(SceneData& data, Component& m, const std::string& name) {
     }
     return out;
   };
-  const auto tuples = [&]<std::size_t N>(const char* data_name, std::array<Index, N>) {
-    const std::vector<Index> flat = data.indices(input, data_name);
-    if (flat.size() % N != 0) throw make_error(input.where(), ": ", data_name, " needs ", N, " indices each");
-    std::vector<std::array<Index, N>> out(flat.size() / N);
-    for (std::size_t e = 0; e < out.size(); ++e) {
-      for (std::size_t j = 0; j < N; ++j) out[e][j] = flat[N * e + j];
-    }
-    return out;
-  };
   const bool need_edges = !at.edge.empty() || data.boolean(m, "copyEdges", false);
   const std::vector<Edge> edge_list = need_edges ? edges() : std::vector<Edge>{};
   const std::vector<Triangle> triangles =
-      !at.triangle.empty() || data.boolean(m, "copyTriangles", false) ? tuples("triangles", Triangle{}) : std::vector<Triangle>{};
+      !at.triangle.empty() || data.boolean(m, "copyTriangles", false) ? index_tuples<3>(data, input, "triangles") : std::vector<Triangle>{};
   const std::vector<std::array<Index, 4>> quads =
-      at.quad.empty() ? std::vector<std::array<Index, 4>>{} : tuples("quads", std::array<Index, 4>{});
+      at.quad.empty() ? std::vector<std::array<Index, 4>>{} : index_tuples<4>(data, input, "quads");
   if (name == "position") {
     return flatten(checked<std::vector<Vec3<double>>>(m, [&] {
       return mesh2point_points({input_points, edge_list, triangles, quads, tetrahedra, hexahedra}, at);
