@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/core/lame.h"
+#include "fastcorot/core/packed.h"
 #include "fastcorot/core/parallel.h"
 #include "fastcorot/core/rotation.h"
 #include "fastcorot/fem/tetrahedron_element.h"
@@ -306,30 +307,39 @@ typename TetrahedronFEMForceField<Real>::Mat6 TetrahedronFEMForceField<Real>::ma
 }
 
 template <class Real>
-std::array<Vec3<Real>, 4> TetrahedronFEMForceField<Real>::displacement(const Element& element, const TetPoints<Real>& p,
-                                                                       TetrahedronFEMMethod method, Mat3<Real>& frame) {
+Mat3<Real> TetrahedronFEMForceField<Real>::frame(const Element& element, const TetPoints<Real>& p,
+                                                 TetrahedronFEMMethod method) {
+  switch (method) {
+    case TetrahedronFEMMethod::small:
+      return Mat3<Real>::Identity();
+    case TetrahedronFEMMethod::large:
+      return large_frame(p[0], p[1], p[2]);
+    case TetrahedronFEMMethod::polar:
+      return polar_factor<Real>(edge_rows(p));
+    default: {
+      const Mat3<Real> a = edge_rows(p);
+      const Mat3<Real> deformation = a * element.initial_transformation;
+      if (deformation.determinant() < Real(1e-6)) {
+        // Inverted or too flat: the rotation of a stable SVD, composed with the rest frame.
+        return stable_polar_factor<Real>(deformation) * element.initial_rotation.transpose();
+      }
+      return polar_factor<Real>(a);
+    }
+  }
+}
+
+template <class Real>
+std::array<Vec3<Real>, 4> TetrahedronFEMForceField<Real>::displacement_in_frame(const Element& element,
+                                                                                const TetPoints<Real>& p,
+                                                                                TetrahedronFEMMethod method,
+                                                                                const Mat3<Real>& frame) {
   const auto& rest = element.rotated_rest;
   std::array<Vec3<Real>, 4> d;
   if (method == TetrahedronFEMMethod::small) {
     // SOFA's accumulateForceSmall: displacements relative to the first vertex.
-    frame.setIdentity();
     d[0].setZero();
     for (std::size_t i = 1; i < 4; ++i) d[i] = rest[i] - rest[0] - p[i] + p[0];
     return d;
-  }
-  if (method == TetrahedronFEMMethod::large) {
-    frame = large_frame(p[0], p[1], p[2]);
-  } else if (method == TetrahedronFEMMethod::polar) {
-    frame = polar_factor<Real>(edge_rows(p));
-  } else {
-    const Mat3<Real> a = edge_rows(p);
-    const Mat3<Real> deformation = a * element.initial_transformation;
-    if (deformation.determinant() < Real(1e-6)) {
-      // Inverted or too flat: the rotation of a stable SVD, composed with the rest frame.
-      frame = stable_polar_factor<Real>(deformation) * element.initial_rotation.transpose();
-    } else {
-      frame = polar_factor<Real>(a);
-    }
   }
   std::array<Vec3<Real>, 4> deformed;
   for (std::size_t i = 0; i < 4; ++i) deformed[i] = frame * p[i];
@@ -351,14 +361,46 @@ std::array<Vec3<Real>, 4> TetrahedronFEMForceField<Real>::displacement(const Ele
 }
 
 template <class Real>
+std::array<Vec3<Real>, 4> TetrahedronFEMForceField<Real>::displacement(const Element& element, const TetPoints<Real>& p,
+                                                                       TetrahedronFEMMethod method, Mat3<Real>& frame) {
+  frame = TetrahedronFEMForceField::frame(element, p, method);
+  return displacement_in_frame(element, p, method, frame);
+}
+
+template <class Real>
+template <class Body>
+void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, std::span<const Vec3<Real>> x,
+                                                      const Body& body) const {
+  // The frames of a few elements first, then the rest of each: a frame is a short chain of square
+  // roots and divisions (or the polar iteration), and independent chains side by side overlap in
+  // the processor where one element's chain, followed by its long remainder, would not. Each
+  // element's arithmetic and the order of the elements are unchanged.
+  constexpr Index kBatch = 8;
+  std::array<TetPoints<Real>, kBatch> points;
+  std::array<Mat3<Real>, kBatch> frames;
+  for (Index first = begin; first < end; first += kBatch) {
+    const Index count = std::min(kBatch, end - first);
+    for (Index j = 0; j < count; ++j) {
+      const Index t = schedule_.order[static_cast<std::size_t>(first + j)];
+      points[static_cast<std::size_t>(j)] = tetrahedron_points<Real>(mesh_->tetrahedron(t), x);
+      frames[static_cast<std::size_t>(j)] =
+          frame(elements_[static_cast<std::size_t>(t)], points[static_cast<std::size_t>(j)], parameters_.method);
+    }
+    for (Index j = 0; j < count; ++j) {
+      body(schedule_.order[static_cast<std::size_t>(first + j)], points[static_cast<std::size_t>(j)],
+           frames[static_cast<std::size_t>(j)]);
+    }
+  }
+}
+
+template <class Real>
 template <bool kLinearise>
-void TetrahedronFEMForceField<Real>::accumulate_element(Index t, std::span<const Vec3<Real>> x,
+void TetrahedronFEMForceField<Real>::accumulate_element(Index t, const TetPoints<Real>& p, const Mat3<Real>& frame,
                                                         std::span<Vec3<Real>> f) {
+  // frame: SOFA's R_0_2, world to the element's current frame
   Element& element = elements_[static_cast<std::size_t>(t)];
   const Tetrahedron& tet = mesh_->tetrahedron(t);
-  Mat3<Real> frame;  // SOFA's R_0_2: world to the element's current frame
-  const TetPoints<Real> p = tetrahedron_points<Real>(tet, x);
-  const auto d = displacement(element, p, parameters_.method, frame);
+  const auto d = displacement_in_frame(element, p, parameters_.method, frame);
   const Plasticity<Real> plasticity{parameters_.plastic_max_threshold, parameters_.plastic_yield_threshold,
                                     parameters_.plastic_creep};
   std::array<Vec3<Real>, 4> gradient = element.gradient;
@@ -387,20 +429,30 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
   const Real k1 = element.material[1], k2 = element.material[2];
   std::array<Vec3<Real>, 4> w;
   for (std::size_t i = 0; i < 4; ++i) w[i] = element.rotation * element.gradient[i];
-  const auto block = [&](int k, int l) -> Mat3<Real> {
-    const Vec3<Real>& a = w[static_cast<std::size_t>(k)];
-    const Vec3<Real>& b = w[static_cast<std::size_t>(l)];
-    Mat3<Real> m = k1 * a * b.transpose() + k2 * b * a.transpose();
-    m.diagonal().array() += k2 * a.dot(b);
-    return m;
+  // Written entry by entry into the blocks' storage (column-major): through Eigen's 3x3 temporaries
+  // the compiler stored single entries and read them back as pairs, a stalled store each time.
+  const auto add_block = [&](std::size_t k, std::size_t l, Real* to, Real* transposed_to) {
+    const Vec3<Real>& a = w[k];
+    const Vec3<Real>& b = w[l];
+    const Real ka[3] = {k1 * a[0], k1 * a[1], k1 * a[2]};
+    const Real kb[3] = {k2 * b[0], k2 * b[1], k2 * b[2]};
+    const Real diagonal = k2 * a.dot(b);
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) {
+        Real m = ka[r] * b[c] + kb[r] * a[c];
+        if (r == c) m += diagonal;
+        to[r + 3 * c] += m;
+        if (transposed_to != nullptr) transposed_to[c + 3 * r] += m;
+      }
+    }
   };
   const Tetrahedron& tet = mesh_->tetrahedron(t);
-  for (int k = 0; k < 4; ++k) point_blocks_[static_cast<std::size_t>(tet[static_cast<std::size_t>(k)])] += block(k, k);
+  for (std::size_t k = 0; k < 4; ++k) add_block(k, k, point_blocks_[static_cast<std::size_t>(tet[k])].data(), nullptr);
   const auto& entries = element_entries_[static_cast<std::size_t>(t)];
-  for (int e = 0; e < 6; ++e) {
-    const Mat3<Real> kl = block(kTetrahedronEdges[e][0], kTetrahedronEdges[e][1]);
-    row_blocks_[static_cast<std::size_t>(entries[static_cast<std::size_t>(2 * e)])] += kl;
-    row_blocks_[static_cast<std::size_t>(entries[static_cast<std::size_t>(2 * e + 1)])] += kl.transpose();
+  for (std::size_t e = 0; e < 6; ++e) {
+    add_block(static_cast<std::size_t>(kTetrahedronEdges[e][0]), static_cast<std::size_t>(kTetrahedronEdges[e][1]),
+              row_blocks_[static_cast<std::size_t>(entries[2 * e])].data(),
+              row_blocks_[static_cast<std::size_t>(entries[2 * e + 1])].data());
   }
 }
 
@@ -434,11 +486,10 @@ void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
   std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
   std::fill(row_blocks_.begin(), row_blocks_.end(), Mat3<Real>::Zero());
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
-    for (Index i = begin; i < end; ++i) {
-      const Index t = schedule_.order[static_cast<std::size_t>(i)];
-      accumulate_element<true>(t, x, f);
+    for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
+      accumulate_element<true>(t, p, frame, f);
       add_element_blocks(t);
-    }
+    });
   });
   last_positions_.assign(x.begin(), x.end());
   stale_ = false;
@@ -449,7 +500,9 @@ void TetrahedronFEMForceField<Real>::add_force_only(std::span<const Vec3<Real>> 
   check_size(x, "x");
   check_size(f, "f");
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
-    for (Index i = begin; i < end; ++i) accumulate_element<false>(schedule_.order[static_cast<std::size_t>(i)], x, f);
+    for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
+      accumulate_element<false>(t, p, frame, f);
+    });
   });
 }
 
@@ -460,16 +513,27 @@ void TetrahedronFEMForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, 
   check_size(df, "df");
   ensure_linearisation();
   // SOFA's applyStiffness: df -= k R J K J^T R^T dx, here one row of blocks per point (no races,
-  // each point's sum in the order of its edges).
+  // each point's sum in the order of its edges). A block times a point is c0 x + c1 y + c2 z over its
+  // columns, three lanes of a Packed register (the spare lane unused), on dx padded to four values.
+  using P = Packed<Real>;
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
+  padded_dx_.resize(dx.size());
+  for (std::size_t v = 0; v < dx.size(); ++v) padded_dx_[v] = PaddedPoint{{dx[v][0], dx[v][1], dx[v][2], Real(0)}};
+  const auto times = [](const Mat3<Real>& block, const P& x) {
+    const Real* m = block.data();
+    // The third column read from entry 5 on and shifted down a lane, so as not to read past the block.
+    const P c2 = permute<1, 2, 3, 3>(load_packed(m + 5));
+    return load_packed(m) * permute<0, 0, 0, 0>(x) + load_packed(m + 3) * permute<1, 1, 1, 1>(x) +
+           c2 * permute<2, 2, 2, 2>(x);
+  };
   parallel_ranges(threads_, point_blocks_.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
-      Vec3<Real> sum = point_blocks_[v] * dx[v];
+      P sum = times(point_blocks_[v], load_packed(padded_dx_[v].value));
       const auto last = static_cast<std::size_t>(row_begin_[v + 1]);
       for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < last; ++entry) {
-        sum += row_blocks_[entry] * dx[static_cast<std::size_t>(row_neighbour_[entry])];
+        sum += times(row_blocks_[entry], load_packed(padded_dx_[static_cast<std::size_t>(row_neighbour_[entry])].value));
       }
-      df[v] -= k * sum;
+      df[v] -= k * Vec3<Real>(sum[0], sum[1], sum[2]);
     }
   });
 }

@@ -146,13 +146,20 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   Real poisson_ratio_of(Index t) const;
   void schedule();
   void check_size(std::span<const Vec3<Real>> v, const char* what) const;
-  // The element's displacement D at its points p in its frame (SOFA's D of the method), and the
-  // frame (world to element, SOFA's R_0_2; identity for small).
+  // The element's frame at its points p (world to element, SOFA's R_0_2; identity for small).
+  static Mat3<Real> frame(const Element& element, const TetPoints<Real>& p, TetrahedronFEMMethod method);
+  // The element's displacement D at its points p in that frame (SOFA's D of the method).
+  static std::array<Vec3<Real>, 4> displacement_in_frame(const Element& element, const TetPoints<Real>& p,
+                                                         TetrahedronFEMMethod method, const Mat3<Real>& frame);
+  // The same, computing the frame into `frame`.
   static std::array<Vec3<Real>, 4> displacement(const Element& element, const TetPoints<Real>& p,
                                                 TetrahedronFEMMethod method, Mat3<Real>& frame);
-  // Forces of element t at x into f; with kLinearise also its rotation.
+  // body(t, points, frame) for the elements at positions [begin, end) of the schedule, in order.
+  template <class Body>
+  void for_each_element(Index begin, Index end, std::span<const Vec3<Real>> x, const Body& body) const;
+  // Forces of element t at its points p, in its frame, into f; with kLinearise also its rotation.
   template <bool kLinearise>
-  void accumulate_element(Index t, std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
+  void accumulate_element(Index t, const TetPoints<Real>& p, const Mat3<Real>& frame, std::span<Vec3<Real>> f);
   // Adds element t's blocks R J K J^T R^T into the point and edge blocks.
   void add_element_blocks(Index t);
   void refresh_blocks();
@@ -170,6 +177,10 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   // blocks of an edge are kept, so that the product reads each row straight through.
   std::vector<Index> row_begin_, row_neighbour_;
   std::vector<Mat3<Real>> row_blocks_;
+  struct alignas(4 * sizeof(Real)) PaddedPoint {  // add_dforce's dx, four values per point
+    Real value[4];
+  };
+  mutable std::vector<PaddedPoint> padded_dx_;
   // Per tetrahedron and local edge (k, l): the entries of block (k, l) in row k and (l, k) in row l.
   std::vector<std::array<Index, 12>> element_entries_;
   std::vector<Vec3<Real>> last_positions_;
