@@ -197,7 +197,7 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
   for (Index i : held) {
     for (Index c = 0; c < 3; ++c) triplets.emplace_back(3 * i + c, 3 * i + c, Real(1));
   }
-  Eigen::SparseMatrix<Real> matrix = sink.to_sparse(3 * size());
+  const Eigen::SparseMatrix<Real>& matrix = assembly_.to_sparse(triplets, 3 * size());
   if (projections.empty() && couplings.empty()) return matrix;
   // P A P + (I - P) with P the operator project() applies: the couplings C, then the per-point
   // projectors, then zero rows at fixed points (for a projector onto coordinate axes, SOFA's

@@ -8,6 +8,8 @@
 
 #include <Eigen/SparseCore>
 
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace fastcorot {
@@ -38,6 +40,61 @@ class TripletSink final : public MatrixSink<Real> {
   }
 
   std::vector<Eigen::Triplet<Real>> triplets;
+};
+
+// Eigen's setFromTriplets with the pattern of the last call remembered: when the triplets come in
+// the same sequence of (row, column) as last time (a mesh's matrix step after step), their values
+// go straight to their places in the stored matrix, each place taking its first value and adding
+// the others in the triplets' order, as setFromTriplets sums duplicates: the same bits, without
+// its sorting, transposition and allocations.
+template <class Real>
+class PatternedAssembly {
+ public:
+  const Eigen::SparseMatrix<Real>& to_sparse(const std::vector<Eigen::Triplet<Real>>& triplets, Index size) {
+    const bool same = matrix_.rows() == size && entries_.size() == triplets.size() &&
+                      std::equal(triplets.begin(), triplets.end(), entries_.begin(), [](const auto& t, const auto& e) {
+                        return t.row() == e.first && t.col() == e.second;
+                      });
+    if (!same) {
+      learn(triplets, size);
+      return matrix_;
+    }
+    Real* values = matrix_.valuePtr();
+    for (std::size_t k = 0; k < triplets.size(); ++k) {
+      const Index slot = slot_[k];
+      if (slot < 0) {
+        values[-1 - slot] = triplets[k].value();
+      } else {
+        values[slot] += triplets[k].value();
+      }
+    }
+    return matrix_;
+  }
+
+ private:
+  void learn(const std::vector<Eigen::Triplet<Real>>& triplets, Index size) {
+    matrix_.resize(size, size);
+    matrix_.setFromTriplets(triplets.begin(), triplets.end());
+    matrix_.makeCompressed();
+    entries_.resize(triplets.size());
+    slot_.resize(triplets.size());
+    std::vector<bool> taken(static_cast<std::size_t>(matrix_.nonZeros()), false);
+    const auto* outer = matrix_.outerIndexPtr();
+    const auto* inner = matrix_.innerIndexPtr();
+    for (std::size_t k = 0; k < triplets.size(); ++k) {
+      const Index row = triplets[k].row(), col = triplets[k].col();
+      entries_[k] = {row, col};
+      const auto* at = std::lower_bound(inner + outer[col], inner + outer[col + 1], row);
+      const auto slot = static_cast<Index>(at - inner);
+      // The first value at a slot is written (-1 - slot), the next ones added.
+      slot_[k] = taken[static_cast<std::size_t>(slot)] ? slot : -1 - slot;
+      taken[static_cast<std::size_t>(slot)] = true;
+    }
+  }
+
+  std::vector<std::pair<Index, Index>> entries_;
+  std::vector<Index> slot_;
+  Eigen::SparseMatrix<Real> matrix_;
 };
 
 }  // namespace fastcorot

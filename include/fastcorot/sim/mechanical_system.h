@@ -9,6 +9,7 @@
 #include "fastcorot/core/phase_times.h"
 #include "fastcorot/core/types.h"
 #include "fastcorot/fem/force_field.h"
+#include "fastcorot/fem/matrix_sink.h"
 #include "fastcorot/sim/linear_movement.h"
 #include "fastcorot/sim/mass.h"
 #include "fastcorot/sim/mechanical_state.h"
@@ -211,6 +212,7 @@ class MechanicalSystem {
 
   int threads_ = 1;
   PhaseTimes* times_ = nullptr;
+  mutable PatternedAssembly<Real> assembly_;  // assemble()'s matrix, its pattern kept between calls
 };
 
 }  // namespace fastcorot
