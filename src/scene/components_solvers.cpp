@@ -184,6 +184,8 @@ std::vector<ComponentSpec> solver_components() {
         {"showProblem", "bool", "false", "accepted (BTDLinearSolver)"},
         {"orderingMethod", "link", "", "accepted (an ordering component)"},
         {"linearSystem", "link", "", "a MatrixLinearSystem (accepted)"},
+        {"parallelInverseProduct", "bool", "false",
+         "accepted: SOFA's threads for J A^-1 J^T; here the constraint corrections use --threads whatever it says"},
         {"verbose", "bool", "false", "accepted"}},
        {"SparseLDLSolver", "SparseCholeskySolver", "EigenSimplicialLLT", "EigenSparseLU", "EigenSparseQR", "SVDLinearSolver", "BTDLinearSolver"}}
   };
