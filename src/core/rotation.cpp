@@ -1,11 +1,16 @@
 #include "fastcorot/core/rotation.h"
 
+#include "fastcorot/core/packed.h"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <type_traits>
 
 namespace fastcorot {
 
@@ -23,16 +28,27 @@ Mat3<Real> qr_frame(const Vec3<Real>& a, const Vec3<Real>& b) {
 
 namespace {
 
-// Maximum absolute column sum.
+// Maximum absolute column sum, each sum from the top (SOFA's oneNorm; Eigen's reductions sum
+// three values in an order that depends on the type and the SIMD width).
 template <class Real>
 Real one_norm(const Mat3<Real>& m) {
-  return m.cwiseAbs().colwise().sum().maxCoeff();
+  Real norm = 0;
+  for (int c = 0; c < 3; ++c) {
+    const Real sum = std::abs(m(0, c)) + std::abs(m(1, c)) + std::abs(m(2, c));
+    if (sum > norm) norm = sum;
+  }
+  return norm;
 }
 
-// Maximum absolute row sum.
+// Maximum absolute row sum, each sum from the left (SOFA's infNorm).
 template <class Real>
 Real inf_norm(const Mat3<Real>& m) {
-  return m.cwiseAbs().rowwise().sum().maxCoeff();
+  Real norm = 0;
+  for (int r = 0; r < 3; ++r) {
+    const Real sum = std::abs(m(r, 0)) + std::abs(m(r, 1)) + std::abs(m(r, 2));
+    if (sum > norm) norm = sum;
+  }
+  return norm;
 }
 
 }  // namespace
@@ -41,8 +57,8 @@ template <class Real>
 Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
   // The iteration runs on the transpose, as Shoemake's code does; the rows of the cofactor matrix
   // are cross products of the iterate's rows, and its first row dotted with the iterate's first
-  // row is the determinant. Keeping this exact sequence of operations keeps us within a few ulps
-  // of SOFA.
+  // row is the determinant. SOFA's sequence of operations, its sums from the left included: the
+  // same bits as SOFA (without fused multiply-adds) whatever Eigen's SIMD width.
   Mat3<Real> mk = m.transpose();
   if (!mk.allFinite()) return m;
   Real mk_one = one_norm(mk);
@@ -53,7 +69,7 @@ Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
     cofactor.row(0) = mk.row(1).cross(mk.row(2));
     cofactor.row(1) = mk.row(2).cross(mk.row(0));
     cofactor.row(2) = mk.row(0).cross(mk.row(1));
-    const Real det = mk.row(0).dot(cofactor.row(0));
+    const Real det = mk(0, 0) * cofactor(0, 0) + mk(0, 1) * cofactor(0, 1) + mk(0, 2) * cofactor(0, 2);
     // Scales the iterate by a power of two (exact: the polar factor of c M is that of M for any
     // c > 0) to a largest entry in [0.5, 1); false when it is there already.
     int exponent = 0;
@@ -96,6 +112,144 @@ Mat3<Real> polar_factor(const Mat3<Real>& m, Real tolerance) {
     if (!(change_one > mk_one * tolerance)) break;
   }
   return mk.transpose();
+}
+
+namespace {
+
+// Four 3×3 matrices, entry (r, c) of matrix l in lane l of a[r][c].
+template <class Real>
+struct FourMatrices {
+  Packed<Real> a[3][3];
+};
+
+template <class Real>
+Packed<Real> packed_abs(const Packed<Real>& v) {
+  using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
+  typedef Bits Mask __attribute__((vector_size(sizeof(Packed<Real>))));
+  Mask bits;
+  std::memcpy(&bits, &v, sizeof v);
+  bits &= std::numeric_limits<Bits>::max();  // the sign bit cleared, as std::abs does
+  Packed<Real> r;
+  std::memcpy(&r, &bits, sizeof r);
+  return r;
+}
+
+template <class Real>
+Packed<Real> packed_max(const Packed<Real>& a, const Packed<Real>& b) {
+  return a > b ? a : b;
+}
+
+// one_norm and inf_norm above, lane by lane.
+template <class Real>
+Packed<Real> packed_one_norm(const FourMatrices<Real>& m) {
+  Packed<Real> norm{};
+  for (int c = 0; c < 3; ++c) {
+    const Packed<Real> sum = (packed_abs<Real>(m.a[0][c]) + packed_abs<Real>(m.a[1][c])) + packed_abs<Real>(m.a[2][c]);
+    norm = c == 0 ? sum : packed_max<Real>(norm, sum);
+  }
+  return norm;
+}
+
+template <class Real>
+Packed<Real> packed_inf_norm(const FourMatrices<Real>& m) {
+  Packed<Real> norm{};
+  for (int r = 0; r < 3; ++r) {
+    const Packed<Real> sum = (packed_abs<Real>(m.a[r][0]) + packed_abs<Real>(m.a[r][1])) + packed_abs<Real>(m.a[r][2]);
+    norm = r == 0 ? sum : packed_max<Real>(norm, sum);
+  }
+  return norm;
+}
+
+template <class Real>
+Packed<Real> packed_sqrt(const Packed<Real>& v) {
+  Packed<Real> r;
+  for (int l = 0; l < 4; ++l) r[l] = std::sqrt(v[l]);
+  return r;
+}
+
+// polar_factor's iteration on four matrices at once, each lane doing exactly the scalar code's
+// operations, for as long as no lane needs a rescaling (then that lane is marked in `alone`). A
+// lane stops where the scalar loop breaks; its result is the transposed final iterate.
+template <class Real>
+void polar_factor_lanes(const Mat3<Real>* m, Mat3<Real>* out, Real tolerance, bool (&alone)[4]) {
+  using P = Packed<Real>;
+  FourMatrices<Real> mk;
+  for (int l = 0; l < 4; ++l) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) mk.a[r][c][l] = m[l](c, r);
+    }
+  }
+  P mk_one = packed_one_norm<Real>(mk), mk_inf = packed_inf_norm<Real>(mk);
+  bool active[4] = {true, true, true, true};
+  const P half = broadcast(Real(0.5));
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    FourMatrices<Real> cofactor;
+    const auto cross = [&](int i, int j, int to) {
+      cofactor.a[to][0] = mk.a[i][1] * mk.a[j][2] - mk.a[i][2] * mk.a[j][1];
+      cofactor.a[to][1] = mk.a[i][2] * mk.a[j][0] - mk.a[i][0] * mk.a[j][2];
+      cofactor.a[to][2] = mk.a[i][0] * mk.a[j][1] - mk.a[i][1] * mk.a[j][0];
+    };
+    cross(1, 2, 0);
+    cross(2, 0, 1);
+    cross(0, 1, 2);
+    const P det = (mk.a[0][0] * cofactor.a[0][0] + mk.a[0][1] * cofactor.a[0][1]) + mk.a[0][2] * cofactor.a[0][2];
+    const P cofactor_one = packed_one_norm<Real>(cofactor), cofactor_inf = packed_inf_norm<Real>(cofactor);
+    const P gamma = packed_sqrt<Real>(packed_sqrt<Real>((cofactor_one * cofactor_inf) / (mk_one * mk_inf)) / packed_abs<Real>(det));
+    const P g1 = gamma * half;
+    const P g2 = half / (gamma * det);
+    FourMatrices<Real> next, change;
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) {
+        next.a[r][c] = g1 * mk.a[r][c] + g2 * cofactor.a[r][c];
+        change.a[r][c] = mk.a[r][c] - next.a[r][c];
+      }
+    }
+    const P change_one = packed_one_norm<Real>(change);
+    const P next_one = packed_one_norm<Real>(next), next_inf = packed_inf_norm<Real>(next);
+    bool any = false;
+    for (int l = 0; l < 4; ++l) {
+      if (!active[l]) continue;
+      bool finite = true;
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(next.a[r][c][l]);
+      }
+      if (det[l] == Real(0) || !(std::isfinite(g1[l]) && g1[l] > 0 && std::isfinite(g2[l]) && g2[l] != Real(0) && finite)) {
+        alone[l] = true;  // the scalar code's rescaling or stop: that lane again, alone
+        active[l] = false;
+        continue;
+      }
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) mk.a[r][c][l] = next.a[r][c][l];
+      }
+      mk_one[l] = next_one[l];
+      mk_inf[l] = next_inf[l];
+      active[l] = change_one[l] > next_one[l] * tolerance;
+      any = any || active[l];
+    }
+    if (!any) break;
+  }
+  for (int l = 0; l < 4; ++l) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) out[l](c, r) = mk.a[r][c][l];
+    }
+  }
+}
+
+}  // namespace
+
+template <class Real>
+void polar_factors(const Mat3<Real>* m, Mat3<Real>* out, int count, Real tolerance) {
+  int first = 0;
+  for (; first + 4 <= count; first += 4) {
+    bool alone[4] = {false, false, false, false};
+    bool finite = true;
+    for (int l = 0; l < 4; ++l) finite = finite && m[first + l].allFinite();
+    if (finite) polar_factor_lanes(m + first, out + first, tolerance, alone);
+    for (int l = 0; l < 4; ++l) {
+      if (!finite || alone[l]) out[first + l] = polar_factor(m[first + l], tolerance);
+    }
+  }
+  for (; first < count; ++first) out[first] = polar_factor(m[first], tolerance);
 }
 
 // SOFA's Decompose::zeroTolerance: below it an eigenvalue of F^T F counts as zero.
@@ -168,6 +322,8 @@ template Mat3<float> qr_frame(const Vec3<float>&, const Vec3<float>&);
 template Mat3<double> qr_frame(const Vec3<double>&, const Vec3<double>&);
 template Mat3<float> polar_factor(const Mat3<float>&, float);
 template Mat3<double> polar_factor(const Mat3<double>&, double);
+template void polar_factors(const Mat3<float>*, Mat3<float>*, int, float);
+template void polar_factors(const Mat3<double>*, Mat3<double>*, int, double);
 template Mat3<float> stable_polar_factor(const Mat3<float>&);
 template Mat3<double> stable_polar_factor(const Mat3<double>&);
 template Mat3<float> polar_frame(const Vec3<float>&, const Vec3<float>&, const Vec3<float>&);

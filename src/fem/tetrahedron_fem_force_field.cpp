@@ -375,17 +375,36 @@ void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, st
   // roots and divisions (or the polar iteration), and independent chains side by side overlap in
   // the processor where one element's chain, followed by its long remainder, would not. Each
   // element's arithmetic and the order of the elements are unchanged.
+  // The polar factors (polar, and svd's elements that are not inverted) go four at a time through
+  // polar_factors, bit for bit those of polar_factor.
   constexpr Index kBatch = 8;
+  const TetrahedronFEMMethod method = parameters_.method;
+  const bool polar = method == TetrahedronFEMMethod::polar || method == TetrahedronFEMMethod::svd;
   std::array<TetPoints<Real>, kBatch> points;
-  std::array<Mat3<Real>, kBatch> frames;
+  std::array<Mat3<Real>, kBatch> frames, edges, factors;
+  std::array<std::size_t, kBatch> lane_of;
   for (Index first = begin; first < end; first += kBatch) {
     const Index count = std::min(kBatch, end - first);
+    int lanes = 0;
     for (Index j = 0; j < count; ++j) {
+      const auto slot = static_cast<std::size_t>(j);
       const Index t = schedule_.order[static_cast<std::size_t>(first + j)];
-      points[static_cast<std::size_t>(j)] = tetrahedron_points<Real>(mesh_->tetrahedron(t), x);
-      frames[static_cast<std::size_t>(j)] =
-          frame(elements_[static_cast<std::size_t>(t)], points[static_cast<std::size_t>(j)], parameters_.method);
+      const Element& element = elements_[static_cast<std::size_t>(t)];
+      points[slot] = tetrahedron_points<Real>(mesh_->tetrahedron(t), x);
+      if (!polar) {
+        frames[slot] = frame(element, points[slot], method);
+        continue;
+      }
+      const Mat3<Real> a = edge_rows(points[slot]);
+      if (method == TetrahedronFEMMethod::svd && (a * element.initial_transformation).determinant() < Real(1e-6)) {
+        frames[slot] = frame(element, points[slot], method);  // inverted or flat: the stable SVD
+        continue;
+      }
+      edges[static_cast<std::size_t>(lanes)] = a;
+      lane_of[static_cast<std::size_t>(lanes++)] = slot;
     }
+    polar_factors(edges.data(), factors.data(), lanes);
+    for (int k = 0; k < lanes; ++k) frames[lane_of[static_cast<std::size_t>(k)]] = factors[static_cast<std::size_t>(k)];
     for (Index j = 0; j < count; ++j) {
       body(schedule_.order[static_cast<std::size_t>(first + j)], points[static_cast<std::size_t>(j)],
            frames[static_cast<std::size_t>(j)]);
