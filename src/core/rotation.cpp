@@ -14,10 +14,23 @@
 
 namespace fastcorot {
 
+namespace {
+
+// v / |v| with |v|² summed from the first coordinate (SOFA's norm2), v itself when |v|² is 0.
+template <class Real>
+Vec3<Real> normalized(const Vec3<Real>& v) {
+  const Real norm2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  if (!(norm2 > 0)) return v;
+  const Real norm = std::sqrt(norm2);
+  return Vec3<Real>(v[0] / norm, v[1] / norm, v[2] / norm);
+}
+
+}  // namespace
+
 template <class Real>
 Mat3<Real> qr_frame(const Vec3<Real>& a, const Vec3<Real>& b) {
-  const Vec3<Real> x = a.normalized();
-  const Vec3<Real> z = x.cross(b).normalized();
+  const Vec3<Real> x = normalized(a);
+  const Vec3<Real> z = normalized<Real>(x.cross(b));
   const Vec3<Real> y = z.cross(x);
   Mat3<Real> frame;
   frame.row(0) = x.transpose();
@@ -252,6 +265,41 @@ void polar_factors(const Mat3<Real>* m, Mat3<Real>* out, int count, Real toleran
   for (; first < count; ++first) out[first] = polar_factor(m[first], tolerance);
 }
 
+template <class Real>
+void qr_frames(const Vec3<Real>* a, const Vec3<Real>* b, Mat3<Real>* out, int count) {
+  using P = Packed<Real>;
+  int first = 0;
+  for (; first + 4 <= count; first += 4) {
+    P x[3], e[3];
+    for (int c = 0; c < 3; ++c) {
+      for (int l = 0; l < 4; ++l) {
+        x[c][l] = a[first + l][c];
+        e[c][l] = b[first + l][c];
+      }
+    }
+    const P x_norm2 = x[0] * x[0] + x[1] * x[1] + x[2] * x[2];
+    const P x_norm = packed_sqrt<Real>(x_norm2);
+    for (int c = 0; c < 3; ++c) x[c] = x[c] / x_norm;
+    P z[3] = {x[1] * e[2] - x[2] * e[1], x[2] * e[0] - x[0] * e[2], x[0] * e[1] - x[1] * e[0]};
+    const P z_norm2 = z[0] * z[0] + z[1] * z[1] + z[2] * z[2];
+    const P z_norm = packed_sqrt<Real>(z_norm2);
+    for (int c = 0; c < 3; ++c) z[c] = z[c] / z_norm;
+    const P y[3] = {z[1] * x[2] - z[2] * x[1], z[2] * x[0] - z[0] * x[2], z[0] * x[1] - z[1] * x[0]};
+    for (int l = 0; l < 4; ++l) {
+      if (!(x_norm2[l] > 0 && z_norm2[l] > 0)) {
+        out[first + l] = qr_frame(a[first + l], b[first + l]);  // a zero edge or normal: as qr_frame leaves it
+        continue;
+      }
+      for (int c = 0; c < 3; ++c) {
+        out[first + l](0, c) = x[c][l];
+        out[first + l](1, c) = y[c][l];
+        out[first + l](2, c) = z[c][l];
+      }
+    }
+  }
+  for (; first < count; ++first) out[first] = qr_frame(a[first], b[first]);
+}
+
 // SOFA's Decompose::zeroTolerance: below it an eigenvalue of F^T F counts as zero.
 template <class Real>
 constexpr Real zero_tolerance() {
@@ -320,6 +368,8 @@ Mat3<Real> polar_frame(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real
 
 template Mat3<float> qr_frame(const Vec3<float>&, const Vec3<float>&);
 template Mat3<double> qr_frame(const Vec3<double>&, const Vec3<double>&);
+template void qr_frames(const Vec3<float>*, const Vec3<float>*, Mat3<float>*, int);
+template void qr_frames(const Vec3<double>*, const Vec3<double>*, Mat3<double>*, int);
 template Mat3<float> polar_factor(const Mat3<float>&, float);
 template Mat3<double> polar_factor(const Mat3<double>&, double);
 template void polar_factors(const Mat3<float>*, Mat3<float>*, int, float);

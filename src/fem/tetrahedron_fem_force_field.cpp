@@ -375,13 +375,14 @@ void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, st
   // roots and divisions (or the polar iteration), and independent chains side by side overlap in
   // the processor where one element's chain, followed by its long remainder, would not. Each
   // element's arithmetic and the order of the elements are unchanged.
-  // The polar factors (polar, and svd's elements that are not inverted) go four at a time through
-  // polar_factors, bit for bit those of polar_factor.
+  // The QR frames (large) and the polar factors (polar, and svd's elements that are not inverted)
+  // go four at a time through qr_frames and polar_factors, bit for bit qr_frame's and polar_factor's.
   constexpr Index kBatch = 8;
   const TetrahedronFEMMethod method = parameters_.method;
   const bool polar = method == TetrahedronFEMMethod::polar || method == TetrahedronFEMMethod::svd;
   std::array<TetPoints<Real>, kBatch> points;
   std::array<Mat3<Real>, kBatch> frames, edges, factors;
+  std::array<Vec3<Real>, kBatch> edge_ab, edge_ac;
   std::array<std::size_t, kBatch> lane_of;
   for (Index first = begin; first < end; first += kBatch) {
     const Index count = std::min(kBatch, end - first);
@@ -391,6 +392,11 @@ void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, st
       const Index t = schedule_.order[static_cast<std::size_t>(first + j)];
       const Element& element = elements_[static_cast<std::size_t>(t)];
       points[slot] = tetrahedron_points<Real>(mesh_->tetrahedron(t), x);
+      if (method == TetrahedronFEMMethod::large) {
+        edge_ab[slot] = points[slot][1] - points[slot][0];  // large_frame's edges
+        edge_ac[slot] = points[slot][2] - points[slot][0];
+        continue;
+      }
       if (!polar) {
         frames[slot] = frame(element, points[slot], method);
         continue;
@@ -403,6 +409,7 @@ void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, st
       edges[static_cast<std::size_t>(lanes)] = a;
       lane_of[static_cast<std::size_t>(lanes++)] = slot;
     }
+    if (method == TetrahedronFEMMethod::large) qr_frames(edge_ab.data(), edge_ac.data(), frames.data(), static_cast<int>(count));
     polar_factors(edges.data(), factors.data(), lanes);
     for (int k = 0; k < lanes; ++k) frames[lane_of[static_cast<std::size_t>(k)]] = factors[static_cast<std::size_t>(k)];
     for (Index j = 0; j < count; ++j) {

@@ -184,6 +184,36 @@ TEST(PolarFactors, FourAtATimeEqualOneByOneBitForBit) {
   expect_polar_factors_bitwise<float>(random);
 }
 
+// qr_frames (four lanes at a time) against qr_frame one by one, bit for bit, zero and parallel
+// edges mixed in, with counts that leave a remainder.
+template <class Real>
+void expect_qr_frames_bitwise(std::mt19937& random) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Vec3<Real>> a, b;
+  for (int k = 0; k < 4001; ++k) {
+    a.push_back(Vec3<double>(u(random), u(random), u(random)).template cast<Real>() * Real(1 + k % 5));
+    b.push_back(Vec3<double>(u(random), u(random), u(random)).template cast<Real>());
+  }
+  a[6].setZero();                 // a zero edge
+  b[9] = Real(3) * a[9];          // parallel edges: a zero normal
+  a[13](1) = std::numeric_limits<Real>::quiet_NaN();
+  for (const int count : {4001, 4000, 2}) {
+    std::vector<Mat3<Real>> out(static_cast<std::size_t>(count));
+    qr_frames(a.data(), b.data(), out.data(), count);
+    for (int k = 0; k < count; ++k) {
+      const Mat3<Real> one = qr_frame(a[static_cast<std::size_t>(k)], b[static_cast<std::size_t>(k)]);
+      ASSERT_EQ(std::memcmp(one.data(), out[static_cast<std::size_t>(k)].data(), sizeof one), 0)
+          << "frame " << k << " of " << count;
+    }
+  }
+}
+
+TEST(QrFrames, FourAtATimeEqualOneByOneBitForBit) {
+  std::mt19937 random(12);
+  expect_qr_frames_bitwise<double>(random);
+  expect_qr_frames_bitwise<float>(random);
+}
+
 TEST(PolarFrame, IsThePolarFactorOfTheRowMatrix) {
   const Vec3<double> a(1, 0.1, 0), b(0.2, 1, 0.1), c(0, -0.1, 1.1);
   Mat3<double> rows;
