@@ -371,12 +371,11 @@ template <class Real>
 template <class Body>
 void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, std::span<const Vec3<Real>> x,
                                                       const Body& body) const {
-  // The frames of a few elements first, then the rest of each: a frame is a short chain of square
-  // roots and divisions (or the polar iteration), and independent chains side by side overlap in
-  // the processor where one element's chain, followed by its long remainder, would not. Each
+  // The frames of eight elements first, then the rest of each. A frame is a chain of square roots
+  // and divisions (or the polar iteration): the QR frames (large) and the polar factors (polar, and
+  // svd's elements that are not inverted) go four at a time through qr_frames and polar_factors,
+  // whose SIMD lanes run four chains side by side, bit for bit qr_frame's and polar_factor's. Each
   // element's arithmetic and the order of the elements are unchanged.
-  // The QR frames (large) and the polar factors (polar, and svd's elements that are not inverted)
-  // go four at a time through qr_frames and polar_factors, bit for bit qr_frame's and polar_factor's.
   constexpr Index kBatch = 8;
   const TetrahedronFEMMethod method = parameters_.method;
   const bool polar = method == TetrahedronFEMMethod::polar || method == TetrahedronFEMMethod::svd;
