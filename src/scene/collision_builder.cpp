@@ -1,5 +1,6 @@
 #include "collision_builder.h"
 #include "collision_model_reader.h"
+#include "contact_manager_rules.h"
 
 #include "fastcorot/collision/contact_pipeline.h"
 #include "fastcorot/collision/explicit_contact_forces.h"
@@ -45,7 +46,7 @@ class CollisionBuilder {
           type == "DiscreteIntersection") {
         intersection = intersection ? intersection : c;
       }
-      if (type == "CollisionResponse") response = response ? response : c;
+      if (type == "CollisionResponse" || type == "RuleBasedContactManager") response = response ? response : c;
       if ((type == "CollisionPipeline" || type == "DefaultPipeline") && c->has("depth") && data_.real(*c, "depth", 6.0) != 6.0) {
         data_.warn(c->where() + ": depth " + data_.text(*c, "depth", "6") + " is not followed: fastcorot's trees have SOFA's default "
                    "depth 6, which decides only the order of contacts that tie exactly (the first of equal ones is kept)");
@@ -55,22 +56,10 @@ class CollisionBuilder {
     if (!intersection) throw NotSimulated{"the scene has no intersection method (MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection)"};
     const typename ContactPipeline<double>::Parameters p = intersection_settings(*intersection);
     method_ = p.method;
-    response_name_ = data_.text(*response, "response", "PenalityContactForceField");
-    reader_.emplace(data_, simulation_, locate_, method_, response_name_);
-    const bool friction = response_name_ == "FrictionContactConstraint";
-    const bool stick = response_name_ == "StickContactForceField";
-    if (!friction && !stick && response_name_ != "PenalityContactForceField") {
-      throw NotSimulated{"the response " + response_name_ +
-                         " is not simulated yet (PenalityContactForceField, StickContactForceField and FrictionContactConstraint are)"};
-    }
-    if (friction && !loop_) {
-      throw NotSimulated{response->where() + ": FrictionContactConstraint makes Lagrangian constraints, which only a "
-                         "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
-    }
-    if (!friction && loop_) {
-      throw NotSimulated{response_name_ + " contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
-    }
+    const ContactManagerRules manager(data_, *response);
+    reader_.emplace(data_, simulation_, locate_, method_);
     std::vector<CollisionModel<double>> models;
+    std::vector<ContactModelIdentity> identities;
     std::vector<const GraphNode*> nodes;
     for (Component* c : components) {
       const std::string_view type = c->type();
@@ -79,6 +68,7 @@ class CollisionBuilder {
       }
       if (!data_.boolean(*c, "active", true)) continue;
       models.push_back(reader_->model(*c));
+      identities.push_back({c->sofa_name(), models.back().groups, data_.text(*c, "contactResponse", "")});
       nodes.push_back(c->node);
       // SOFA's mpoints / m_pointModels: the node's first PointCollisionModel.
       auto& added = models.back();
@@ -89,6 +79,21 @@ class CollisionBuilder {
       if (models.back().kind != CollisionElements::points && models.back().size() == 0) {
         data_.warn(c->where() + ": its topology gives it no elements: it takes part in no contact");
       }
+    }
+    const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
+    response_name_ = pair_response(manager, models, identities, pairs);
+    const bool friction = response_name_ == "FrictionContactConstraint";
+    const bool stick = response_name_ == "StickContactForceField";
+    if (!friction && !stick && response_name_ != "PenalityContactForceField") {
+      throw NotSimulated{"the response " + (response_name_.empty() ? std::string("'' (none)") : response_name_) +
+                         " is not simulated yet (PenalityContactForceField, StickContactForceField and FrictionContactConstraint are)"};
+    }
+    if (friction && !loop_) {
+      throw NotSimulated{response->where() + ": FrictionContactConstraint makes Lagrangian constraints, which only a "
+                         "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
+    }
+    if (!friction && loop_) {
+      throw NotSimulated{response_name_ + " contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
     }
     std::vector<std::shared_ptr<PenaltyContactForceField<double>>> penalties(simulation_.objects.size());
     std::vector<std::shared_ptr<StickContactForceField<double>>> sticks(simulation_.objects.size());
@@ -102,7 +107,6 @@ class CollisionBuilder {
       }
     }
     if (friction) return friction_pipeline(*response, p, std::move(models), nodes);
-    const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
     std::vector<char> explicit_pairs(pairs.size(), 0);
     std::vector<std::shared_ptr<ExplicitContactForces<double>>> explicit_forces(simulation_.objects.size());
     const auto empty_mesh = [&](std::size_t o) {
@@ -138,6 +142,26 @@ class CollisionBuilder {
   }
 
  private:
+  // The one response of every model pair that can collide (the manager's when none can): pairs given
+  // different responses (by their models or the manager's rules) are not simulated yet.
+  static std::string pair_response(const ContactManagerRules& manager, const std::vector<CollisionModel<double>>& models,
+                                   const std::vector<ContactModelIdentity>& identities,
+                                   const std::vector<typename ContactPipeline<double>::ModelPair>& pairs) {
+    if (pairs.empty()) return manager.default_response();
+    std::string first;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const std::string r = manager.response(identities[pairs[k].first], identities[pairs[k].second]);
+      if (k == 0) {
+        first = r;
+      } else if (r != first) {
+        throw NotSimulated{models[pairs[0].first].where + " and " + models[pairs[0].second].where + " get the response " + first +
+                           ", " + models[pairs[k].first].where + " and " + models[pairs[k].second].where + " " + r +
+                           ": different responses in one scene are not simulated yet"};
+      }
+    }
+    return first;
+  }
+
   // The intersection method's settings, SOFA's defaults.
   typename ContactPipeline<double>::Parameters intersection_settings(Component& c) {
     typename ContactPipeline<double>::Parameters p;
@@ -328,7 +352,7 @@ void build_collision_pipeline(SceneData& data, std::vector<std::string>& info, S
       const std::string_view type = c->type();
       broad = broad || type == "BruteForceBroadPhase" || (type == "BVHNarrowPhase" && c->object->type == "BruteForceDetection");
       narrow = narrow || type == "BVHNarrowPhase";
-      manager = manager || (type == "CollisionResponse" && c->has("response"));
+      manager = manager || ((type == "CollisionResponse" || type == "RuleBasedContactManager") && c->has("response"));
     }
     if (!broad || !narrow || !manager) {
       data.warn(pipeline_component->where() + ": no " + std::string(!broad ? "broad phase" : !narrow ? "narrow phase" : "CollisionResponse with a response") +

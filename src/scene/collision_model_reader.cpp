@@ -36,8 +36,8 @@ std::vector<Edge> surface_edges(const std::vector<Triangle>& triangles, const st
 }  // namespace
 
 CollisionModelReader::CollisionModelReader(SceneData& data, Simulation<double>& simulation, const LocateState& locate,
-                                           IntersectionMethod method, std::string response_name)
-    : data_(data), simulation_(simulation), locate_(locate), method_(method), response_name_(std::move(response_name)) {}
+                                           IntersectionMethod method)
+    : data_(data), simulation_(simulation), locate_(locate), method_(method) {}
 
 CollisionModel<double> CollisionModelReader::model(Component& c) {
   CollisionModel<double> m;
@@ -53,11 +53,6 @@ CollisionModel<double> CollisionModelReader::model(Component& c) {
   m.simulated = data_.boolean(c, "simulated", true);
   m.moving = data_.boolean(c, "moving", true);
   m.self_collision = data_.boolean(c, "selfCollision", false);
-  const std::string reply = data_.text(c, "contactResponse", "");
-  if (!reply.empty() && reply != response_name_) {
-    throw NotSimulated{c.where() + " asks for the response " + reply + ", the pipeline's is " + response_name_ +
-                       " (a model's own response is not simulated yet)"};
-  }
   m.contact_distance = data_.real(c, c.has("proximity") && !c.has("contactDistance") ? "proximity" : "contactDistance", 0.0);
   m.contact_stiffness = data_.real(c, "contactStiffness", 10.0);
   m.contact_friction = data_.real(c, "contactFriction", 0.0);

@@ -28,10 +28,9 @@ struct NotSimulated {
 class CollisionModelReader {
  public:
   // `method` decides the neighbourhood data a model needs (NewProximity's ownership flags,
-  // LocalMinDistance's cones); `response_name` is the pipeline's response, which a model's own
-  // contactResponse must equal.
+  // LocalMinDistance's cones).
   CollisionModelReader(SceneData& data, Simulation<double>& simulation, const LocateState& locate,
-                       IntersectionMethod method, std::string response_name);
+                       IntersectionMethod method);
 
   // The model component c. Throws NotSimulated for what fastcorot does not simulate yet and
   // fastcorot::Error for bad input (a negative distance, an element naming a missing point).
@@ -62,7 +61,6 @@ class CollisionModelReader {
   Simulation<double>& simulation_;
   const LocateState& locate_;
   IntersectionMethod method_;
-  std::string response_name_;
   std::map<const Component*, std::shared_ptr<CollisionPoints<double>>> points_;
 };
 

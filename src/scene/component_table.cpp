@@ -80,10 +80,10 @@ std::span<const std::string_view> ignored_components() { return kIgnored; }
 
 
 bool is_collision_component(std::string_view name) {
-  static constexpr std::array<std::string_view, 18> kCollision = {
+  static constexpr std::array<std::string_view, 19> kCollision = {
       "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase", "BruteForceDetection",
       "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection", "DiscreteIntersection",
-      "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel", "LineCollisionModel",
+      "CollisionResponse", "DefaultContactManager", "RuleBasedContactManager", "TriangleCollisionModel", "LineCollisionModel",
       "PointCollisionModel", "SphereCollisionModel", "TetrahedronCollisionModel",
       "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase"};
   return std::find(kCollision.begin(), kCollision.end(), name) != kCollision.end();
@@ -166,6 +166,18 @@ static bool numbered_attribute(std::string_view spec_name, std::string_view attr
                      [](char ch) { return ch >= '0' && ch <= '9'; });
 }
 
+// Whether `attribute` is one of the words of the object's declaring attribute.
+static bool declared_attribute(const ComponentSpec& spec, const SceneObject& object, std::string_view attribute) {
+  if (spec.declaring_attribute.empty()) return false;
+  const auto declaring = object.attributes.find(std::string(spec.declaring_attribute));
+  if (declaring == object.attributes.end()) return false;
+  std::istringstream words(declaring->second);
+  for (std::string word; words >> word;) {
+    if (word == attribute) return true;
+  }
+  return false;
+}
+
 const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<std::string>* warnings) {
   const ComponentSpec* spec = find_component(object.type);
   if (!spec) {
@@ -184,7 +196,7 @@ const ComponentSpec* check_scene_object(const SceneObject& object, std::vector<s
     if (is_common_attribute(attribute)) continue;
     bool known = false;
     for (const auto& a : spec->attributes) known = known || a.name == attribute || numbered_attribute(a.name, attribute);
-    if (known) continue;
+    if (known || declared_attribute(*spec, object, attribute)) continue;
     std::vector<std::string_view> names;
     for (const auto& a : spec->attributes) names.push_back(a.name);
     const std::string hint = suggestion(attribute, names);

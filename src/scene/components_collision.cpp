@@ -18,7 +18,7 @@ std::vector<AttributeSpec> model_attributes() {
           {"proximity", "real", "0", "SOFA's alias of contactDistance"},
           {"contactStiffness", "real", "10", "k of the penalty: k₁ k₂ / d per contact"},
           {"contactFriction", "real", "0", "damping of StickContactForceField's springs (cf₁ + cf₂); the other responses ignore it, as SOFA"},
-          {"contactResponse", "string", "", "must be empty or the pipeline's response"},
+          {"contactResponse", "string", "", "the response of every pair it is in, before the manager's (all pairs must end with one response)"},
           {"bothSide", "bool", "false", "LocalMinDistance: the cone filters accept both sides"},
           {"group", "indices", "", "group numbers: two models sharing one never collide"},
           {"topology", "link", "", "the topology its elements come from (default: the nearest one)"},
@@ -54,6 +54,14 @@ std::vector<ComponentSpec> collision_components() {
                                      {"useLMDFilters", "bool", "false", "true: no cone filter (SOFA's LMDFilter components are not read)"}});
   auto new_proximity = proximity;
   new_proximity.push_back({"useLineLine", "bool", "false", "edge–edge pairs (Line–Line, and between triangles' edges)"});
+  const std::vector<AttributeSpec> response = {
+      {"response", "string", "PenalityContactForceField", "PenalityContactForceField, StickContactForceField or FrictionContactConstraint"},
+      {"responseParams", "string", "", "FrictionContactConstraint's data as name=value joined by &: mu (0.8), tol (0: the solver's)"},
+      {"mu", "real", "", "accepted (friction is not part of the penalty response)"}};
+  auto rule_based = response;
+  rule_based.insert(rule_based.end(),
+                    {{"rules", "string", "", "ordered rules, three words each: model 1, model 2 (a name, a group number or *), response"},
+                     {"variables", "string", "", "names of further attributes whose values replace $name$ in the rules' responses"}});
   return {
       {"CollisionPipeline", "collision",
        "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection and the PenalityContactForceField response (implicit in a body's step, or explicit between two bodies' solvers), StickContactForceField, or FrictionContactConstraint under FreeMotionAnimationLoop; what is not (tetrahedron models, moving obstacles, grid and volume topologies as surfaces) is ignored with a warning saying why.",
@@ -77,10 +85,11 @@ std::vector<ComponentSpec> collision_components() {
        "SOFA's DiscreteIntersection: overlapping spheres (Sphere–Sphere), no alarm or contact distance.", {}},
       {"CollisionResponse", "collision",
        "The contact manager: each model pair's outputs become a PenalityContactForceField (one contact per id: the closest), k = k₁ k₂ / d, pen = d − (y₂ − y₁)·n, force k pen n when pen > 0, implicit in the body's step; or StickContactForceField springs (one per id, at rest when made: ks₁ + ks₂ on y₂ − y₁ − R, damping cf₁ + cf₂; made again at every step that finds the pair, kept while a step finds nothing); or, under FreeMotionAnimationLoop, a FrictionContactConstraint (a UnilateralLagrangianConstraint: a normal row per contact, with two tangent rows in Coulomb's disk when mu > 0).",
-       {{"response", "string", "PenalityContactForceField", "PenalityContactForceField, StickContactForceField or FrictionContactConstraint"},
-        {"responseParams", "string", "", "FrictionContactConstraint's data as name=value joined by &: mu (0.8), tol (0: the solver's)"},
-        {"mu", "real", "", "accepted (friction is not part of the penalty response)"}},
+       response,
        {"DefaultContactManager"}},
+      {"RuleBasedContactManager", "collision",
+       "SOFA's RuleBasedContactManager: a CollisionResponse whose response a model pair may take from ordered rules: the first rule whose two words match the pair (either way round; a model's name, a group number or *) gives its response, the manager's `response` otherwise; a model's own contactResponse first. $name$ in a rule's response is the value of the variable `name` (declared in `variables`, given as an attribute). Simulated when every pair that can collide gets the same response.",
+       rule_based, {}, "variables"},
       {"TriangleCollisionModel", "collision", "The triangles of the node's topology (quads split as SOFA) on the node's MechanicalObject.", triangle, {"TriangleModel"}},
       {"LineCollisionModel", "collision", "The edges of the node's topology (from its triangles when it lists none) on the node's MechanicalObject.", model_attributes(), {"LineModel"}},
       {"PointCollisionModel", "collision", "Every point of the node's MechanicalObject.", model_attributes(), {"PointModel"}},

@@ -45,6 +45,7 @@ std::vector<ComponentSpec> visual_components() {
         {"scale", "real", "1", "uniform scale"}, {"sx", "real", "1", "scale along x"},
         {"sy", "real", "1", "scale along y"}, {"sz", "real", "1", "scale along z"},
         {"handleDynamicTopology", "bool", "true", "accepted"}, {"useNormals", "bool", "true", "accepted"},
+        {"normals", "vec3s", "", "accepted: normals are computed from the surface"},
         {"updateNormals", "bool", "true", "accepted"}, {"computeTangents", "bool", "false", "accepted"},
         {"texturename", "string", "", "accepted: no textures are drawn"}, {"putOnlyTexCoords", "bool", "false", "accepted"},
         {"initRestPositions", "bool", "false", "accepted"}, {"primitiveType", "string", "DEFAULT", "accepted"}},

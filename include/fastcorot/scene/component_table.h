@@ -27,6 +27,9 @@ struct ComponentSpec {
   std::string_view doc;
   std::vector<AttributeSpec> attributes;
   std::vector<std::string_view> aliases = {};  // other component names SOFA accepts for it
+  // An attribute whose words name further attributes the component accepts (RuleBasedContactManager's
+  // `variables`, each then given a value in the scene); empty for none.
+  std::string_view declaring_attribute = {};
 };
 
 // Supported components; nullptr when `name` is neither a component nor one of its aliases.

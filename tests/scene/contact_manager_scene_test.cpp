@@ -1,0 +1,132 @@
+// The contact manager's response per model pair: RuleBasedContactManager's ordered rules (a model's
+// name, a group number or *, matched either way round; $variables$), a model's own contactResponse
+// before them, the manager's response otherwise. Each case is checked against the same scene written
+// with a plain CollisionResponse giving that response, bit for bit, and against the other response,
+// which must differ.
+#include "fastcorot/scene/scene_builder.h"
+
+#include "../support/scene_text.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace fastcorot {
+namespace {
+
+using testing::build_scene_text;
+
+// Points of mass 0.5 falling from `height` onto a still triangle in the plane y = 0 (named "floor",
+// group 2), one node per point ("ball0", "ball1", ...), each in group 10 + its index; `manager`
+// is the contact manager's element, `extra` goes into each ball's point model.
+std::string balls_over_floor(const std::string& manager, int balls = 1, const std::string& extra = "") {
+  std::string text =
+      "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+      "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/>" + manager;
+  for (int b = 0; b < balls; ++b) {
+    const std::string i = std::to_string(b);
+    text += "<Node name=\"ball" + i + "\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><CGLinearSolver iterations=\"100\" "
+            "tolerance=\"1e-30\" threshold=\"1e-30\"/><MechanicalObject position=\"" + std::to_string(0.3 * b - 0.2) +
+            " 0.3 0.2\"/><UniformMass totalMass=\"0.5\"/><PointCollisionModel name=\"ball" + i + "\" group=\"" +
+            std::to_string(10 + b) + "\" contactStiffness=\"20\" " + extra + "/></Node>";
+  }
+  return text +
+         "<Node name=\"floor\"><MeshTopology position=\"-1 0 -1  1 0 -1  0 0 2\" triangles=\"0 2 1\"/><MechanicalObject/>"
+         "<TriangleCollisionModel name=\"floor\" group=\"2\" simulated=\"0\" moving=\"0\" contactStiffness=\"20\"/></Node>";
+}
+
+const std::string kRoot = "dt=\"0.01\" gravity=\"0 -9.81 0\"";
+
+// Every ball's height at each of 60 steps (contact from about step 20).
+std::vector<double> heights(LoadedScene scene) {
+  std::vector<double> y;
+  for (int step = 0; step < 60; ++step) {
+    scene.simulation.step();
+    for (const auto& object : scene.simulation.objects) {
+      for (const auto& x : object.system.state.position) y.push_back(x.y());
+    }
+  }
+  return y;
+}
+
+std::vector<double> heights_with(const std::string& response, int balls = 1) {
+  return heights(build_scene_text(balls_over_floor("<CollisionResponse response=\"" + response + "\"/>", balls), kRoot));
+}
+
+bool warned(const LoadedScene& scene, const std::string& text) {
+  for (const auto& line : scene.warnings) {
+    if (line.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(ContactManagerScene, TheTwoResponsesUsedHereDiffer) {
+  // Without this the equalities below could not fail.
+  EXPECT_NE(heights_with("PenalityContactForceField"), heights_with("StickContactForceField"));
+}
+
+TEST(ContactManagerScene, WithoutAWholeRuleEveryPairTakesTheManagersResponse) {
+  // SOFA's own RuleBasedContactManager.scn writes rules="default": a word, not a rule.
+  LoadedScene scene = build_scene_text(
+      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"default\"/>"), kRoot);
+  EXPECT_TRUE(warned(scene, "rules: 'default' is not a whole rule"));
+  ASSERT_TRUE(scene.simulation.collisions);
+  EXPECT_EQ(heights(std::move(scene)), heights_with("PenalityContactForceField"));
+}
+
+TEST(ContactManagerScene, ARuleMatchesNamesGroupsAndStarsEitherWayRound) {
+  for (const std::string rules : {"ball0 floor StickContactForceField", "floor ball0 StickContactForceField", "2 * StickContactForceField",
+                                  "* 10 StickContactForceField", "7 * PenalityContactForceField  floor * StickContactForceField"}) {
+    LoadedScene scene = build_scene_text(
+        balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"" + rules + "\"/>"), kRoot);
+    ASSERT_TRUE(scene.simulation.collisions) << rules;
+    EXPECT_EQ(heights(std::move(scene)), heights_with("StickContactForceField")) << rules;
+  }
+  // A rule that matches no pair leaves the manager's response.
+  LoadedScene unmatched = build_scene_text(
+      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"3 * StickContactForceField\"/>"), kRoot);
+  EXPECT_EQ(heights(std::move(unmatched)), heights_with("PenalityContactForceField"));
+}
+
+TEST(ContactManagerScene, VariablesAreAttributesOfTheManager) {
+  LoadedScene scene = build_scene_text(
+      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" variables=\"kind\" kind=\"StickContactForceField\" "
+                       "rules=\"* * $kind$\"/>"),
+      kRoot);
+  EXPECT_FALSE(warned(scene, "unknown attribute")) << "a declared variable is an attribute";
+  EXPECT_EQ(heights(std::move(scene)), heights_with("StickContactForceField"));
+  // Undeclared: warned, replaced by nothing (as SOFA), so no response is simulated.
+  LoadedScene undeclared = build_scene_text(
+      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"* * $kind$\"/>"), kRoot);
+  EXPECT_TRUE(warned(undeclared, "$kind$, which `variables` does not declare"));
+  EXPECT_FALSE(undeclared.simulation.collisions);
+}
+
+TEST(ContactManagerScene, AModelsOwnResponseComesFirst) {
+  LoadedScene scene = build_scene_text(
+      balls_over_floor("<CollisionResponse response=\"PenalityContactForceField\"/>", 1, "contactResponse=\"StickContactForceField\""), kRoot);
+  ASSERT_TRUE(scene.simulation.collisions);
+  EXPECT_EQ(heights(std::move(scene)), heights_with("StickContactForceField"));
+}
+
+TEST(ContactManagerScene, PairsGivenDifferentResponsesAreWarnedNotSimulated) {
+  // Two balls: a rule gives ball1's pair with the floor stick springs, ball0's keeps the penalty.
+  LoadedScene mixed = build_scene_text(
+      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"ball1 floor StickContactForceField\"/>", 2),
+      kRoot);
+  EXPECT_FALSE(mixed.simulation.collisions);
+  EXPECT_TRUE(warned(mixed, "different responses in one scene are not simulated yet"));
+  // Every pair that can collide named (the balls' own pair too): one response, simulated as the
+  // plain manager's.
+  LoadedScene both = build_scene_text(
+      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"ball1 floor StickContactForceField "
+                       "ball0 2 StickContactForceField 11 10 StickContactForceField\"/>",
+                       2),
+      kRoot);
+  ASSERT_TRUE(both.simulation.collisions);
+  EXPECT_EQ(heights(std::move(both)), heights_with("StickContactForceField", 2));
+}
+
+}  // namespace
+}  // namespace fastcorot
