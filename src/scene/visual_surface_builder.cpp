@@ -202,12 +202,14 @@ class VisualSurfaceBuilder {
                                   const SimulatedObject<double>& object, const char* what, std::string& description) {
     const auto& system = object.system;
     if (mapping.type() == "IdentityMapping") {
-      if (!points.empty() && points.size() != system.state.position.size()) {
-        throw make_error("IdentityMapping ", mapping.where(), ": ", what, " has ", points.size(),
-                         " points, the object ", system.state.position.size());
+      // From Rigid3 bodies (SOFA's IdentityMapping<Rigid3, Vec3>): one point per body, its centre.
+      const std::size_t size = system.rigids ? system.rigids->size() : system.state.position.size();
+      if (!points.empty() && points.size() != size) {
+        throw make_error("IdentityMapping ", mapping.where(), ": ", what, " has ", points.size(), " points, the object ", size,
+                         system.rigids ? " rigid bodies" : "");
       }
       description = "IdentityMapping";
-      return PointMapping<double>::identity(system.state.position.size());
+      return system.rigids ? PointMapping<double>::subset(system.rigids->block) : PointMapping<double>::identity(size);
     }
     if (mapping.type() == "SubsetMapping") {
       description = "SubsetMapping";

@@ -135,6 +135,26 @@ TEST(RigidScene, RigidMappedPointsAndVisualModelsFollowTheRigid) {
   EXPECT_LT((states[1].velocity[0] - Vec3<double>(0, 0, 1).cross(turned * Vec3<double>(1, 0, 0))).norm(), 1e-12);
 }
 
+TEST(RigidScene, IdentityMappedPointsAreTheCentresAndTheirForcesDoNotTurnTheBody) {
+  // SOFA's IdentityMapping<Rigid3, Vec3>: one point per body at its centre; a force on it moves the
+  // centre only (before, the child took a point per Vec3 block, the angular one included, and a
+  // force there turned the body).
+  LoadedScene scene = build_scene_text(
+      body("position=\"1 2 3 0 0 0.7071067811865476 0.7071067811865476\"", "<UniformMass totalMass=\"2\"/>",
+           "<MechanicalObject name=\"centres\"/><ConstantForceField forces=\"4 0 0\"/><IdentityMapping/>"),
+      "dt=\"0.01\" gravity=\"0 0 0\"");
+  step(scene, 10);
+  const RigidCoord<double> x = rigid(scene);
+  const auto states = state_snapshots(scene.simulation.objects.at(0));
+  ASSERT_EQ(states.size(), 2u);
+  ASSERT_EQ(states[1].position.size(), 1u);
+  EXPECT_LT((states[1].position[0] - x.center).norm(), 1e-15);
+  EXPECT_LT(quaternion_distance(x.orientation, Eigen::Quaterniond(0.7071067811865476, 0, 0, 0.7071067811865476)), 1e-15);
+  // Implicit Euler under a constant force a = F/m: x_n = x_0 + a h² n(n+1)/2.
+  EXPECT_NEAR(x.center.x(), 1 + 2.0 * 0.01 * 0.01 * 55, 1e-12);
+  EXPECT_NEAR(x.center.y(), 2, 1e-15);
+}
+
 // A rigid pendulum: the body's point (0, L, 0) (local) is held at the origin by a stiff
 // RestShapeSpringsForceField written on the carried point, so the body swings about it under
 // gravity. Small angles: θ(t) = θ0 cos(2π t / T), T = 2π sqrt((I + m L²) / (m g L)), I = m i_zz.
