@@ -1,3 +1,6 @@
+// One collision pipeline built from its components: the intersection method's settings, the contact
+// manager's response for the model pairs, the models, and the response's force fields or constraints
+// on the objects (collision_builder.h).
 #include "collision_builder.h"
 #include "collision_model_reader.h"
 #include "contact_manager_rules.h"
@@ -16,18 +19,6 @@
 namespace fastcorot::scene_detail {
 
 namespace {
-
-void collect(GraphNode& node, std::vector<Component*>& spec, std::vector<Component*>& other, bool& free_motion) {
-  for (const auto& c : node.components) {
-    if (c->type() == "FreeMotionAnimationLoop") free_motion = true;
-    if (c->spec && c->spec->category == "collision") {
-      spec.push_back(c.get());
-    } else if (!c->spec && is_collision_component(c->type())) {
-      other.push_back(c.get());
-    }
-  }
-  for (const auto& child : node.children) collect(*child, spec, other, free_motion);
-}
 
 class CollisionBuilder {
  public:
@@ -328,49 +319,10 @@ class CollisionBuilder {
 
 }  // namespace
 
-void build_collision_pipeline(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,
-                              const LocateState& locate, const std::vector<const GraphNode*>& solver_nodes) {
-  std::vector<Component*> components, others;
-  bool free_motion = false;
-  collect(data.root(), components, others, free_motion);
-  if (components.empty() && others.empty()) return;
-  Component* pipeline_component = nullptr;
-  for (Component* c : components) {
-    if (c->type() == "CollisionPipeline" && !pipeline_component) pipeline_component = c;
-  }
-  std::string reason;
-  if (!others.empty()) {
-    reason = std::string(others.front()->type()) + " is not simulated yet";
-  } else if (!pipeline_component) {
-    info.push_back(components.front()->where() + ": collision models without a CollisionPipeline: no contacts, as in SOFA");
-    return;
-  }
-  if (reason.empty() && pipeline_component) {
-    // SOFA's pipeline does nothing without its phases and a contact manager with a response.
-    bool broad = false, narrow = false, manager = false;
-    for (Component* c : components) {
-      const std::string_view type = c->type();
-      broad = broad || type == "BruteForceBroadPhase" || (type == "BVHNarrowPhase" && c->object->type == "BruteForceDetection");
-      narrow = narrow || type == "BVHNarrowPhase";
-      manager = manager || ((type == "CollisionResponse" || type == "RuleBasedContactManager") && c->has("response"));
-    }
-    if (!broad || !narrow || !manager) {
-      data.warn(pipeline_component->where() + ": no " + std::string(!broad ? "broad phase" : !narrow ? "narrow phase" : "CollisionResponse with a response") +
-                ": SOFA's pipeline makes no contact without it, nor does fastcorot's");
-      return;
-    }
-  }
-  if (reason.empty()) {
-    try {
-      simulation.collisions = CollisionBuilder(data, simulation, locate, solver_nodes, *pipeline_component->node).build(components);
-      return;
-    } catch (const NotSimulated& why) {
-      reason = why.reason;
-    }
-  }
-  for (Component* c : components) {
-    data.warn(c->where() + " ignored: collisions and contacts are not simulated by fastcorot here: " + reason);
-  }
+std::shared_ptr<ContactPipeline<double>> build_contact_pipeline(SceneData& data, Simulation<double>& simulation, const LocateState& locate,
+                                                                const std::vector<const GraphNode*>& solver_nodes,
+                                                                const GraphNode& pipeline_node, const std::vector<Component*>& components) {
+  return CollisionBuilder(data, simulation, locate, solver_nodes, pipeline_node).build(components);
 }
 
 }  // namespace fastcorot::scene_detail

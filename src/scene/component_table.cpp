@@ -27,7 +27,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 63> kIgnored = {
+constexpr std::array<std::string_view, 64> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -43,7 +43,8 @@ constexpr std::array<std::string_view, 63> kIgnored = {
     "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod", "TaskSchedulerSettings",
     "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase",
     "PointSetTopologyModifier", "PointSetGeometryAlgorithms", "QuadSetTopologyModifier", "QuadSetGeometryAlgorithms",
-    "HexahedronSetTopologyModifier", "HexahedronSetGeometryAlgorithms", "TrailRenderer"};
+    "HexahedronSetTopologyModifier", "HexahedronSetGeometryAlgorithms", "TrailRenderer",
+    "CCDTightInclusionIntersection"};
 
 std::string join_names(std::span<const AttributeSpec> attributes) {
   std::string list;
@@ -80,12 +81,13 @@ std::span<const std::string_view> ignored_components() { return kIgnored; }
 
 
 bool is_collision_component(std::string_view name) {
-  static constexpr std::array<std::string_view, 19> kCollision = {
+  static constexpr std::array<std::string_view, 22> kCollision = {
       "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase", "BruteForceDetection",
       "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection", "DiscreteIntersection",
       "CollisionResponse", "DefaultContactManager", "RuleBasedContactManager", "TriangleCollisionModel", "LineCollisionModel",
       "PointCollisionModel", "SphereCollisionModel", "TetrahedronCollisionModel",
-      "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase"};
+      "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase", "CompositeCollisionPipeline", "SubCollisionPipeline",
+      "CCDTightInclusionIntersection"};
   return std::find(kCollision.begin(), kCollision.end(), name) != kCollision.end();
 }
 
