@@ -26,6 +26,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <optional>
 #include <sstream>
 
@@ -402,12 +403,15 @@ class Builder {
     SimulatedObject<double> object;
     object.path = state.node->path;
     auto& system = object.system;
-    // SOFA's context gravity: the nearest node at or above the solver's (the state's) that sets it.
+    // SOFA's gravity is the root's: a node's context is copied from its parent's
+    // (Node::initializeContexts), so a gravity written on any other node is overwritten (SOFA's
+    // regression reference of Benchmark/Analysis/Pendulum.scn falls along the root's gravity).
     system.gravity = simulation_.gravity;
-    for (const GraphNode* scope = state.node; scope; scope = scope->parent) {
-      if (scope->scene->attributes.count("gravity")) {
-        system.gravity = node_vec3(*scope->scene, "gravity", simulation_.gravity);
-        break;
+    for (const GraphNode* scope = state.node; scope && scope->parent; scope = scope->parent) {
+      if (scope->scene->attributes.count("gravity") && node_vec3(*scope->scene, "gravity", simulation_.gravity) != simulation_.gravity &&
+          warned_gravity_.insert(scope).second) {
+        data_.warn("node " + scope->path + ": gravity " + scope->scene->attributes.at("gravity") +
+                   " is not used: SOFA gives every node the root's gravity (it copies the parent's context into each child node)");
       }
     }
     if (scene_detail::is_vec1_template(data_.text(state, "template", "Vec3d"))) {
@@ -843,6 +847,7 @@ class Builder {
   std::vector<std::size_t> state_counts_;   // how many MechanicalObjects each simulated object holds
   std::vector<std::pair<const SceneObject*, LoadedScene::StatePart>> parts_;  // every state, rank to be filled
   std::map<const Component*, std::shared_ptr<TetMesh>> meshes_;
+  std::set<const GraphNode*> warned_gravity_;  // nodes whose own gravity was warned unused
   bool allow_empty_ = false;
 };
 
