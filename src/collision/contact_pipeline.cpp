@@ -99,6 +99,23 @@ ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<Collis
 }
 
 template <class Real>
+ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                                       std::vector<std::shared_ptr<StickContactConstraint<Real>>> stick_constraints)
+    : parameters_(parameters), models_(std::move(models)), stick_constraints_(std::move(stick_constraints)) {
+  for (const auto& m : models_) {
+    if (!m.points) throw make_error(m.where, ": a collision model without points");
+  }
+  pairs_ = rule_pairs(models_, parameters_);
+  if (stick_constraints_.size() != pairs_.size()) {
+    throw make_error("the collision pipeline has ", pairs_.size(), " model pairs but ", stick_constraints_.size(), " stick constraints");
+  }
+  for (const auto& c : stick_constraints_) {
+    if (!c) throw make_error("the collision pipeline misses a stick constraint");
+  }
+  stick_contacts_.resize(pairs_.size());
+}
+
+template <class Real>
 std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narrow_phase(const ModelPair& pair, CollisionReport& report) const {
   const auto& m1 = models_[pair.first];
   const auto& m2 = models_[pair.second];
@@ -169,114 +186,6 @@ Vec3<Real> ContactPipeline<Real>::add_side(const CollisionModel<Real>& model, In
     }
   }
   return p;
-}
-
-template <class Real>
-PenaltyContact<Real> ContactPipeline<Real>::contact(const ModelPair& pair, const Output& output) const {
-  const auto& m1 = models_[pair.first];
-  const auto& m2 = models_[pair.second];
-  PenaltyContact<Real> c;
-  // The contact points as SOFA's mappers place them: weights in the element, applied to its points.
-  c.y1 = add_side(m1, output.first, output.proximity.point[0], c.side1);
-  c.y2 = add_side(m2, output.second, output.proximity.point[1], c.side2);
-  c.normal = output.proximity.normal;
-  // SOFA's BarycentricPenalityContact: d = contactDistance + cd₁ + cd₂, k = ks₁ ks₂ / d.
-  c.distance = contact_distance(pair, output);
-  const Real ks = m1.contact_stiffness * m2.contact_stiffness;
-  c.stiffness = c.distance != 0 ? ks / c.distance : ks;
-  return c;
-}
-
-template <class Real>
-Real ContactPipeline<Real>::contact_distance(const ModelPair& pair, const Output& output) const {
-  const auto& m1 = models_[pair.first];
-  const auto& m2 = models_[pair.second];
-  // The method's contact distance (none for DiscreteIntersection) and the models'; a sphere's
-  // contact mapper adds its radius (a rigid sphere's too, though its contact point is already on
-  // its surface: SOFA's RigidContactMapper, docs/collision.md §9 quirk 8).
-  const Real method = parameters_.method == IntersectionMethod::discrete ? Real(0) : parameters_.contact_distance;
-  Real d = method + m1.contact_distance + m2.contact_distance;
-  if (m1.kind == CollisionElements::spheres) d += m1.radii[static_cast<std::size_t>(output.first)];
-  if (m2.kind == CollisionElements::spheres) d += m2.radii[static_cast<std::size_t>(output.second)];
-  return d;
-}
-
-template <class Real>
-std::vector<std::size_t> ContactPipeline<Real>::kept_by_id(const std::vector<Output>& outputs) {
-  std::map<std::int64_t, std::size_t> kept;
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    const auto [it, inserted] = kept.emplace(outputs[i].id, i);
-    if (!inserted && outputs[i].proximity.value < outputs[it->second].proximity.value) it->second = i;
-  }
-  std::vector<std::size_t> order;
-  for (const auto& [id, i] : kept) order.push_back(i);
-  std::sort(order.begin(), order.end());
-  return order;
-}
-
-template <class Real>
-int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Output>& outputs,
-                                            std::vector<std::vector<PenaltyContact<Real>>>& contacts) {
-  const ModelPair& pair = pairs_[k];
-  const std::vector<std::size_t> order = kept_by_id(outputs);
-  const auto& a = *models_[pair.first].points;
-  const auto& b = *models_[pair.second].points;
-  for (const std::size_t i : order) {
-    PenaltyContact<Real> c = contact(pair, outputs[i]);
-    record(pair, outputs[i]);
-    if (!explicit_pairs_[k]) {
-      contacts[a.is_still() ? b.object() : a.object()].push_back(std::move(c));
-      continue;
-    }
-    // SOFA's explicit penalty: the force at the step's start positions, a load on both sides.
-    const Real pen = c.distance - (c.y2 - c.y1).dot(c.normal);
-    if (!(pen > 0)) continue;
-    const Vec3<Real> force = c.normal * (c.stiffness * pen);
-    if (!a.is_still()) {
-      for (const auto& [block, j] : c.side1) explicit_forces_[a.object()]->add(block, j.transpose() * -force);
-    }
-    if (!b.is_still()) {
-      for (const auto& [block, j] : c.side2) explicit_forces_[b.object()]->add(block, j.transpose() * force);
-    }
-  }
-  return static_cast<int>(order.size());
-}
-
-template <class Real>
-int ContactPipeline<Real>::friction_response(std::size_t k, const std::vector<Output>& outputs) {
-  if (!constraints_[k]) return 0;
-  const ModelPair& pair = pairs_[k];
-  // SOFA's BaseUnilateralContactResponse drops an output whose two points are both near a kept
-  // one's: |Δp₀|² + |Δp₁|² below 1e-8 (a float constant, widened).
-  const Real near = static_cast<Real>(static_cast<double>(0.00000001f));
-  std::vector<const Output*> kept;
-  for (const Output& o : outputs) {
-    bool duplicate = false;
-    for (std::size_t i = 0; i < kept.size() && !duplicate; ++i) {
-      duplicate = (o.proximity.point[0] - kept[i]->proximity.point[0]).squaredNorm() +
-                      (o.proximity.point[1] - kept[i]->proximity.point[1]).squaredNorm() <
-                  near;
-    }
-    if (!duplicate) kept.push_back(&o);
-  }
-  const auto& m1 = models_[pair.first];
-  const auto& m2 = models_[pair.second];
-  std::vector<UnilateralContact<Real>> contacts(kept.size());
-  for (std::size_t i = 0; i < kept.size(); ++i) {
-    const Output& o = *kept[i];
-    UnilateralContact<Real>& c = contacts[i];
-    c.first.still = m1.points->is_still();
-    c.first.object = c.first.still ? 0 : m1.points->object();
-    c.second.still = m2.points->is_still();
-    c.second.object = c.second.still ? 0 : m2.points->object();
-    c.first.position = add_side(m1, o.first, o.proximity.point[0], c.first.blocks);
-    c.second.position = add_side(m2, o.second, o.proximity.point[1], c.second.blocks);
-    c.normal = o.proximity.normal;
-    c.distance = contact_distance(pair, o);
-    record(pair, o);
-  }
-  constraints_[k]->set_contacts(std::move(contacts));
-  return static_cast<int>(kept.size());
 }
 
 template <class Real>
@@ -356,58 +265,6 @@ void ContactPipeline<Real>::end_step(std::span<SimulatedObject<Real>> objects, C
 }
 
 template <class Real>
-int ContactPipeline<Real>::stick_response(std::size_t k, const std::vector<Output>& outputs, std::span<const SimulatedObject<Real>> objects,
-                                          std::vector<std::vector<StickSpring<Real>>>& springs) {
-  const ModelPair& pair = pairs_[k];
-  const auto& m1 = models_[pair.first];
-  const auto& m2 = models_[pair.second];
-  const auto& a = *m1.points;
-  const auto& b = *m2.points;
-  auto& alive = stick_springs_[k];
-  const auto positions = [&](const CollisionPoints<Real>& side) -> std::span<const Vec3<Real>> {
-    return objects[side.object()].system.state.position;
-  };
-  if (!outputs.empty()) {
-    // SOFA's BarycentricStickContact: the springs made again from this step's outputs, each at rest
-    // (R = the second point minus the first), ks₁ + ks₂, damping cf₁ + cf₂.
-    alive.clear();
-    for (const std::size_t i : kept_by_id(outputs)) {
-      const auto& p = outputs[i].proximity;
-      StickSpring<Real> spring;
-      spring.y1 = add_side(m1, outputs[i].first, p.point[0], spring.side1);
-      spring.y2 = add_side(m2, outputs[i].second, p.point[1], spring.side2);
-      spring.rest = p.point[1] - p.point[0];
-      spring.stiffness = m1.contact_stiffness + m2.contact_stiffness;
-      spring.damping = m1.contact_friction + m2.contact_friction;
-      alive.push_back(std::move(spring));
-      record(pair, outputs[i]);
-    }
-  } else {
-    // No output: SOFA keeps the contact alive with its springs, their ends following the bodies.
-    for (auto& spring : alive) {
-      if (!a.is_still()) spring.y1 = contact_point<Real>(spring.side1, spring.y1, positions(a), last_positions_[a.object()]);
-      if (!b.is_still()) spring.y2 = contact_point<Real>(spring.side2, spring.y2, positions(b), last_positions_[b.object()]);
-    }
-  }
-  const auto velocity = [&](const CollisionPoints<Real>& side, const ContactBlocks<Real>& blocks) -> Vec3<Real> {
-    if (side.is_still()) return Vec3<Real>::Zero();
-    return contact_apply_j<Real>(blocks, std::span<const Vec3<Real>>(objects[side.object()].system.state.velocity));
-  };
-  for (auto& spring : alive) {
-    spring.relative_velocity = velocity(b, spring.side2) - velocity(a, spring.side1);
-    if (!explicit_pairs_[k]) {
-      springs[a.is_still() ? b.object() : a.object()].push_back(spring);
-      continue;
-    }
-    // Between two bodies' solvers: the force at the step's start positions, a load on both sides.
-    const Vec3<Real> force = (spring.y2 - spring.y1 - spring.rest) * spring.stiffness + spring.relative_velocity * spring.damping;
-    for (const auto& [block, j] : spring.side1) explicit_forces_[a.object()]->add(block, j.transpose() * force);
-    for (const auto& [block, j] : spring.side2) explicit_forces_[b.object()]->add(block, j.transpose() * -force);
-  }
-  return static_cast<int>(alive.size());
-}
-
-template <class Real>
 CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real>> objects, Real, double) {
   const auto start = std::chrono::steady_clock::now();
   CollisionReport report;
@@ -439,6 +296,8 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
     const std::vector<Output> outputs = narrow_phase(pairs_[k], report);
     if (!constraints_.empty()) {
       report.contacts += friction_response(k, outputs);
+    } else if (!stick_constraints_.empty()) {
+      report.contacts += stick_constraint_response(k, outputs, objects);
     } else if (!sticks_.empty()) {
       report.contacts += stick_response(k, outputs, objects, springs);
     } else {
@@ -451,6 +310,7 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
   for (std::size_t o = 0; o < sticks_.size(); ++o) {
     if (sticks_[o]) sticks_[o]->set_springs(std::move(springs[o]), objects[o].system.state.position);
   }
+  if (!stick_constraints_.empty()) last_positions_.resize(objects.size());
   for (std::size_t o = 0; o < last_positions_.size(); ++o) {
     last_positions_[o].assign(objects[o].system.state.position.begin(), objects[o].system.state.position.end());
   }

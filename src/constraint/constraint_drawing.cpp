@@ -9,6 +9,7 @@
 #include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/constraint/stick_contact_constraint.h"
 #include "fastcorot/sim/simulation.h"
 
 namespace fastcorot {
@@ -165,6 +166,22 @@ void UnilateralLagrangianConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) 
 }
 
 template <class Real>
+void StickContactConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  const bool built = this->rows_ == 3 * static_cast<int>(contacts_.size());
+  for (std::size_t k = 0; k < contacts_.size(); ++k) {
+    const std::size_t q = drawer.point_at(contacts_[k].first.position);
+    const std::size_t p = drawer.point_at(contacts_[k].second.position);
+    drawer.pair(q, p);
+    if (!built) continue;
+    for (int a = 0; a < 3; ++a) {
+      const int row = this->first_row_ + 3 * static_cast<int>(k) + a;
+      drawer.force(q, row, -Vec3<Real>::Unit(a));
+      drawer.force(p, row, Vec3<Real>::Unit(a));
+    }
+  }
+}
+
+template <class Real>
 void FreeMotionAnimationLoop<Real>::draw(std::span<const SimulatedObject<Real>> objects, Real dt,
                                          ConstraintDrawing& drawing) const {
   ConstraintDrawer<Real> drawer(objects, constraint_forces(), dt, drawing);
@@ -187,6 +204,7 @@ template void RigidFixedLagrangianConstraint<double>::draw(ConstraintDrawer<doub
 template void RigidBilateralLagrangianConstraint<float>::draw(ConstraintDrawer<float>&) const;
 template void RigidBilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void UnilateralLagrangianConstraint<double>::draw(ConstraintDrawer<double>&) const;
+template void StickContactConstraint<double>::draw(ConstraintDrawer<double>&) const;
 template void FreeMotionAnimationLoop<float>::draw(std::span<const SimulatedObject<float>>, float, ConstraintDrawing&) const;
 template void FreeMotionAnimationLoop<double>::draw(std::span<const SimulatedObject<double>>, double, ConstraintDrawing&) const;
 

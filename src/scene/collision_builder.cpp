@@ -73,14 +73,16 @@ class CollisionBuilder {
     }
     const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
     response_name_ = pair_response(manager, models, identities, pairs);
-    const bool friction = response_name_ == "FrictionContactConstraint";
+    const bool stick_constraint = response_name_ == "StickContactConstraint";
+    const bool friction = response_name_ == "FrictionContactConstraint" || stick_constraint;
     const bool stick = response_name_ == "StickContactForceField";
     if (!friction && !stick && response_name_ != "PenalityContactForceField") {
       throw NotSimulated{"the response " + (response_name_.empty() ? std::string("'' (none)") : response_name_) +
-                         " is not simulated yet (PenalityContactForceField, StickContactForceField and FrictionContactConstraint are)"};
+                         " is not simulated yet (PenalityContactForceField, StickContactForceField, FrictionContactConstraint and "
+                         "StickContactConstraint are)"};
     }
     if (friction && !loop_) {
-      throw NotSimulated{response->where() + ": FrictionContactConstraint makes Lagrangian constraints, which only a "
+      throw NotSimulated{response->where() + ": " + response_name_ + " makes Lagrangian constraints, which only a "
                          "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
     }
     if (!friction && loop_) {
@@ -89,15 +91,15 @@ class CollisionBuilder {
     std::vector<std::shared_ptr<PenaltyContactForceField<double>>> penalties(simulation_.objects.size());
     std::vector<std::shared_ptr<StickContactForceField<double>>> sticks(simulation_.objects.size());
     for (const auto& model : models) {
-      if (stick && model.kind == CollisionElements::spheres && model.points->is_rigid()) {
-        throw NotSimulated{model.where + ": SOFA has no StickContactForceField response for rigid spheres"};
+      if ((stick || stick_constraint) && model.kind == CollisionElements::spheres && model.points->is_rigid()) {
+        throw NotSimulated{model.where + ": SOFA has no " + response_name_ + " response for rigid spheres"};
       }
       if (!model.points->is_still() && !simulation_.objects[model.points->object()].topology_scripts.empty()) {
         throw NotSimulated{model.where + " is on " + simulation_.objects[model.points->object()].path +
                            ", whose topology a TopologicalChangeProcessor changes: contacts on a changing topology are not simulated yet"};
       }
     }
-    if (friction) return friction_pipeline(*response, p, std::move(models), nodes);
+    if (friction) return lagrangian_pipeline(*response, p, std::move(models), nodes, stick_constraint);
     std::vector<char> explicit_pairs(pairs.size(), 0);
     std::vector<std::shared_ptr<ExplicitContactForces<double>>> explicit_forces(simulation_.objects.size());
     const auto empty_mesh = [&](std::size_t o) {
@@ -188,26 +190,31 @@ class CollisionBuilder {
     return p;
   }
 
-  // SOFA's FrictionContactConstraint response: one UnilateralLagrangianConstraint per model pair,
-  // its rows placed as SOFA's graph places the response (the simulated model's node against a
-  // still one, else the pipeline's node: nodes in depth-first order, pairs in broad-phase order
-  // within a node), after the scene's own Lagrangian constraints.
-  std::shared_ptr<ContactPipeline<double>> friction_pipeline(Component& response, const typename ContactPipeline<double>::Parameters& p,
-                                                             std::vector<CollisionModel<double>> models,
-                                                             const std::vector<const GraphNode*>& nodes) {
+  // SOFA's Lagrangian contact responses: one constraint per model pair (FrictionContactConstraint's
+  // UnilateralLagrangianConstraint, or StickContactConstraint's bilateral one), its rows placed as
+  // SOFA's graph places the response (the simulated model's node against a still one, else the
+  // pipeline's node: nodes in depth-first order, pairs in broad-phase order within a node), after
+  // the scene's own Lagrangian constraints.
+  std::shared_ptr<ContactPipeline<double>> lagrangian_pipeline(Component& response, const typename ContactPipeline<double>::Parameters& p,
+                                                               std::vector<CollisionModel<double>> models,
+                                                               const std::vector<const GraphNode*>& nodes, bool stick) {
     typename UnilateralLagrangianConstraint<double>::Parameters parameters;
-    parse_response_parameters(response, parameters);
+    if (!stick) parse_response_parameters(response, parameters);
+    if (stick && response.has("responseParams") && !data_.text(response, "responseParams", "").empty()) {
+      data_.warn(response.where() + ": responseParams are not read by StickContactConstraint: ignored");
+    }
     std::set<std::size_t> corrected;
     for (const auto& correction : loop_->corrections) corrected.insert(correction->object());
     std::map<const GraphNode*, int> depth_first;
     number_nodes(data_.root(), depth_first);
     const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
     std::vector<std::shared_ptr<UnilateralLagrangianConstraint<double>>> constraints(pairs.size());
+    std::vector<std::shared_ptr<StickContactConstraint<double>>> sticks(pairs.size());
     std::vector<std::pair<int, std::size_t>> placed;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const auto& a = models[pairs[k].first];
       const auto& b = models[pairs[k].second];
-      if (a.contact_stiffness == 0 || b.contact_stiffness == 0) {
+      if (!stick && (a.contact_stiffness == 0 || b.contact_stiffness == 0)) {
         data_.warn(response.where() + ": " + a.where + " and " + b.where + ": a contactStiffness of 0 disables their "
                    "FrictionContactConstraint response, as in SOFA (no contacts between them)");
         continue;
@@ -215,17 +222,28 @@ class CollisionBuilder {
       for (const auto* side : {&a, &b}) {
         if (side->points->is_still() || corrected.count(side->points->object())) continue;
         throw error_at(side->where, make_error("its object ", simulation_.objects[side->points->object()].path,
-                                               " has no constraint correction, which its contacts (FrictionContactConstraint) "
-                                               "need: add a LinearSolverConstraintCorrection or an UncoupledConstraintCorrection"));
+                                               " has no constraint correction, which its contacts (", response_name_,
+                                               ") need: add a LinearSolverConstraintCorrection or an UncoupledConstraintCorrection"));
       }
-      constraints[k] = std::make_shared<UnilateralLagrangianConstraint<double>>(
-          response.where() + ": contacts of " + a.where + " and " + b.where, parameters);
+      const std::string where = response.where() + ": contacts of " + a.where + " and " + b.where;
+      if (stick) {
+        sticks[k] = std::make_shared<StickContactConstraint<double>>(where);
+      } else {
+        constraints[k] = std::make_shared<UnilateralLagrangianConstraint<double>>(where, parameters);
+      }
       const GraphNode* node = !a.simulated ? nodes[pairs[k].second] : !b.simulated ? nodes[pairs[k].first] : &pipeline_node_;
       placed.emplace_back(depth_first.at(node), k);
     }
     std::stable_sort(placed.begin(), placed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (const auto& [order, k] : placed) loop_->constraints.push_back(constraints[k]);
+    for (const auto& [order, k] : placed) {
+      if (stick) {
+        loop_->constraints.push_back(sticks[k]);
+      } else {
+        loop_->constraints.push_back(constraints[k]);
+      }
+    }
     try {
+      if (stick) return std::make_shared<ContactPipeline<double>>(p, std::move(models), std::move(sticks));
       return std::make_shared<ContactPipeline<double>>(p, std::move(models), std::move(constraints));
     } catch (const Error& error) {
       throw NotSimulated{error.what()};

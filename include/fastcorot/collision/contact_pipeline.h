@@ -17,6 +17,7 @@
 #include "fastcorot/collision/explicit_contact_forces.h"
 #include "fastcorot/collision/penalty_contact_force_field.h"
 #include "fastcorot/collision/stick_contact_force_field.h"
+#include "fastcorot/constraint/stick_contact_constraint.h"
 #include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 #include "fastcorot/sim/collision_stage.h"
 
@@ -56,6 +57,12 @@ class ContactPipeline final : public CollisionStage<Real> {
                   std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks, std::vector<char> explicit_pairs,
                   std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces);
 
+  // SOFA's StickContactConstraint response (with FreeMotionAnimationLoop): rule pair k gives its
+  // contacts to `stick_constraints[k]`, bilateral pairs at rest as found (after the same removal of
+  // duplicates), made again at every step that finds the pair and kept while a step finds nothing.
+  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
+                  std::vector<std::shared_ptr<StickContactConstraint<Real>>> stick_constraints);
+
   CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) override;
   std::span<const DetectedContact<Real>> contacts() const override { return detected_; }
   // The models' points, trees and neighbourhoods are updated one model per task, and each model
@@ -85,6 +92,12 @@ class ContactPipeline final : public CollisionStage<Real> {
   // constraint. Both return the contacts kept.
   int penalty_response(std::size_t k, const std::vector<Output>& outputs, std::vector<std::vector<PenaltyContact<Real>>>& contacts);
   int friction_response(std::size_t k, const std::vector<Output>& outputs);
+  int stick_constraint_response(std::size_t k, const std::vector<Output>& outputs, std::span<const SimulatedObject<Real>> objects);
+  // SOFA's removal of duplicates before its Lagrangian responses: an output whose two points' squared
+  // distances to a kept output's sum below 1e-8 is dropped.
+  static std::vector<const Output*> without_duplicates(const std::vector<Output>& outputs);
+  // The output's two points as contact sides (their objects, positions and J blocks).
+  void contact_sides(const ModelPair& pair, const Output& output, ContactSide<Real>& first, ContactSide<Real>& second) const;
   int stick_response(std::size_t k, const std::vector<Output>& outputs, std::span<const SimulatedObject<Real>> objects,
                      std::vector<std::vector<StickSpring<Real>>>& springs);
   // A kept output: drawn and reported (detected_), and watched for crossing (watch_).
@@ -111,6 +124,8 @@ class ContactPipeline final : public CollisionStage<Real> {
   std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints_;
   std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks_;
   std::vector<std::vector<StickSpring<Real>>> stick_springs_;  // per rule pair, alive from step to step
+  std::vector<std::shared_ptr<StickContactConstraint<Real>>> stick_constraints_;  // per rule pair
+  std::vector<std::vector<StickContact<Real>>> stick_contacts_;  // per rule pair, alive from step to step
   std::vector<std::vector<Vec3<Real>>> last_positions_;       // per object, at the last step's start
   std::vector<DetectedContact<Real>> detected_;
   // A contact's two points as weights on their elements' points, for end_step.
