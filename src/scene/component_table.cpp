@@ -27,7 +27,7 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 64> kIgnored = {
+constexpr std::array<std::string_view, 62> kIgnored = {
     "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
@@ -41,7 +41,7 @@ constexpr std::array<std::string_view, 64> kIgnored = {
     "VisualModelOBJExporter", "CompareState", "ReadState", "EdgeSetTopologyModifier",
     "EdgeSetGeometryAlgorithms", "ValuesFromPositions", "NaturalOrderingMethod",
     "AMDOrderingMethod", "METISOrderingMethod", "RCMOrderingMethod", "TaskSchedulerSettings",
-    "TetrahedronCollisionModel", "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase",
+    "TetrahedronCollisionModel",
     "PointSetTopologyModifier", "PointSetGeometryAlgorithms", "QuadSetTopologyModifier", "QuadSetGeometryAlgorithms",
     "HexahedronSetTopologyModifier", "HexahedronSetGeometryAlgorithms", "TrailRenderer",
     "CCDTightInclusionIntersection"};
@@ -81,12 +81,12 @@ std::span<const std::string_view> ignored_components() { return kIgnored; }
 
 
 bool is_collision_component(std::string_view name) {
-  static constexpr std::array<std::string_view, 22> kCollision = {
+  static constexpr std::array<std::string_view, 20> kCollision = {
       "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase", "BruteForceDetection",
       "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection", "DiscreteIntersection",
       "CollisionResponse", "DefaultContactManager", "RuleBasedContactManager", "TriangleCollisionModel", "LineCollisionModel",
       "PointCollisionModel", "SphereCollisionModel", "TetrahedronCollisionModel",
-      "ParallelBruteForceBroadPhase", "ParallelBVHNarrowPhase", "CompositeCollisionPipeline", "SubCollisionPipeline",
+      "CompositeCollisionPipeline", "SubCollisionPipeline",
       "CCDTightInclusionIntersection"};
   return std::find(kCollision.begin(), kCollision.end(), name) != kCollision.end();
 }

@@ -137,6 +137,25 @@ TEST(CollisionScene, APointMassRestsAtTheClosedFormHeightAndNeverSinks) {
   EXPECT_EQ(scene.simulation.collision_report().contacts, 1);
 }
 
+TEST(CollisionScene, SofasParallelPhasesAreThePhases) {
+  // The MultiThreading plugin's ParallelBruteForceBroadPhase and ParallelBVHNarrowPhase give the
+  // same outputs as the sequential phases (FreeMotionAnimationLoop.scn suggests the swap).
+  std::string text = point_over_floor(0.4);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"<BruteForceBroadPhase/>", "<ParallelBruteForceBroadPhase/>"},
+                                 {"<BVHNarrowPhase/>", "<ParallelBVHNarrowPhase/>"}}) {
+    text.replace(text.find(from), from.size(), to);
+  }
+  LoadedScene parallel = build_scene_text(text, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  LoadedScene plain = build_scene_text(point_over_floor(0.4), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  ASSERT_TRUE(parallel.simulation.collisions);
+  for (int step = 0; step < 100; ++step) {
+    parallel.simulation.step();
+    plain.simulation.step();
+    ASSERT_EQ(parallel.simulation.objects[0].system.state.position[0], plain.simulation.objects[0].system.state.position[0]) << step;
+  }
+  EXPECT_EQ(parallel.simulation.collision_report().contacts, 1);
+}
+
 TEST(CollisionScene, APointThatCrossesTheFloorInOneStepIsReported) {
   // Found 0.4 above the floor moving down at 100 m/s: the penalty cannot stop it within the step.
   LoadedScene fast = build_scene_text(point_over_floor(0.4), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
