@@ -40,11 +40,33 @@ void UnilateralFrictionResolution<Real>::resolve(int line, const DenseMatrix<Rea
 }
 
 template <class Real>
+void AugmentedLagrangianFrictionResolution<Real>::resolve(int line, const DenseMatrix<Real>&, const Real* d, Real* f, const Real*) {
+  f[line] -= d[line] * epsilon_;
+  if (f[line] < 0) {
+    f[line] = f[line + 1] = f[line + 2] = 0;
+    return;
+  }
+  const Real t0 = f[line + 1] - d[line + 1] * epsilon_;
+  const Real t1 = f[line + 2] - d[line + 2] * epsilon_;
+  if (std::sqrt(t0 * t0 + t1 * t1) - mu_ * std::abs(f[line]) < 0) {
+    f[line + 1] = t0;
+    f[line + 2] = t1;
+    return;
+  }
+  const Real slide = std::sqrt(d[line + 1] * d[line + 1] + d[line + 2] * d[line + 2]);
+  f[line + 1] -= mu_ * d[line] * epsilon_ * d[line + 1] / slide;
+  f[line + 2] -= mu_ * d[line] * epsilon_ * d[line + 2] / slide;
+}
+
+template <class Real>
 UnilateralLagrangianConstraint<Real>::UnilateralLagrangianConstraint(std::string where, Parameters parameters)
     : LagrangianConstraint<Real>(std::move(where)), parameters_(parameters) {
   if (!(parameters_.mu >= 0) || !std::isfinite(parameters_.mu)) throw make_error("mu = ", parameters_.mu, " must be finite and ≥ 0");
   if (!(parameters_.tolerance >= 0) || !std::isfinite(parameters_.tolerance)) {
     throw make_error("tol = ", parameters_.tolerance, " must be finite and ≥ 0");
+  }
+  if (!(parameters_.epsilon >= 0) || !std::isfinite(parameters_.epsilon)) {
+    throw make_error("epsilon = ", parameters_.epsilon, " must be finite and ≥ 0");
   }
 }
 
@@ -141,7 +163,10 @@ void UnilateralLagrangianConstraint<Real>::violation(ConstraintOrder order, Real
 template <class Real>
 void UnilateralLagrangianConstraint<Real>::add_resolutions(ConstraintProblem<Real>& problem) {
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    if (rows_per_contact() == 3) {
+    if (rows_per_contact() == 3 && parameters_.augmented) {
+      problem.add_block(
+          std::make_unique<AugmentedLagrangianFrictionResolution<Real>>(parameters_.mu, parameters_.epsilon, parameters_.tolerance));
+    } else if (rows_per_contact() == 3) {
       problem.add_block(std::make_unique<UnilateralFrictionResolution<Real>>(parameters_.mu, parameters_.tolerance));
     } else {
       problem.add_block(std::make_unique<UnilateralResolution<Real>>());
@@ -150,6 +175,7 @@ void UnilateralLagrangianConstraint<Real>::add_resolutions(ConstraintProblem<Rea
 }
 
 template class UnilateralFrictionResolution<double>;
+template class AugmentedLagrangianFrictionResolution<double>;
 template class UnilateralLagrangianConstraint<double>;
 
 }  // namespace fastcorot

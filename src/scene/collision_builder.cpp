@@ -74,12 +74,13 @@ class CollisionBuilder {
     const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
     response_name_ = pair_response(manager, models, identities, pairs);
     const bool stick_constraint = response_name_ == "StickContactConstraint";
-    const bool friction = response_name_ == "FrictionContactConstraint" || stick_constraint;
+    const bool friction = response_name_ == "FrictionContactConstraint" || response_name_ == "AugmentedLagrangianResponseConstraint" ||
+                          stick_constraint;
     const bool stick = response_name_ == "StickContactForceField";
     if (!friction && !stick && response_name_ != "PenalityContactForceField") {
       throw NotSimulated{"the response " + (response_name_.empty() ? std::string("'' (none)") : response_name_) +
-                         " is not simulated yet (PenalityContactForceField, StickContactForceField, FrictionContactConstraint and "
-                         "StickContactConstraint are)"};
+                         " is not simulated yet (PenalityContactForceField, StickContactForceField, FrictionContactConstraint, "
+                         "AugmentedLagrangianResponseConstraint and StickContactConstraint are)"};
     }
     if (friction && !loop_) {
       throw NotSimulated{response->where() + ": " + response_name_ + " makes Lagrangian constraints, which only a "
@@ -199,6 +200,10 @@ class CollisionBuilder {
                                                                std::vector<CollisionModel<double>> models,
                                                                const std::vector<const GraphNode*>& nodes, bool stick) {
     typename UnilateralLagrangianConstraint<double>::Parameters parameters;
+    if (response_name_ == "AugmentedLagrangianResponseConstraint") {
+      parameters.augmented = true;
+      parameters.mu = 0;  // its own default, where FrictionContactConstraint's is 0.8
+    }
     if (!stick) parse_response_parameters(response, parameters);
     if (stick && response.has("responseParams") && !data_.text(response, "responseParams", "").empty()) {
       data_.warn(response.where() + ": responseParams are not read by StickContactConstraint: ignored");
@@ -215,8 +220,8 @@ class CollisionBuilder {
       const auto& a = models[pairs[k].first];
       const auto& b = models[pairs[k].second];
       if (!stick && (a.contact_stiffness == 0 || b.contact_stiffness == 0)) {
-        data_.warn(response.where() + ": " + a.where + " and " + b.where + ": a contactStiffness of 0 disables their "
-                   "FrictionContactConstraint response, as in SOFA (no contacts between them)");
+        data_.warn(response.where() + ": " + a.where + " and " + b.where + ": a contactStiffness of 0 disables their " +
+                   response_name_ + " response, as in SOFA (no contacts between them)");
         continue;
       }
       for (const auto* side : {&a, &b}) {
@@ -274,12 +279,15 @@ class CollisionBuilder {
         parameters.mu = value;
       } else if (name == "tol") {
         parameters.tolerance = value;
+      } else if (name == "epsilon" && parameters.augmented) {
+        parameters.epsilon = value;
       } else {
-        data_.warn(response.where() + ": responseParams: '" + name + "' is not a parameter of FrictionContactConstraint (mu, tol): ignored");
+        data_.warn(response.where() + ": responseParams: '" + name + "' is not a parameter of " + response_name_ + " (mu, tol" +
+                   (parameters.augmented ? ", epsilon" : "") + "): ignored");
       }
     }
-    if (!(parameters.mu >= 0) || !(parameters.tolerance >= 0)) {
-      throw error_at(response.where(), make_error("responseParams: mu and tol must be ≥ 0"));
+    if (!(parameters.mu >= 0) || !(parameters.tolerance >= 0) || !(parameters.epsilon >= 0)) {
+      throw error_at(response.where(), make_error("responseParams: mu, tol and epsilon must be ≥ 0"));
     }
   }
 

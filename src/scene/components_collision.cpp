@@ -55,8 +55,8 @@ std::vector<ComponentSpec> collision_components() {
   auto new_proximity = proximity;
   new_proximity.push_back({"useLineLine", "bool", "false", "edge–edge pairs (Line–Line, and between triangles' edges)"});
   const std::vector<AttributeSpec> response = {
-      {"response", "string", "PenalityContactForceField", "PenalityContactForceField, StickContactForceField, FrictionContactConstraint or StickContactConstraint"},
-      {"responseParams", "string", "", "FrictionContactConstraint's data as name=value joined by &: mu (0.8), tol (0: the solver's)"},
+      {"response", "string", "PenalityContactForceField", "PenalityContactForceField, StickContactForceField, FrictionContactConstraint, AugmentedLagrangianResponseConstraint or StickContactConstraint"},
+      {"responseParams", "string", "", "the Lagrangian response's data as name=value joined by &: mu (FrictionContactConstraint 0.8, AugmentedLagrangianResponseConstraint 0), tol (0: the solver's), epsilon (AugmentedLagrangianResponseConstraint's penalty factor, 0)"},
       {"mu", "real", "", "accepted (friction is not part of the penalty response)"}};
   auto rule_based = response;
   rule_based.insert(rule_based.end(),
@@ -64,7 +64,7 @@ std::vector<ComponentSpec> collision_components() {
                      {"variables", "string", "", "names of further attributes whose values replace $name$ in the rules' responses"}});
   return {
       {"CollisionPipeline", "collision",
-       "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection and the PenalityContactForceField response (implicit in a body's step, or explicit between two bodies' solvers), StickContactForceField, or FrictionContactConstraint or StickContactConstraint under FreeMotionAnimationLoop; what is not (tetrahedron models, moving obstacles, grid and volume topologies as surfaces) is ignored with a warning saying why.",
+       "SOFA's collision pipeline: at each step's start, contacts found at the current positions with the scene's intersection method, and their responses for the step. Simulated here with MinProximityIntersection, NewProximityIntersection, LocalMinDistance or DiscreteIntersection and the PenalityContactForceField response (implicit in a body's step, or explicit between two bodies' solvers), StickContactForceField, or FrictionContactConstraint, AugmentedLagrangianResponseConstraint or StickContactConstraint under FreeMotionAnimationLoop; what is not (tetrahedron models, moving obstacles, grid and volume topologies as surfaces) is ignored with a warning saying why.",
        {{"depth", "int", "6", "SOFA's tree depth: 6 is followed; another value is warned (it orders exactly tied contacts only)"},
         {"verbose", "bool", "false", "accepted"},
         {"draw", "bool", "false", "accepted"}},
@@ -97,7 +97,7 @@ std::vector<ComponentSpec> collision_components() {
       {"DiscreteIntersection", "collision",
        "SOFA's DiscreteIntersection: overlapping spheres (Sphere–Sphere), no alarm or contact distance.", {}},
       {"CollisionResponse", "collision",
-       "The contact manager: each model pair's outputs become a PenalityContactForceField (one contact per id: the closest), k = k₁ k₂ / d, pen = d − (y₂ − y₁)·n, force k pen n when pen > 0, implicit in the body's step; or StickContactForceField springs (one per id, at rest when made: ks₁ + ks₂ on y₂ − y₁ − R, damping cf₁ + cf₂; made again at every step that finds the pair, kept while a step finds nothing); or, under FreeMotionAnimationLoop, a FrictionContactConstraint (a UnilateralLagrangianConstraint: a normal row per contact, with two tangent rows in Coulomb's disk when mu > 0) or a StickContactConstraint (a BilateralLagrangianConstraint: three rows per contact holding its two points at their offset when found, made again at every step that finds the pair, kept while a step finds nothing).",
+       "The contact manager: each model pair's outputs become a PenalityContactForceField (one contact per id: the closest), k = k₁ k₂ / d, pen = d − (y₂ − y₁)·n, force k pen n when pen > 0, implicit in the body's step; or StickContactForceField springs (one per id, at rest when made: ks₁ + ks₂ on y₂ − y₁ − R, damping cf₁ + cf₂; made again at every step that finds the pair, kept while a step finds nothing); or, under FreeMotionAnimationLoop, a FrictionContactConstraint (a UnilateralLagrangianConstraint: a normal row per contact, with two tangent rows in Coulomb's disk when mu > 0), an AugmentedLagrangianResponseConstraint (the same rows; with friction its blocks move the impulses by epsilon times the violations, SOFA's augmented Lagrangian resolution) or a StickContactConstraint (a BilateralLagrangianConstraint: three rows per contact holding its two points at their offset when found, made again at every step that finds the pair, kept while a step finds nothing).",
        response,
        {"DefaultContactManager"}},
       {"RuleBasedContactManager", "collision",

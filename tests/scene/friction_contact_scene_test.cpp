@@ -203,13 +203,75 @@ TEST(FrictionContactScene, FrictionResolutionMatchesCoulombsDiskByHand) {
   EXPECT_EQ(g[2], 0.0);
 }
 
+TEST(FrictionContactScene, AugmentedLagrangianResolutionByHand) {
+  // SOFA's AugmentedLagrangianResolutionWithFriction, ε = 0.5, μ = 0.5, W unused.
+  AugmentedLagrangianFrictionResolution<double> resolution(0.5, 0.5, 0);
+  const DenseMatrix<double> w = DenseMatrix<double>::Identity(3, 3) * 7;
+  // λ_n = 1 − 0.5·(−2) = 2; tangents (0.2, 0) − 0.5·(0.4, 0.2) = (0, −0.1): inside μ λ_n = 1, kept.
+  double f[3] = {1, 0.2, 0};
+  const double d[3] = {-2, 0.4, 0.2};
+  resolution.resolve(0, w, d, f, d);
+  EXPECT_DOUBLE_EQ(f[0], 2);
+  EXPECT_DOUBLE_EQ(f[1], 0);
+  EXPECT_DOUBLE_EQ(f[2], -0.1);
+  // λ_n = 0 − 0.5·(−1) = 0.5; tangents (0, 0) − 0.5·(3, 4) = (−1.5, −2): outside μ λ_n = 0.25, so
+  // instead λ_t −= μ ε d_n d_t / |d_t| = −0.25·(−1)·(0.6, 0.8) → (0.15, 0.2).
+  double g[3] = {0, 0, 0};
+  const double e[3] = {-1, 3, 4};
+  resolution.resolve(0, w, e, g, e);
+  EXPECT_DOUBLE_EQ(g[0], 0.5);
+  EXPECT_DOUBLE_EQ(g[1], 0.15);
+  EXPECT_DOUBLE_EQ(g[2], 0.2);
+  // Pulling: all three released.
+  double h[3] = {0.1, 1, 1};
+  const double apart[3] = {1, 0, 0};
+  resolution.resolve(0, w, apart, h, apart);
+  EXPECT_EQ(h[0], 0.0);
+  EXPECT_EQ(h[1], 0.0);
+  EXPECT_EQ(h[2], 0.0);
+}
+
+TEST(FrictionContactScene, AugmentedLagrangianResponseWithoutFrictionIsTheUnilateralOne) {
+  // Its own default mu is 0: one row per contact, resolved as UnilateralResolution, so the point
+  // on the incline follows FrictionContactConstraint with mu=0 bit for bit; with mu > 0 it has
+  // three rows and slides otherwise.
+  const auto augmented = [](const std::string& params) {
+    std::string text = point_on_incline(0);
+    text.replace(text.find("response=\"FrictionContactConstraint\" responseParams=\"mu=0\""),
+                 std::string("response=\"FrictionContactConstraint\" responseParams=\"mu=0\"").size(),
+                 "response=\"AugmentedLagrangianResponseConstraint\" responseParams=\"" + params + "\"");
+    return build_scene_text(text, tilted_gravity(0.4));
+  };
+  LoadedScene plain = build_scene_text(point_on_incline(0), tilted_gravity(0.4));
+  LoadedScene frictionless = augmented("epsilon=10");
+  LoadedScene rough = augmented("mu=0.8&epsilon=10");
+  ASSERT_TRUE(frictionless.simulation.collisions);
+  ASSERT_TRUE(rough.simulation.collisions);
+  bool differs = false;
+  for (int step = 0; step < 50; ++step) {
+    plain.simulation.step();
+    frictionless.simulation.step();
+    rough.simulation.step();
+    ASSERT_EQ(plain.simulation.objects[0].system.state.position[0], frictionless.simulation.objects[0].system.state.position[0]) << step;
+    differs = differs || rough.simulation.objects[0].system.state.position[0] != plain.simulation.objects[0].system.state.position[0];
+  }
+  EXPECT_TRUE(differs) << "friction holds the point back";
+  const auto* loop = dynamic_cast<const FreeMotionAnimationLoop<double>*>(rough.simulation.constraints.get());
+  ASSERT_NE(loop, nullptr);
+  const auto* contact = dynamic_cast<const UnilateralLagrangianConstraint<double>*>(loop->constraints.back().get());
+  ASSERT_NE(contact, nullptr);
+  EXPECT_EQ(contact->rows_per_contact(), 3);
+  EXPECT_TRUE(contact->parameters().augmented);
+  EXPECT_EQ(contact->parameters().epsilon, 10);
+}
+
 TEST(FrictionContactScene, BadInputAndUnsupportedSettingsAreSaid) {
   std::string garbage = point_on_incline(0.3);
   garbage.replace(garbage.find("responseParams=\"mu=0.29999999999999999\""), std::string("responseParams=\"mu=0.29999999999999999\"").size(), "responseParams=\"mu=abc\"");
   EXPECT_NE(scene_error(garbage).find("responseParams: 'mu=abc' is not name=number"), std::string::npos) << scene_error(garbage);
   std::string negative = point_on_incline(0.3);
   negative.replace(negative.find("mu=0.29999999999999999"), std::string("mu=0.29999999999999999").size(), "mu=-1");
-  EXPECT_NE(scene_error(negative).find("mu and tol must be ≥ 0"), std::string::npos) << scene_error(negative);
+  EXPECT_NE(scene_error(negative).find("mu, tol and epsilon must be ≥ 0"), std::string::npos) << scene_error(negative);
   std::string uncorrected = point_on_incline(0.3);
   uncorrected.replace(uncorrected.find("<LinearSolverConstraintCorrection/>"), std::string("<LinearSolverConstraintCorrection/>").size(), "");
   EXPECT_NE(scene_error(uncorrected).find("has no constraint correction"), std::string::npos) << scene_error(uncorrected);

@@ -58,14 +58,34 @@ class UnilateralFrictionResolution final : public ConstraintResolution<Real> {
   Real w_nn_ = 0, w_nt_ = 0, w_ns_ = 0, w_tt_ = 0, w_ss_ = 0;
 };
 
+// SOFA's AugmentedLagrangianResolutionWithFriction (AugmentedLagrangianConstraint.cpp): the normal
+// impulse moved by −ε d_n (all three zero when it would pull), the tangent ones by −ε d_t; kept when
+// inside the disk |λ_t| < mu |λ_n|, else moved instead by −mu ε d_n d_t / |d_t| from where they
+// were. W is not used (SOFA reads it and leaves it).
+template <class Real>
+class AugmentedLagrangianFrictionResolution final : public ConstraintResolution<Real> {
+ public:
+  AugmentedLagrangianFrictionResolution(Real mu, Real epsilon, Real tolerance)
+      : ConstraintResolution<Real>(3, tolerance), mu_(mu), epsilon_(epsilon) {}
+  void resolve(int line, const DenseMatrix<Real>& w, const Real* d, Real* f, const Real* dfree) override;
+
+ private:
+  Real mu_, epsilon_;
+};
+
 template <class Real>
 class UnilateralLagrangianConstraint final : public LagrangianConstraint<Real> {
  public:
   struct Parameters {
     Real mu = Real(0.8);  // FrictionContactConstraint's mu: tangent rows when > 0
     Real tolerance = 0;   // its tol: the friction blocks' own tolerance (0: the solver's)
+    // SOFA's AugmentedLagrangianResponseConstraint (AugmentedLagrangianConstraint): the same rows,
+    // solved by AugmentedLagrangianFrictionResolution with penalty factor `epsilon` when mu > 0
+    // (without friction its resolution is UnilateralResolution's).
+    bool augmented = false;
+    Real epsilon = 0;
   };
-  // Throws fastcorot::Error for a negative or non-finite mu or tolerance.
+  // Throws fastcorot::Error for a negative or non-finite mu, tolerance or epsilon.
   UnilateralLagrangianConstraint(std::string where, Parameters parameters);
 
   // This step's contacts (the collision stage sets them before the free motion).
