@@ -72,7 +72,10 @@ class CollisionBuilder {
       }
     }
     const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
-    response_name_ = pair_response(manager, models, identities, pairs);
+    // SOFA's contact factory: the name before '?', its parameters after.
+    const std::string chosen = pair_response(manager, models, identities, pairs);
+    response_name_ = chosen.substr(0, chosen.find('?'));
+    response_parameters_ = chosen.find('?') == std::string::npos ? "" : chosen.substr(chosen.find('?') + 1);
     const bool stick_constraint = response_name_ == "StickContactConstraint";
     const bool friction = response_name_ == "FrictionContactConstraint" || response_name_ == "AugmentedLagrangianResponseConstraint" ||
                           stick_constraint;
@@ -85,6 +88,9 @@ class CollisionBuilder {
     if (friction && !loop_) {
       throw NotSimulated{response->where() + ": " + response_name_ + " makes Lagrangian constraints, which only a "
                          "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
+    }
+    if (!friction && !response_parameters_.empty()) {
+      data_.warn(response->where() + ": parameters '" + response_parameters_ + "' are not read by " + response_name_ + ": ignored");
     }
     if (!friction && loop_) {
       throw NotSimulated{response_name_ + " contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
@@ -205,8 +211,8 @@ class CollisionBuilder {
       parameters.mu = 0;  // its own default, where FrictionContactConstraint's is 0.8
     }
     if (!stick) parse_response_parameters(response, parameters);
-    if (stick && response.has("responseParams") && !data_.text(response, "responseParams", "").empty()) {
-      data_.warn(response.where() + ": responseParams are not read by StickContactConstraint: ignored");
+    if (stick && !response_parameters_.empty()) {
+      data_.warn(response.where() + ": parameters '" + response_parameters_ + "' are not read by StickContactConstraint: ignored");
     }
     std::set<std::size_t> corrected;
     for (const auto& correction : loop_->corrections) corrected.insert(correction->object());
@@ -255,12 +261,13 @@ class CollisionBuilder {
     }
   }
 
-  // SOFA's responseParams: "name=value" pairs joined by '&' (mu, tol); other names warned.
+  // The response's parameters (the manager's responseParams, or what follows '?' in a model's or a
+  // rule's response): "name=value" pairs joined by '&' or '?' (mu, tol, epsilon); other names warned.
   void parse_response_parameters(Component& response, typename UnilateralLagrangianConstraint<double>::Parameters& parameters) {
-    const std::string text = data_.text(response, "responseParams", "");
+    const std::string& text = response_parameters_;
     std::size_t start = 0;
     while (start < text.size()) {
-      const std::size_t end = std::min(text.find('&', start), text.size());
+      const std::size_t end = std::min(text.find_first_of("&?", start), text.size());
       const std::string item = text.substr(start, end - start);
       start = end + 1;
       if (item.empty()) continue;
@@ -340,6 +347,7 @@ class CollisionBuilder {
   FreeMotionAnimationLoop<double>* loop_ = nullptr;
   IntersectionMethod method_ = IntersectionMethod::min_proximity;
   std::string response_name_ = "PenalityContactForceField";
+  std::string response_parameters_;  // what follows '?' in the pairs' response
   std::optional<CollisionModelReader> reader_;
 };
 

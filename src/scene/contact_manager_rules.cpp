@@ -21,7 +21,9 @@ bool ContactManagerRules::Rule::Word::matches(const ContactModelIdentity& model)
 
 ContactManagerRules::ContactManagerRules(SceneData& data, Component& manager) : data_(data), manager_(manager) {
   default_response_ = data_.text(manager, "response", "PenalityContactForceField");
-  if (manager.type() != "RuleBasedContactManager") return;
+  if (const std::string params = data_.text(manager, "responseParams", ""); !params.empty()) default_response_ += "?" + params;
+  rule_based_ = manager.type() == "RuleBasedContactManager";
+  if (!rule_based_) return;
   std::istringstream variables(data_.text(manager, "variables", ""));
   for (std::string name; variables >> name;) variables_.push_back(name);
   default_response_ = substituted(default_response_);
@@ -80,8 +82,16 @@ std::string ContactManagerRules::substituted(const std::string& response) const 
 }
 
 std::string ContactManagerRules::response(const ContactModelIdentity& model1, const ContactModelIdentity& model2) const {
-  if (!model1.contact_response.empty()) return model1.contact_response;
-  if (!model2.contact_response.empty()) return model2.contact_response;
+  const std::string& own1 = model1.contact_response;
+  const std::string& own2 = model2.contact_response;
+  if (!rule_based_) {
+    // SOFA's CollisionResponse::getContactResponse.
+    if (own1.empty()) return own2.empty() ? default_response_ : own2;
+    if (own2.empty() || own1 == own2) return own1;
+    return default_response_;
+  }
+  if (!own1.empty()) return own1;
+  if (!own2.empty()) return own2;
   for (const Rule& rule : rules_) {
     if ((rule.first.matches(model1) && rule.second.matches(model2)) || (rule.first.matches(model2) && rule.second.matches(model1))) {
       return rule.response;

@@ -26,10 +26,13 @@ class ContactManagerRules {
   // its variables (each an attribute of the manager).
   ContactManagerRules(SceneData& data, Component& manager);
 
-  // The response of the pair (model1, model2), in SOFA's order: model1's own contactResponse, then
-  // model2's, then the first rule that matches the pair either way round, then the manager's
-  // response. $name$ in a rule's or the manager's response is the variable's value (replaced once,
-  // when read; an unknown variable is warned and replaced by nothing, as SOFA).
+  // The response of the pair (model1, model2) as SOFA's contact factory reads it: a response name,
+  // then optionally '?' and its parameters (name=value joined by '&'). The manager's response carries
+  // its responseParams so. CollisionResponse: the models' own contactResponse when only one has one
+  // or both agree, else the manager's. RuleBasedContactManager: model1's own, else model2's, else the
+  // first rule that matches the pair either way round, else the manager's. $name$ in a rule's or the
+  // manager's response is the variable's value (replaced once, when read; an unknown variable is
+  // warned and replaced by nothing, as SOFA).
   std::string response(const ContactModelIdentity& model1, const ContactModelIdentity& model2) const;
 
   const std::string& default_response() const { return default_response_; }
@@ -52,6 +55,7 @@ class ContactManagerRules {
   std::string default_response_;
   std::vector<Rule> rules_;
   std::vector<std::string> variables_;
+  bool rule_based_ = false;
 };
 
 }  // namespace fastcorot::scene_detail

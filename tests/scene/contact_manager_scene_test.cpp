@@ -3,6 +3,8 @@
 // before them, the manager's response otherwise. Each case is checked against the same scene written
 // with a plain CollisionResponse giving that response, bit for bit, and against the other response,
 // which must differ.
+#include "fastcorot/constraint/free_motion_animation_loop.h"
+#include "fastcorot/constraint/unilateral_lagrangian_constraint.h"
 #include "fastcorot/scene/scene_builder.h"
 
 #include "../support/scene_text.h"
@@ -108,6 +110,45 @@ TEST(ContactManagerScene, AModelsOwnResponseComesFirst) {
       balls_over_floor("<CollisionResponse response=\"PenalityContactForceField\"/>", 1, "contactResponse=\"StickContactForceField\""), kRoot);
   ASSERT_TRUE(scene.simulation.collisions);
   EXPECT_EQ(heights(std::move(scene)), heights_with("StickContactForceField"));
+}
+
+TEST(ContactManagerScene, CollisionResponseTakesTheModelsOwnResponseOnlyWhenTheyAgree) {
+  // SOFA's CollisionResponse::getContactResponse: one model's own response, or both when equal;
+  // two different ones give the manager's (RuleBasedContactManager would take the first model's).
+  const std::string floor_stick = "<TriangleCollisionModel name=\"floor\" group=\"2\" simulated=\"0\" moving=\"0\" contactStiffness=\"20\"";
+  const auto with_floor_response = [&](const std::string& manager, const std::string& ball, const std::string& floor) {
+    std::string text = balls_over_floor(manager, 1, ball);
+    text.replace(text.find(floor_stick), floor_stick.size(), floor_stick + " " + floor);
+    return build_scene_text(text, kRoot);
+  };
+  const std::string plain = "<CollisionResponse response=\"PenalityContactForceField\"/>";
+  EXPECT_EQ(heights(with_floor_response(plain, "", "contactResponse=\"StickContactForceField\"")), heights_with("StickContactForceField"));
+  EXPECT_EQ(heights(with_floor_response(plain, "contactResponse=\"StickContactForceField\"", "contactResponse=\"StickContactForceField\"")),
+            heights_with("StickContactForceField"));
+  LoadedScene disagree = with_floor_response(plain, "contactResponse=\"StickContactForceField\"", "contactResponse=\"PenalityContactForceField?x=1\"");
+  EXPECT_EQ(heights(std::move(disagree)), heights_with("PenalityContactForceField"));
+}
+
+TEST(ContactManagerScene, AResponseCarriesItsParametersAfterAQuestionMark) {
+  // SOFA's contact factory reads "Name?a=1&b=2": the manager's response carries its responseParams
+  // so, and a model's own response or a rule's may carry its own.
+  const std::string loop = "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"50\" tolerance=\"1e-12\"/>";
+  const auto friction_mu = [&](const std::string& manager, const std::string& ball) {
+    std::string text = balls_over_floor(loop + manager, 1, ball);
+    text.replace(text.find("<UniformMass"), 0, "<UncoupledConstraintCorrection/>");
+    LoadedScene scene = build_scene_text(text, kRoot);
+    const auto* free_motion = dynamic_cast<const FreeMotionAnimationLoop<double>*>(scene.simulation.constraints.get());
+    EXPECT_NE(free_motion, nullptr);
+    if (!free_motion) return -1.0;
+    const auto* contact = dynamic_cast<const UnilateralLagrangianConstraint<double>*>(free_motion->constraints.back().get());
+    EXPECT_NE(contact, nullptr);
+    return contact ? contact->parameters().mu : -1.0;
+  };
+  EXPECT_EQ(friction_mu("<CollisionResponse response=\"FrictionContactConstraint\" responseParams=\"mu=0.25\"/>", ""), 0.25);
+  EXPECT_EQ(friction_mu("<CollisionResponse response=\"PenalityContactForceField\"/>", "contactResponse=\"FrictionContactConstraint?mu=0.125\""),
+            0.125);
+  EXPECT_EQ(friction_mu("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"* * FrictionContactConstraint?mu=0.5&amp;tol=1e-9\"/>", ""),
+            0.5);
 }
 
 TEST(ContactManagerScene, PairsGivenDifferentResponsesAreWarnedNotSimulated) {
