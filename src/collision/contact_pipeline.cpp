@@ -36,83 +36,48 @@ std::vector<typename ContactPipeline<Real>::ModelPair> ContactPipeline<Real>::ru
 }
 
 template <class Real>
-ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                                       std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties,
-                                       std::vector<char> explicit_pairs, std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces)
-    : parameters_(parameters),
-      models_(std::move(models)),
-      penalties_(std::move(penalties)),
-      explicit_pairs_(std::move(explicit_pairs)),
-      explicit_forces_(std::move(explicit_forces)) {
-  check_pairs([&](std::size_t o) { return o < penalties_.size() && penalties_[o]; });
-}
-
-template <class Real>
-ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                                       std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks, std::vector<char> explicit_pairs,
-                                       std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces)
-    : parameters_(parameters),
-      models_(std::move(models)),
-      explicit_pairs_(std::move(explicit_pairs)),
-      explicit_forces_(std::move(explicit_forces)),
-      sticks_(std::move(sticks)) {
-  check_pairs([&](std::size_t o) { return o < sticks_.size() && sticks_[o]; });
-  stick_springs_.resize(pairs_.size());
-  last_positions_.resize(sticks_.size());
-}
-
-template <class Real>
-void ContactPipeline<Real>::check_pairs(const std::function<bool(std::size_t)>& has_implicit_field) {
+ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models, Responses responses)
+    : parameters_(parameters), models_(std::move(models)), responses_(std::move(responses)) {
   for (const auto& m : models_) {
     if (!m.points) throw make_error(m.where, ": a collision model without points");
   }
   pairs_ = rule_pairs(models_, parameters_);
-  explicit_pairs_.resize(pairs_.size(), 0);
+  if (responses_.kind.size() != pairs_.size()) {
+    throw make_error("the collision pipeline has ", pairs_.size(), " model pairs but ", responses_.kind.size(), " responses");
+  }
+  responses_.explicit_pairs.resize(pairs_.size(), 0);
+  responses_.constraints.resize(pairs_.size());
+  responses_.stick_constraints.resize(pairs_.size());
+  check_pairs();
+  stick_springs_.resize(pairs_.size());
+  stick_contacts_.resize(pairs_.size());
+}
+
+template <class Real>
+void ContactPipeline<Real>::check_pairs() {
+  const auto& r = responses_;
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const std::string& where = models_[pairs_[k].first].where;
+    const Response kind = r.kind[k];
+    if (kind == Response::friction && !r.constraints[k]) throw make_error(where, ": no contact constraint for its pair");
+    if (kind == Response::stick_constraint && !r.stick_constraints[k]) throw make_error(where, ": no stick constraint for its pair");
+    if (kind != Response::penalty && kind != Response::stick_springs) continue;
     const auto& a = *models_[pairs_[k].first].points;
     const auto& b = *models_[pairs_[k].second].points;
-    const bool is_explicit = explicit_pairs_[k] != 0;
+    const bool is_explicit = r.explicit_pairs[k] != 0;
     if (!is_explicit && !a.is_still() && !b.is_still() && a.object() != b.object()) {
-      throw make_error(models_[pairs_[k].first].where, " and ", models_[pairs_[k].second].where,
+      throw make_error(where, " and ", models_[pairs_[k].second].where,
                        " are on two bodies each integrated by its own ODE solver: their contacts can only be explicit");
     }
     for (const auto* side : {&a, &b}) {
       if (side->is_still()) continue;
       const auto o = side->object();
-      const bool present = is_explicit ? o < explicit_forces_.size() && explicit_forces_[o] : has_implicit_field(o);
-      if (!present) throw make_error(models_[pairs_[k].first].where, ": no contact force field on its object");
+      const bool present = is_explicit                ? o < r.explicit_forces.size() && r.explicit_forces[o]
+                           : kind == Response::penalty ? o < r.penalties.size() && r.penalties[o]
+                                                       : o < r.sticks.size() && r.sticks[o];
+      if (!present) throw make_error(where, ": no contact force field on its object");
     }
   }
-}
-
-template <class Real>
-ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                                       std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints)
-    : parameters_(parameters), models_(std::move(models)), constraints_(std::move(constraints)) {
-  for (const auto& m : models_) {
-    if (!m.points) throw make_error(m.where, ": a collision model without points");
-  }
-  pairs_ = rule_pairs(models_, parameters_);
-  if (constraints_.size() != pairs_.size()) {
-    throw make_error("the collision pipeline has ", pairs_.size(), " model pairs but ", constraints_.size(), " contact constraints");
-  }
-}
-
-template <class Real>
-ContactPipeline<Real>::ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                                       std::vector<std::shared_ptr<StickContactConstraint<Real>>> stick_constraints)
-    : parameters_(parameters), models_(std::move(models)), stick_constraints_(std::move(stick_constraints)) {
-  for (const auto& m : models_) {
-    if (!m.points) throw make_error(m.where, ": a collision model without points");
-  }
-  pairs_ = rule_pairs(models_, parameters_);
-  if (stick_constraints_.size() != pairs_.size()) {
-    throw make_error("the collision pipeline has ", pairs_.size(), " model pairs but ", stick_constraints_.size(), " stick constraints");
-  }
-  for (const auto& c : stick_constraints_) {
-    if (!c) throw make_error("the collision pipeline misses a stick constraint");
-  }
-  stick_contacts_.resize(pairs_.size());
 }
 
 template <class Real>
@@ -285,32 +250,35 @@ CollisionReport ContactPipeline<Real>::begin_step(std::span<SimulatedObject<Real
     }
   });
   for (const int d : degenerate) report.degenerate_elements += d;
-  std::vector<std::vector<PenaltyContact<Real>>> contacts(penalties_.size());
+  auto& r = responses_;
+  std::vector<std::vector<PenaltyContact<Real>>> contacts(r.penalties.size());
   detected_.clear();
   watch_.clear();
-  for (auto& forces : explicit_forces_) {
+  for (auto& forces : r.explicit_forces) {
     if (forces) forces->clear();
   }
-  std::vector<std::vector<StickSpring<Real>>> springs(sticks_.size());
+  std::vector<std::vector<StickSpring<Real>>> springs(r.sticks.size());
+  bool kept_alive = false;  // a response that follows its points from the last step's positions
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const Response kind = r.kind[k];
+    if (kind == Response::none) continue;
     const std::vector<Output> outputs = narrow_phase(pairs_[k], report);
-    if (!constraints_.empty()) {
-      report.contacts += friction_response(k, outputs);
-    } else if (!stick_constraints_.empty()) {
-      report.contacts += stick_constraint_response(k, outputs, objects);
-    } else if (!sticks_.empty()) {
-      report.contacts += stick_response(k, outputs, objects, springs);
-    } else {
-      report.contacts += penalty_response(k, outputs, contacts);
+    switch (kind) {
+      case Response::friction: report.contacts += friction_response(k, outputs); break;
+      case Response::stick_constraint: report.contacts += stick_constraint_response(k, outputs, objects); break;
+      case Response::stick_springs: report.contacts += stick_response(k, outputs, objects, springs); break;
+      case Response::penalty: report.contacts += penalty_response(k, outputs, contacts); break;
+      case Response::none: break;
     }
+    kept_alive = kept_alive || kind == Response::stick_springs || kind == Response::stick_constraint;
   }
-  for (std::size_t o = 0; o < penalties_.size(); ++o) {
-    if (penalties_[o]) penalties_[o]->set_contacts(std::move(contacts[o]), objects[o].system.state.position);
+  for (std::size_t o = 0; o < r.penalties.size(); ++o) {
+    if (r.penalties[o]) r.penalties[o]->set_contacts(std::move(contacts[o]), objects[o].system.state.position);
   }
-  for (std::size_t o = 0; o < sticks_.size(); ++o) {
-    if (sticks_[o]) sticks_[o]->set_springs(std::move(springs[o]), objects[o].system.state.position);
+  for (std::size_t o = 0; o < r.sticks.size(); ++o) {
+    if (r.sticks[o]) r.sticks[o]->set_springs(std::move(springs[o]), objects[o].system.state.position);
   }
-  if (!stick_constraints_.empty()) last_positions_.resize(objects.size());
+  if (kept_alive) last_positions_.resize(objects.size());
   for (std::size_t o = 0; o < last_positions_.size(); ++o) {
     last_positions_[o].assign(objects[o].system.state.position.begin(), objects[o].system.state.position.end());
   }

@@ -63,7 +63,7 @@ int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Out
   for (const std::size_t i : order) {
     PenaltyContact<Real> c = contact(pair, outputs[i]);
     record(pair, outputs[i]);
-    if (!explicit_pairs_[k]) {
+    if (!responses_.explicit_pairs[k]) {
       contacts[a.is_still() ? b.object() : a.object()].push_back(std::move(c));
       continue;
     }
@@ -72,10 +72,10 @@ int ContactPipeline<Real>::penalty_response(std::size_t k, const std::vector<Out
     if (!(pen > 0)) continue;
     const Vec3<Real> force = c.normal * (c.stiffness * pen);
     if (!a.is_still()) {
-      for (const auto& [block, j] : c.side1) explicit_forces_[a.object()]->add(block, j.transpose() * -force);
+      for (const auto& [block, j] : c.side1) responses_.explicit_forces[a.object()]->add(block, j.transpose() * -force);
     }
     if (!b.is_still()) {
-      for (const auto& [block, j] : c.side2) explicit_forces_[b.object()]->add(block, j.transpose() * force);
+      for (const auto& [block, j] : c.side2) responses_.explicit_forces[b.object()]->add(block, j.transpose() * force);
     }
   }
   return static_cast<int>(order.size());
@@ -113,7 +113,6 @@ void ContactPipeline<Real>::contact_sides(const ModelPair& pair, const Output& o
 
 template <class Real>
 int ContactPipeline<Real>::friction_response(std::size_t k, const std::vector<Output>& outputs) {
-  if (!constraints_[k]) return 0;
   const ModelPair& pair = pairs_[k];
   const auto kept = without_duplicates(outputs);
   std::vector<UnilateralContact<Real>> contacts(kept.size());
@@ -125,7 +124,7 @@ int ContactPipeline<Real>::friction_response(std::size_t k, const std::vector<Ou
     c.distance = contact_distance(pair, o);
     record(pair, o);
   }
-  constraints_[k]->set_contacts(std::move(contacts));
+  responses_.constraints[k]->set_contacts(std::move(contacts));
   return static_cast<int>(kept.size());
 }
 
@@ -170,14 +169,14 @@ int ContactPipeline<Real>::stick_response(std::size_t k, const std::vector<Outpu
   };
   for (auto& spring : alive) {
     spring.relative_velocity = velocity(b, spring.side2) - velocity(a, spring.side1);
-    if (!explicit_pairs_[k]) {
+    if (!responses_.explicit_pairs[k]) {
       springs[a.is_still() ? b.object() : a.object()].push_back(spring);
       continue;
     }
     // Between two bodies' solvers: the force at the step's start positions, a load on both sides.
     const Vec3<Real> force = (spring.y2 - spring.y1 - spring.rest) * spring.stiffness + spring.relative_velocity * spring.damping;
-    for (const auto& [block, j] : spring.side1) explicit_forces_[a.object()]->add(block, j.transpose() * force);
-    for (const auto& [block, j] : spring.side2) explicit_forces_[b.object()]->add(block, j.transpose() * -force);
+    for (const auto& [block, j] : spring.side1) responses_.explicit_forces[a.object()]->add(block, j.transpose() * force);
+    for (const auto& [block, j] : spring.side2) responses_.explicit_forces[b.object()]->add(block, j.transpose() * -force);
   }
   return static_cast<int>(alive.size());
 }
@@ -209,7 +208,7 @@ int ContactPipeline<Real>::stick_constraint_response(std::size_t k, const std::v
       }
     }
   }
-  stick_constraints_[k]->set_contacts(alive);
+  responses_.stick_constraints[k]->set_contacts(alive);
   return static_cast<int>(alive.size());
 }
 

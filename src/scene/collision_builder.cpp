@@ -71,95 +71,109 @@ class CollisionBuilder {
         data_.warn(c->where() + ": its topology gives it no elements: it takes part in no contact");
       }
     }
-    const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
-    // SOFA's contact factory: the name before '?', its parameters after.
-    const std::string chosen = pair_response(manager, models, identities, pairs);
-    response_name_ = chosen.substr(0, chosen.find('?'));
-    response_parameters_ = chosen.find('?') == std::string::npos ? "" : chosen.substr(chosen.find('?') + 1);
-    const bool stick_constraint = response_name_ == "StickContactConstraint";
-    const bool friction = response_name_ == "FrictionContactConstraint" || response_name_ == "AugmentedLagrangianResponseConstraint" ||
-                          stick_constraint;
-    const bool stick = response_name_ == "StickContactForceField";
-    if (!friction && !stick && response_name_ != "PenalityContactForceField") {
-      throw NotSimulated{"the response " + (response_name_.empty() ? std::string("'' (none)") : response_name_) +
-                         " is not simulated yet (PenalityContactForceField, StickContactForceField, FrictionContactConstraint, "
-                         "AugmentedLagrangianResponseConstraint and StickContactConstraint are)"};
-    }
-    if (friction && !loop_) {
-      throw NotSimulated{response->where() + ": " + response_name_ + " makes Lagrangian constraints, which only a "
-                         "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
-    }
-    if (!friction && !response_parameters_.empty()) {
-      data_.warn(response->where() + ": parameters '" + response_parameters_ + "' are not read by " + response_name_ + ": ignored");
-    }
-    if (!friction && loop_) {
-      throw NotSimulated{response_name_ + " contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
-    }
-    std::vector<std::shared_ptr<PenaltyContactForceField<double>>> penalties(simulation_.objects.size());
-    std::vector<std::shared_ptr<StickContactForceField<double>>> sticks(simulation_.objects.size());
     for (const auto& model : models) {
-      if ((stick || stick_constraint) && model.kind == CollisionElements::spheres && model.points->is_rigid()) {
-        throw NotSimulated{model.where + ": SOFA has no " + response_name_ + " response for rigid spheres"};
-      }
       if (!model.points->is_still() && !simulation_.objects[model.points->object()].topology_scripts.empty()) {
         throw NotSimulated{model.where + " is on " + simulation_.objects[model.points->object()].path +
                            ", whose topology a TopologicalChangeProcessor changes: contacts on a changing topology are not simulated yet"};
       }
     }
-    if (friction) return lagrangian_pipeline(*response, p, std::move(models), nodes, stick_constraint);
-    std::vector<char> explicit_pairs(pairs.size(), 0);
-    std::vector<std::shared_ptr<ExplicitContactForces<double>>> explicit_forces(simulation_.objects.size());
+    const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
+    Responses responses;
+    responses.kind.assign(pairs.size(), Response::none);
+    responses.explicit_pairs.assign(pairs.size(), 0);
+    responses.penalties.resize(simulation_.objects.size());
+    responses.sticks.resize(simulation_.objects.size());
+    responses.explicit_forces.resize(simulation_.objects.size());
+    responses.constraints.resize(pairs.size());
+    responses.stick_constraints.resize(pairs.size());
+    // Each pair's response as SOFA's contact factory reads it (the name before '?', its parameters
+    // after); with no pair, the manager's is still checked.
+    std::vector<std::string> chosen;
+    for (const auto& pair : pairs) chosen.push_back(manager.response(identities[pair.first], identities[pair.second]));
+    if (pairs.empty()) response_kind(*response, manager.default_response());
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      responses.kind[k] = response_kind(*response, chosen[k]);
+      const bool sticking = responses.kind[k] == Response::stick_springs || responses.kind[k] == Response::stick_constraint;
+      for (const std::size_t m : {pairs[k].first, pairs[k].second}) {
+        if (sticking && models[m].kind == CollisionElements::spheres && models[m].points->is_rigid()) {
+          throw NotSimulated{models[m].where + ": SOFA has no " + name_of(chosen[k]) + " response for rigid spheres"};
+        }
+      }
+    }
     const auto empty_mesh = [&](std::size_t o) {
       return std::make_shared<const TetMesh>(simulation_.objects[o].system.size(), std::vector<Tetrahedron>{});
     };
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-      explicit_pairs[k] = explicit_placement(models, nodes, pairs[k]);
+      const Response kind = responses.kind[k];
+      if (kind != Response::penalty && kind != Response::stick_springs) continue;
+      responses.explicit_pairs[k] = explicit_placement(models, nodes, pairs[k]);
       for (const std::size_t m : {pairs[k].first, pairs[k].second}) {
         if (models[m].points->is_still()) continue;
         const std::size_t o = models[m].points->object();
-        if (explicit_pairs[k] && !explicit_forces[o]) explicit_forces[o] = std::make_shared<ExplicitContactForces<double>>(empty_mesh(o));
-        if (!explicit_pairs[k] && stick && !sticks[o]) sticks[o] = std::make_shared<StickContactForceField<double>>(empty_mesh(o));
-        if (!explicit_pairs[k] && !stick && !penalties[o]) penalties[o] = std::make_shared<PenaltyContactForceField<double>>(empty_mesh(o));
+        if (responses.explicit_pairs[k]) {
+          if (!responses.explicit_forces[o]) responses.explicit_forces[o] = std::make_shared<ExplicitContactForces<double>>(empty_mesh(o));
+        } else if (kind == Response::stick_springs) {
+          if (!responses.sticks[o]) responses.sticks[o] = std::make_shared<StickContactForceField<double>>(empty_mesh(o));
+        } else if (!responses.penalties[o]) {
+          responses.penalties[o] = std::make_shared<PenaltyContactForceField<double>>(empty_mesh(o));
+        }
       }
     }
+    const auto placed = lagrangian_constraints(*response, models, nodes, pairs, chosen, responses);
     std::shared_ptr<ContactPipeline<double>> pipeline;
     try {
-      pipeline = stick ? std::make_shared<ContactPipeline<double>>(p, std::move(models), sticks, explicit_pairs, explicit_forces)
-                       : std::make_shared<ContactPipeline<double>>(p, std::move(models), penalties, explicit_pairs, explicit_forces);
+      pipeline = std::make_shared<ContactPipeline<double>>(p, std::move(models), responses);
     } catch (const Error& error) {
       throw NotSimulated{error.what()};
     }
-    for (std::size_t o = 0; o < penalties.size(); ++o) {
-      for (const std::shared_ptr<ForceField<double>>& field : {std::shared_ptr<ForceField<double>>(penalties[o]),
-                                                               std::shared_ptr<ForceField<double>>(sticks[o]),
-                                                               std::shared_ptr<ForceField<double>>(explicit_forces[o])}) {
+    for (std::size_t o = 0; o < simulation_.objects.size(); ++o) {
+      for (const std::shared_ptr<ForceField<double>>& field : {std::shared_ptr<ForceField<double>>(responses.penalties[o]),
+                                                               std::shared_ptr<ForceField<double>>(responses.sticks[o]),
+                                                               std::shared_ptr<ForceField<double>>(responses.explicit_forces[o])}) {
         if (!field) continue;
         simulation_.objects[o].system.force_fields.push_back(field);
         simulation_.objects[o].force_field_drawing.push_back({});
       }
     }
+    for (const std::size_t k : placed) {
+      if (responses.constraints[k]) loop_->constraints.push_back(responses.constraints[k]);
+      if (responses.stick_constraints[k]) loop_->constraints.push_back(responses.stick_constraints[k]);
+    }
     return pipeline;
   }
 
  private:
-  // The one response of every model pair that can collide (the manager's when none can): pairs given
-  // different responses (by their models or the manager's rules) are not simulated yet.
-  static std::string pair_response(const ContactManagerRules& manager, const std::vector<CollisionModel<double>>& models,
-                                   const std::vector<ContactModelIdentity>& identities,
-                                   const std::vector<typename ContactPipeline<double>::ModelPair>& pairs) {
-    if (pairs.empty()) return manager.default_response();
-    std::string first;
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      const std::string r = manager.response(identities[pairs[k].first], identities[pairs[k].second]);
-      if (k == 0) {
-        first = r;
-      } else if (r != first) {
-        throw NotSimulated{models[pairs[0].first].where + " and " + models[pairs[0].second].where + " get the response " + first +
-                           ", " + models[pairs[k].first].where + " and " + models[pairs[k].second].where + " " + r +
-                           ": different responses in one scene are not simulated yet"};
-      }
+  using Response = typename ContactPipeline<double>::Response;
+  using Responses = typename ContactPipeline<double>::Responses;
+
+  static std::string name_of(const std::string& response) { return response.substr(0, response.find('?')); }
+
+  // What a response (SOFA's "Name?parameters") is here; throws NotSimulated for a response
+  // fastcorot does not have or one the animation loop cannot solve. Its parameters are read where
+  // they are used (Lagrangian responses), else warned unused (once per response).
+  Response response_kind(Component& manager, const std::string& response) {
+    const std::string name = name_of(response);
+    const bool lagrangian = name == "FrictionContactConstraint" || name == "AugmentedLagrangianResponseConstraint" ||
+                            name == "StickContactConstraint";
+    if (!lagrangian && name != "StickContactForceField" && name != "PenalityContactForceField") {
+      throw NotSimulated{"the response " + (name.empty() ? std::string("'' (none)") : name) +
+                         " is not simulated yet (PenalityContactForceField, StickContactForceField, FrictionContactConstraint, "
+                         "AugmentedLagrangianResponseConstraint and StickContactConstraint are)"};
     }
-    return first;
+    if (lagrangian && !loop_) {
+      throw NotSimulated{manager.where() + ": " + name + " makes Lagrangian constraints, which only a "
+                         "FreeMotionAnimationLoop solves (SOFA's default loop leaves them unsolved)"};
+    }
+    if (!lagrangian && loop_) {
+      throw NotSimulated{name + " contacts under FreeMotionAnimationLoop are not simulated (SOFA applies them a step late)"};
+    }
+    if ((!lagrangian || name == "StickContactConstraint") && response.find('?') != std::string::npos && warned_.insert(response).second) {
+      data_.warn(manager.where() + ": parameters '" + response.substr(response.find('?') + 1) + "' are not read by " + name + ": ignored");
+    }
+    return name == "PenalityContactForceField"    ? Response::penalty
+           : name == "StickContactForceField"    ? Response::stick_springs
+           : name == "StickContactConstraint"    ? Response::stick_constraint
+                                                 : Response::friction;
   }
 
   // The intersection method's settings, SOFA's defaults.
@@ -198,73 +212,68 @@ class CollisionBuilder {
   }
 
   // SOFA's Lagrangian contact responses: one constraint per model pair (FrictionContactConstraint's
-  // UnilateralLagrangianConstraint, or StickContactConstraint's bilateral one), its rows placed as
-  // SOFA's graph places the response (the simulated model's node against a still one, else the
-  // pipeline's node: nodes in depth-first order, pairs in broad-phase order within a node), after
-  // the scene's own Lagrangian constraints.
-  std::shared_ptr<ContactPipeline<double>> lagrangian_pipeline(Component& response, const typename ContactPipeline<double>::Parameters& p,
-                                                               std::vector<CollisionModel<double>> models,
-                                                               const std::vector<const GraphNode*>& nodes, bool stick) {
-    typename UnilateralLagrangianConstraint<double>::Parameters parameters;
-    if (response_name_ == "AugmentedLagrangianResponseConstraint") {
-      parameters.augmented = true;
-      parameters.mu = 0;  // its own default, where FrictionContactConstraint's is 0.8
-    }
-    if (!stick) parse_response_parameters(response, parameters);
-    if (stick && !response_parameters_.empty()) {
-      data_.warn(response.where() + ": parameters '" + response_parameters_ + "' are not read by StickContactConstraint: ignored");
-    }
+  // or AugmentedLagrangianResponseConstraint's UnilateralLagrangianConstraint, or
+  // StickContactConstraint's bilateral one) into `responses`. Returns the pairs in the order their
+  // rows go after the scene's own Lagrangian constraints: as SOFA's graph places the responses (the
+  // simulated model's node against a still one, else the pipeline's node: nodes in depth-first
+  // order, pairs in broad-phase order within a node).
+  std::vector<std::size_t> lagrangian_constraints(Component& manager, const std::vector<CollisionModel<double>>& models,
+                                                  const std::vector<const GraphNode*>& nodes,
+                                                  const std::vector<typename ContactPipeline<double>::ModelPair>& pairs,
+                                                  const std::vector<std::string>& chosen, Responses& responses) {
+    if (!loop_) return {};
     std::set<std::size_t> corrected;
     for (const auto& correction : loop_->corrections) corrected.insert(correction->object());
     std::map<const GraphNode*, int> depth_first;
     number_nodes(data_.root(), depth_first);
-    const auto pairs = ContactPipeline<double>::rule_pairs(models, p);
-    std::vector<std::shared_ptr<UnilateralLagrangianConstraint<double>>> constraints(pairs.size());
-    std::vector<std::shared_ptr<StickContactConstraint<double>>> sticks(pairs.size());
+    std::map<std::string, typename UnilateralLagrangianConstraint<double>::Parameters> parameters;  // by response
     std::vector<std::pair<int, std::size_t>> placed;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const Response kind = responses.kind[k];
+      if (kind != Response::friction && kind != Response::stick_constraint) continue;
       const auto& a = models[pairs[k].first];
       const auto& b = models[pairs[k].second];
-      if (!stick && (a.contact_stiffness == 0 || b.contact_stiffness == 0)) {
-        data_.warn(response.where() + ": " + a.where + " and " + b.where + ": a contactStiffness of 0 disables their " +
-                   response_name_ + " response, as in SOFA (no contacts between them)");
+      const std::string name = name_of(chosen[k]);
+      if (kind == Response::friction && (a.contact_stiffness == 0 || b.contact_stiffness == 0)) {
+        data_.warn(manager.where() + ": " + a.where + " and " + b.where + ": a contactStiffness of 0 disables their " + name +
+                   " response, as in SOFA (no contacts between them)");
+        responses.kind[k] = Response::none;
         continue;
       }
       for (const auto* side : {&a, &b}) {
         if (side->points->is_still() || corrected.count(side->points->object())) continue;
         throw error_at(side->where, make_error("its object ", simulation_.objects[side->points->object()].path,
-                                               " has no constraint correction, which its contacts (", response_name_,
+                                               " has no constraint correction, which its contacts (", name,
                                                ") need: add a LinearSolverConstraintCorrection or an UncoupledConstraintCorrection"));
       }
-      const std::string where = response.where() + ": contacts of " + a.where + " and " + b.where;
-      if (stick) {
-        sticks[k] = std::make_shared<StickContactConstraint<double>>(where);
+      const std::string where = manager.where() + ": contacts of " + a.where + " and " + b.where;
+      if (kind == Response::stick_constraint) {
+        responses.stick_constraints[k] = std::make_shared<StickContactConstraint<double>>(where);
       } else {
-        constraints[k] = std::make_shared<UnilateralLagrangianConstraint<double>>(where, parameters);
+        auto found = parameters.find(chosen[k]);
+        if (found == parameters.end()) found = parameters.emplace(chosen[k], response_parameters(manager, chosen[k])).first;
+        responses.constraints[k] = std::make_shared<UnilateralLagrangianConstraint<double>>(where, found->second);
       }
       const GraphNode* node = !a.simulated ? nodes[pairs[k].second] : !b.simulated ? nodes[pairs[k].first] : &pipeline_node_;
       placed.emplace_back(depth_first.at(node), k);
     }
     std::stable_sort(placed.begin(), placed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (const auto& [order, k] : placed) {
-      if (stick) {
-        loop_->constraints.push_back(sticks[k]);
-      } else {
-        loop_->constraints.push_back(constraints[k]);
-      }
-    }
-    try {
-      if (stick) return std::make_shared<ContactPipeline<double>>(p, std::move(models), std::move(sticks));
-      return std::make_shared<ContactPipeline<double>>(p, std::move(models), std::move(constraints));
-    } catch (const Error& error) {
-      throw NotSimulated{error.what()};
-    }
+    std::vector<std::size_t> order;
+    for (const auto& [depth, k] : placed) order.push_back(k);
+    return order;
   }
 
-  // The response's parameters (the manager's responseParams, or what follows '?' in a model's or a
-  // rule's response): "name=value" pairs joined by '&' or '?' (mu, tol, epsilon); other names warned.
-  void parse_response_parameters(Component& response, typename UnilateralLagrangianConstraint<double>::Parameters& parameters) {
-    const std::string& text = response_parameters_;
+  // A Lagrangian response's parameters (what follows '?': the manager's responseParams, or a
+  // model's or a rule's own): "name=value" pairs joined by '&' or '?' (mu, tol; epsilon for
+  // AugmentedLagrangianResponseConstraint, whose mu is 0 by default); other names warned.
+  typename UnilateralLagrangianConstraint<double>::Parameters response_parameters(Component& manager, const std::string& response) {
+    typename UnilateralLagrangianConstraint<double>::Parameters parameters;
+    const std::string name = name_of(response);
+    if (name == "AugmentedLagrangianResponseConstraint") {
+      parameters.augmented = true;
+      parameters.mu = 0;  // its own default, where FrictionContactConstraint's is 0.8
+    }
+    const std::string text = response.find('?') == std::string::npos ? "" : response.substr(response.find('?') + 1);
     std::size_t start = 0;
     while (start < text.size()) {
       const std::size_t end = std::min(text.find_first_of("&?", start), text.size());
@@ -272,7 +281,7 @@ class CollisionBuilder {
       start = end + 1;
       if (item.empty()) continue;
       const std::size_t equal = item.find('=');
-      const std::string name = item.substr(0, equal);
+      const std::string key = item.substr(0, equal);
       double value = 0;
       try {
         std::size_t used = 0;
@@ -280,22 +289,23 @@ class CollisionBuilder {
         value = std::stod(item.substr(equal + 1), &used);
         if (used != item.size() - equal - 1) throw std::invalid_argument("trailing text");
       } catch (const std::exception&) {
-        throw error_at(response.where(), make_error("responseParams: '", item, "' is not name=number"));
+        throw error_at(manager.where(), make_error("responseParams: '", item, "' is not name=number"));
       }
-      if (name == "mu") {
+      if (key == "mu") {
         parameters.mu = value;
-      } else if (name == "tol") {
+      } else if (key == "tol") {
         parameters.tolerance = value;
-      } else if (name == "epsilon" && parameters.augmented) {
+      } else if (key == "epsilon" && parameters.augmented) {
         parameters.epsilon = value;
       } else {
-        data_.warn(response.where() + ": responseParams: '" + name + "' is not a parameter of " + response_name_ + " (mu, tol" +
+        data_.warn(manager.where() + ": responseParams: '" + key + "' is not a parameter of " + name + " (mu, tol" +
                    (parameters.augmented ? ", epsilon" : "") + "): ignored");
       }
     }
     if (!(parameters.mu >= 0) || !(parameters.tolerance >= 0) || !(parameters.epsilon >= 0)) {
-      throw error_at(response.where(), make_error("responseParams: mu, tol and epsilon must be ≥ 0"));
+      throw error_at(manager.where(), make_error("responseParams: mu, tol and epsilon must be ≥ 0"));
     }
+    return parameters;
   }
 
   static void number_nodes(const GraphNode& node, std::map<const GraphNode*, int>& order) {
@@ -346,8 +356,7 @@ class CollisionBuilder {
   const GraphNode& pipeline_node_;
   FreeMotionAnimationLoop<double>* loop_ = nullptr;
   IntersectionMethod method_ = IntersectionMethod::min_proximity;
-  std::string response_name_ = "PenalityContactForceField";
-  std::string response_parameters_;  // what follows '?' in the pairs' response
+  std::set<std::string> warned_;  // responses whose unread parameters were warned
   std::optional<CollisionModelReader> reader_;
 };
 

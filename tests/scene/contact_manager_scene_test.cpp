@@ -22,14 +22,14 @@ using testing::build_scene_text;
 // Points of mass 0.5 falling from `height` onto a still triangle in the plane y = 0 (named "floor",
 // group 2), one node per point ("ball0", "ball1", ...), each in group 10 + its index; `manager`
 // is the contact manager's element, `extra` goes into each ball's point model.
-std::string balls_over_floor(const std::string& manager, int balls = 1, const std::string& extra = "") {
+std::string balls_over_floor(const std::string& manager, int balls = 1, const std::string& extra = "", double spacing = 0.3) {
   std::string text =
       "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
       "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/>" + manager;
   for (int b = 0; b < balls; ++b) {
     const std::string i = std::to_string(b);
     text += "<Node name=\"ball" + i + "\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><CGLinearSolver iterations=\"100\" "
-            "tolerance=\"1e-30\" threshold=\"1e-30\"/><MechanicalObject position=\"" + std::to_string(0.3 * b - 0.2) +
+            "tolerance=\"1e-30\" threshold=\"1e-30\"/><MechanicalObject position=\"" + std::to_string(spacing * b - 0.2) +
             " 0.3 0.2\"/><UniformMass totalMass=\"0.5\"/><PointCollisionModel name=\"ball" + i + "\" group=\"" +
             std::to_string(10 + b) + "\" contactStiffness=\"20\" " + extra + "/></Node>";
   }
@@ -151,22 +151,27 @@ TEST(ContactManagerScene, AResponseCarriesItsParametersAfterAQuestionMark) {
             0.5);
 }
 
-TEST(ContactManagerScene, PairsGivenDifferentResponsesAreWarnedNotSimulated) {
-  // Two balls: a rule gives ball1's pair with the floor stick springs, ball0's keeps the penalty.
-  LoadedScene mixed = build_scene_text(
-      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"ball1 floor StickContactForceField\"/>", 2),
-      kRoot);
-  EXPECT_FALSE(mixed.simulation.collisions);
-  EXPECT_TRUE(warned(mixed, "different responses in one scene are not simulated yet"));
-  // Every pair that can collide named (the balls' own pair too): one response, simulated as the
-  // plain manager's.
-  LoadedScene both = build_scene_text(
-      balls_over_floor("<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"ball1 floor StickContactForceField "
-                       "ball0 2 StickContactForceField 11 10 StickContactForceField\"/>",
-                       2),
-      kRoot);
-  ASSERT_TRUE(both.simulation.collisions);
-  EXPECT_EQ(heights(std::move(both)), heights_with("StickContactForceField", 2));
+// Ball o's heights over 60 steps.
+std::vector<double> heights_of(LoadedScene scene, std::size_t o) {
+  std::vector<double> y;
+  for (int step = 0; step < 60; ++step) {
+    scene.simulation.step();
+    y.push_back(scene.simulation.objects.at(o).system.state.position[0].y());
+  }
+  return y;
+}
+
+TEST(ContactManagerScene, PairsMayTakeDifferentResponses) {
+  // Two balls 1.2 apart (out of each other's reach): a rule gives ball1's pair with the floor stick
+  // springs, ball0's keeps the manager's penalty; each ball moves as in the scene where every pair
+  // has its response.
+  const auto two = [](const std::string& manager) { return build_scene_text(balls_over_floor(manager, 2, "", 1.2), kRoot); };
+  const std::string rules = "<RuleBasedContactManager response=\"PenalityContactForceField\" rules=\"ball1 floor StickContactForceField\"/>";
+  LoadedScene mixed = two(rules);
+  ASSERT_TRUE(mixed.simulation.collisions);
+  EXPECT_EQ(heights_of(two(rules), 0), heights_of(two("<CollisionResponse response=\"PenalityContactForceField\"/>"), 0));
+  EXPECT_EQ(heights_of(two(rules), 1), heights_of(two("<CollisionResponse response=\"StickContactForceField\"/>"), 1));
+  EXPECT_NE(heights_of(two(rules), 0), heights_of(two(rules), 1)) << "the two responses differ";
 }
 
 }  // namespace

@@ -120,6 +120,26 @@ TEST(StickContactConstraintScene, KeptAliveWhileNothingIsFound) {
   EXPECT_LT((x[0] - Vec3<double>(0.1, 0.3, 0.2)).norm(), 1e-12) << "pulled back to where it stuck";
 }
 
+TEST(StickContactConstraintScene, MixesWithFrictionlessContactsByRule) {
+  // Two points far apart over the floor, gravity tilted along x: a rule sticks b, a keeps the
+  // manager's frictionless contact, so b stays where it was found and a slides down along x, resting
+  // at the contact distance.
+  LoadedScene scene = build_scene_text(
+      kHeader + "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/>"
+                "<RuleBasedContactManager response=\"FrictionContactConstraint\" responseParams=\"mu=0\" rules=\"b * StickContactConstraint\"/>" +
+          body("a", "-0.6 0.3 0.2", "0 0 0", "0.5", "<PointCollisionModel name=\"a\"/>") +
+          body("b", "0.6 0.3 0.2", "0 0 0", "0.5", "<PointCollisionModel name=\"b\"/>") + kFloor,
+      "dt=\"0.01\" gravity=\"3 -9.81 0\"");
+  ASSERT_TRUE(scene.simulation.collisions);
+  for (int step = 0; step < 100; ++step) scene.simulation.step();
+  const Vec3<double> a = scene.simulation.objects[0].system.state.position[0];
+  const Vec3<double> b = scene.simulation.objects[1].system.state.position[0];
+  EXPECT_LT((b - Vec3<double>(0.6, 0.3, 0.2)).norm(), 1e-12);
+  EXPECT_NEAR(a.y(), 0.2, 1e-9);
+  EXPECT_GT(a.x(), -0.3) << "slid along the tilted gravity";
+  ASSERT_NE(stick_constraint(scene), nullptr);
+}
+
 TEST(StickContactConstraintScene, WhatIsNotSimulatedIsSaid) {
   // Under the default animation loop its rows would never be solved.
   LoadedScene plain = build_scene_text("<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"

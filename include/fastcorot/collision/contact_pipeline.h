@@ -34,34 +34,33 @@ class ContactPipeline final : public CollisionStage<Real> {
  public:
   // The intersection method and its data.
   using Parameters = IntersectionSettings<Real>;
-  // The PenalityContactForceField response. `penalties[o]`: object o's implicit penalty field (null
-  // for an object no implicit contact reaches). Rule pair k (rule_pairs' order) with
-  // explicit_pairs[k] set is SOFA's explicit penalty: evaluated once at the step's start into the
-  // explicit_forces of both sides' objects. Throws fastcorot::Error for an implicit pair joining two
-  // simulated objects, an object without the field its pairs need, or a model without points.
-  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                  std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties, std::vector<char> explicit_pairs = {},
-                  std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces = {});
-  // SOFA's FrictionContactConstraint response (with FreeMotionAnimationLoop): rule pair k (in
-  // rule_pairs' order) gives its contacts to `constraints[k]` (null: the pair makes none, SOFA's
-  // response disabled by a zero contactStiffness), after SOFA's removal of duplicates (an output
-  // whose two points' squared distances to a kept output's sum below 1e-8).
-  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                  std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints);
-
-  // SOFA's StickContactForceField response: springs at rest where detection finds the pair
-  // (replaced at every step that finds it, kept while a step finds nothing: SOFA's keepAlive),
-  // into `sticks[o]` (object o's implicit field) or, for rule pair k with explicit_pairs[k] set,
-  // evaluated once at the step's start into both sides' explicit_forces.
-  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                  std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks, std::vector<char> explicit_pairs,
-                  std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces);
-
-  // SOFA's StickContactConstraint response (with FreeMotionAnimationLoop): rule pair k gives its
-  // contacts to `stick_constraints[k]`, bilateral pairs at rest as found (after the same removal of
-  // duplicates), made again at every step that finds the pair and kept while a step finds nothing.
-  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models,
-                  std::vector<std::shared_ptr<StickContactConstraint<Real>>> stick_constraints);
+  // What each rule pair's outputs become (SOFA's contact responses).
+  enum class Response {
+    none,              // nothing (a FrictionContactConstraint disabled by a zero contactStiffness)
+    penalty,           // PenalityContactForceField: one contact per id, the closest
+    stick_springs,     // StickContactForceField: springs at rest as found, kept alive
+    friction,          // FrictionContactConstraint (or AugmentedLagrangianResponseConstraint): unilateral rows
+    stick_constraint,  // StickContactConstraint: bilateral rows at rest as found, kept alive
+  };
+  // Where the responses go. Per rule pair (rule_pairs' order): its response; for penalty and springs
+  // whether it is explicit (evaluated once at the step's start into both sides' explicit_forces:
+  // SOFA's placement between two bodies' solvers) or implicit (into its object's field); its
+  // constraint for the Lagrangian ones (after SOFA's removal of duplicates: an output whose two
+  // points' squared distances to a kept output's sum below 1e-8). Per object: its implicit penalty
+  // and spring fields and its explicit forces (null where no pair needs them).
+  struct Responses {
+    std::vector<Response> kind;
+    std::vector<char> explicit_pairs;
+    std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties;
+    std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks;
+    std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces;
+    std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints;
+    std::vector<std::shared_ptr<StickContactConstraint<Real>>> stick_constraints;
+  };
+  // Throws fastcorot::Error for a model without points, a response list of another size than the
+  // rule pairs, an implicit pair joining two simulated objects, or a pair without the field or
+  // constraint its response needs.
+  ContactPipeline(Parameters parameters, std::vector<CollisionModel<Real>> models, Responses responses);
 
   CollisionReport begin_step(std::span<SimulatedObject<Real>> objects, Real dt, double time) override;
   std::span<const DetectedContact<Real>> contacts() const override { return detected_; }
@@ -105,9 +104,9 @@ class ContactPipeline final : public CollisionStage<Real> {
   // The outputs SOFA's penalty and stick responses keep: one per id (the smallest value, the first
   // on ties), in the order they were found.
   static std::vector<std::size_t> kept_by_id(const std::vector<Output>& outputs);
-  // Every model, and each rule pair's objects: an implicit pair on one object only, with the field
-  // `has_implicit_field(o)` says it has, an explicit one with both sides' explicit_forces.
-  void check_pairs(const std::function<bool(std::size_t)>& has_implicit_field);
+  // Each rule pair's objects: an implicit pair on one object only, with the field its response
+  // needs, an explicit one with both sides' explicit_forces; a Lagrangian pair with its constraint.
+  void check_pairs();
   // The distance a contact keeps: the method's contact distance, the models', the spheres' radii.
   Real contact_distance(const ModelPair& pair, const Output& output) const;
   // The weights of `p` (a point of element `element` of `model`) on the element's points, their J
@@ -118,13 +117,8 @@ class ContactPipeline final : public CollisionStage<Real> {
   Parameters parameters_;
   std::vector<CollisionModel<Real>> models_;
   std::vector<ModelPair> pairs_;
-  std::vector<std::shared_ptr<PenaltyContactForceField<Real>>> penalties_;
-  std::vector<char> explicit_pairs_;
-  std::vector<std::shared_ptr<ExplicitContactForces<Real>>> explicit_forces_;
-  std::vector<std::shared_ptr<UnilateralLagrangianConstraint<Real>>> constraints_;
-  std::vector<std::shared_ptr<StickContactForceField<Real>>> sticks_;
+  Responses responses_;
   std::vector<std::vector<StickSpring<Real>>> stick_springs_;  // per rule pair, alive from step to step
-  std::vector<std::shared_ptr<StickContactConstraint<Real>>> stick_constraints_;  // per rule pair
   std::vector<std::vector<StickContact<Real>>> stick_contacts_;  // per rule pair, alive from step to step
   std::vector<std::vector<Vec3<Real>>> last_positions_;       // per object, at the last step's start
   std::vector<DetectedContact<Real>> detected_;
