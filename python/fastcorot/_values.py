@@ -65,19 +65,18 @@ def canonical(kind, name, value, where):
         return _number(value, label, kind == "int")
     if kind in ("vec3", "int3"):
         array = _array(value, label, kind == "int3", "3 numbers" if kind == "vec3" else "3 integers")
-        if array.shape != (3,):
+        if array.size != 3:  # SofaPython3 flattens nested lists into SOFA's text: any shape of 3 values
             raise ValueError(f"{label}: expected 3 values, got shape {array.shape}")
-        return array
+        return array.reshape(3)
     if kind == "reals":
         array = _array(value, label, False, "a number or a list of numbers")
-        if array.ndim > 1:
-            raise ValueError(f"{label}: expected a number or a list of numbers, got shape {array.shape}")
-        return array.reshape(-1)
+        return array.reshape(-1)  # nested lists are flattened, as SofaPython3 writes them for SOFA
     if kind in ("vec3s", "vec6s"):
         width = 3 if kind == "vec3s" else 6
         array = _array(value, label, False, f"an (n, {width}) array of numbers")
-        if array.shape == (width,):
-            array = array.reshape(1, width)
+        if array.ndim == 1 and array.size % width == 0:
+            # A flat list, as SofaPython3 passes it to SOFA (its numbers read in groups of `width`).
+            array = array.reshape(-1, width)
         if array.ndim != 2 or array.shape[1] != width:
             raise ValueError(f"{label}: expected an (n, {width}) array of numbers, got shape {array.shape}")
         return array

@@ -255,3 +255,28 @@ def test_keys_reach_the_controllers_as_keypressed_events():
     run = _script.ScriptRun(root, "keys.py")
     run.key_pressed("L")
     assert pressed == ["L"] and run.has_controllers
+
+
+def test_flat_lists_are_read_as_sofapython3_passes_them():
+    # SofaPython3 writes a list as SOFA's text, its numbers in a row: a flat position list is the
+    # same points as the nested one, and a nested vector reads as its numbers.
+    nested, flat = Sofa.Core.Node("root"), Sofa.Core.Node("root")
+    a = tetrahedron_scene(nested)
+    body = flat.addChild("body")
+    body.addObject("EulerImplicitSolver")
+    body.addObject("EigenSimplicialLDLT")
+    b = body.addObject("MechanicalObject", name="dofs", position=[0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1])
+    body.addObject("TetrahedronSetTopologyContainer", name="topology", tetrahedra=[0, 1, 2, 3])
+    body.addObject("UniformMass", name="mass", totalMass=2)
+    body.addObject("FastTetrahedralCorotationalForceField", name="FEM", youngModulus=100, poissonRatio=0.3)
+    body.addObject("FixedProjectiveConstraint", name="fixed", indices=[0])
+    flat.gravity = [[0, -9.81, 0]]
+    nested.gravity = [0, -9.81, 0]
+    Sofa.Simulation.init(nested)
+    Sofa.Simulation.init(flat)
+    for _ in range(5):
+        Sofa.Simulation.animate(nested, 0.01)
+        Sofa.Simulation.animate(flat, 0.01)
+    assert np.array_equal(a.position.array(), b.position.array())
+    with pytest.raises(ValueError, match=r"position: expected an \(n, 3\) array of numbers, got shape \(4,\)"):
+        body.addObject("MechanicalObject", name="odd", position=[0, 0, 0, 1])
