@@ -9,16 +9,7 @@ template <class Real>
 void StickContactConstraint<Real>::prepare(std::span<const SimulatedObject<Real>> objects, Real dt) {
   motion_.resize(contacts_.size());
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const ContactSide<Real>* sides[2] = {&contacts_[k].first, &contacts_[k].second};
-    for (int j = 0; j < 2; ++j) {
-      Vec3<Real> v = Vec3<Real>::Zero();
-      if (!sides[j]->still) {
-        const auto& velocity = objects[sides[j]->object].system.state.velocity;
-        for (const auto& [block, m] : sides[j]->blocks) v += m * velocity[static_cast<std::size_t>(block)];
-      }
-      motion_[k].free_velocity[j] = v;
-      motion_[k].free_position[j] = sides[j]->position + dt * v;
-    }
+    motion_[k] = {free_motion(contacts_[k].first, objects, dt), free_motion(contacts_[k].second, objects, dt)};
   }
 }
 
@@ -42,9 +33,9 @@ void StickContactConstraint<Real>::violation(ConstraintOrder order, Real dt, Rea
     const auto& c = contacts_[k];
     Vec3<Real> gap;
     if (order == ConstraintOrder::velocity) {
-      gap = (motion_[k].free_velocity[1] - motion_[k].free_velocity[0]) + (c.second.position - c.first.position - c.rest) / dt;
+      gap = (motion_[k][1].free_velocity - motion_[k][0].free_velocity) + (c.second.position - c.first.position - c.rest) / dt;
     } else {
-      gap = motion_[k].free_position[1] - motion_[k].free_position[0] - c.rest;
+      gap = motion_[k][1].free_position - motion_[k][0].free_position - c.rest;
     }
     for (int a = 0; a < 3; ++a) dfree[this->first_row_ + 3 * static_cast<int>(k) + a] = gap[a];
   }

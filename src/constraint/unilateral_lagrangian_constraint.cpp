@@ -79,21 +79,21 @@ void UnilateralLagrangianConstraint<Real>::tangents(const Vec3<Real>& n, Vec3<Re
 }
 
 template <class Real>
+ContactSideMotion<Real> free_motion(const ContactSide<Real>& side, std::span<const SimulatedObject<Real>> objects, Real dt) {
+  ContactSideMotion<Real> motion;
+  if (!side.still) {
+    const auto& velocity = objects[side.object].system.state.velocity;
+    for (const auto& [block, m] : side.blocks) motion.free_velocity += m * velocity[static_cast<std::size_t>(block)];
+  }
+  motion.free_position = side.position + dt * motion.free_velocity;
+  return motion;
+}
+
+template <class Real>
 void UnilateralLagrangianConstraint<Real>::prepare(std::span<const SimulatedObject<Real>> objects, Real dt) {
   motion_.resize(contacts_.size());
   for (std::size_t k = 0; k < contacts_.size(); ++k) {
-    const ContactSide<Real>* sides[2] = {&contacts_[k].first, &contacts_[k].second};
-    for (int j = 0; j < 2; ++j) {
-      // A mapped point's free velocity is J v_free; its free position x + h J v_free, as SOFA's free
-      // motion places mapped states.
-      Vec3<Real> v = Vec3<Real>::Zero();
-      if (!sides[j]->still) {
-        const auto& velocity = objects[sides[j]->object].system.state.velocity;
-        for (const auto& [block, m] : sides[j]->blocks) v += m * velocity[static_cast<std::size_t>(block)];
-      }
-      motion_[k].free_velocity[j] = v;
-      motion_[k].free_position[j] = sides[j]->position + dt * v;
-    }
+    motion_[k] = {free_motion(contacts_[k].first, objects, dt), free_motion(contacts_[k].second, objects, dt)};
   }
 }
 
@@ -125,7 +125,7 @@ void UnilateralLagrangianConstraint<Real>::violation(ConstraintOrder order, Real
     if (per_contact == 3) tangents(c.normal, t, s);
     Real* out = dfree + this->first_row_ + per_contact * static_cast<int>(k);
     if (order == ConstraintOrder::velocity) {
-      const Vec3<Real> relative = motion_[k].free_velocity[1] - motion_[k].free_velocity[0];
+      const Vec3<Real> relative = motion_[k][1].free_velocity - motion_[k][0].free_velocity;
       const Real inverse_dt = Real(1) / dt;
       out[0] = (relative + (p - q) * inverse_dt).dot(c.normal) - c.distance * inverse_dt;
       if (per_contact == 3) {
@@ -134,8 +134,8 @@ void UnilateralLagrangianConstraint<Real>::violation(ConstraintOrder order, Real
       }
       continue;
     }
-    const Vec3<Real>& q_free = motion_[k].free_position[0];
-    const Vec3<Real>& p_free = motion_[k].free_position[1];
+    const Vec3<Real>& q_free = motion_[k][0].free_position;
+    const Vec3<Real>& p_free = motion_[k][1].free_position;
     const Vec3<Real> p_move = p_free - p, q_move = q_free - q;
     const Real scale = p_move.norm() + q_move.norm();
     const Real gap_free = (p_free - q_free).dot(c.normal) - c.distance;
@@ -177,5 +177,6 @@ void UnilateralLagrangianConstraint<Real>::add_resolutions(ConstraintProblem<Rea
 template class UnilateralFrictionResolution<double>;
 template class AugmentedLagrangianFrictionResolution<double>;
 template class UnilateralLagrangianConstraint<double>;
+template ContactSideMotion<double> free_motion(const ContactSide<double>&, std::span<const SimulatedObject<double>>, double);
 
 }  // namespace fastcorot

@@ -38,12 +38,8 @@ class StickContactConstraint final : public LagrangianConstraint<Real> {
   void draw(ConstraintDrawer<Real>& drawer) const override;  // constraint_drawing.cpp
 
  private:
-  struct Motion {
-    Vec3<Real> free_position[2];  // Q_f, P_f
-    Vec3<Real> free_velocity[2];
-  };
   std::vector<StickContact<Real>> contacts_;
-  std::vector<Motion> motion_;
+  std::vector<std::array<ContactSideMotion<Real>, 2>> motion_;  // Q's, P's
   std::vector<Vec3<Real>> previous_;  // SOFA's prevForces: one warm start per contact index
 };
 

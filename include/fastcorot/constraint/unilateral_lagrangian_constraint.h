@@ -21,7 +21,9 @@
 
 #include "fastcorot/constraint/lagrangian_constraints.h"
 
+#include <array>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace fastcorot {
@@ -34,6 +36,16 @@ struct ContactSide {
   Vec3<Real> position;                              // at the step's start
   std::vector<std::pair<Index, Mat3<Real>>> blocks;  // its rows of J on the object's blocks
 };
+
+// Where a contact side goes in the free motion: its free velocity J v_free and its free position
+// x + h J v_free (SOFA's linearised free positions of mapped states); zero motion for a still side.
+template <class Real>
+struct ContactSideMotion {
+  Vec3<Real> free_position = Vec3<Real>::Zero();
+  Vec3<Real> free_velocity = Vec3<Real>::Zero();
+};
+template <class Real>
+ContactSideMotion<Real> free_motion(const ContactSide<Real>& side, std::span<const SimulatedObject<Real>> objects, Real dt);
 
 template <class Real>
 struct UnilateralContact {
@@ -106,13 +118,9 @@ class UnilateralLagrangianConstraint final : public LagrangianConstraint<Real> {
   static void tangents(const Vec3<Real>& n, Vec3<Real>& t, Vec3<Real>& s);
 
  private:
-  struct Motion {
-    Vec3<Real> free_position[2];  // Q_f, P_f
-    Vec3<Real> free_velocity[2];
-  };
   Parameters parameters_;
   std::vector<UnilateralContact<Real>> contacts_;
-  std::vector<Motion> motion_;
+  std::vector<std::array<ContactSideMotion<Real>, 2>> motion_;  // Q's, P's
 };
 
 }  // namespace fastcorot
