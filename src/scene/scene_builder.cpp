@@ -404,7 +404,7 @@ class Builder {
     object.path = state.node->path;
     auto& system = object.system;
     // SOFA's gravity is the root's: a node's context is copied from its parent's
-    // (Node::initializeContexts), so a gravity written on any other node is overwritten (SOFA's
+    // (Node::updateContext), so a gravity written on any other node is overwritten (SOFA's
     // regression reference of Benchmark/Analysis/Pendulum.scn falls along the root's gravity).
     system.gravity = simulation_.gravity;
     for (const GraphNode* scope = state.node; scope && scope->parent; scope = scope->parent) {

@@ -208,7 +208,7 @@ TEST(SofaLinks, RelativeIndexNamesAnEarlierComponentOfTheNode) {
 }
 
 TEST(SofaNodes, EveryNodeHasTheRootsGravity) {
-  // SOFA copies each node's context from its parent's (Node::initializeContexts): a child node's own
+  // SOFA copies each node's context from its parent's (Node::updateContext): a child node's own
   // gravity is overwritten, as SOFA's regression reference of Benchmark/Analysis/Pendulum.scn shows
   // (its pendulums, in nodes with gravity along -y, fall along the root's -z). Warned once per node.
   const LoadedScene scene = build("<Node name=\"outer\" gravity=\"0 0 -3\">" + beam("") + "</Node>", "gravity=\"0 -10 0\"");
