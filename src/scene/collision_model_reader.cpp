@@ -236,6 +236,12 @@ std::shared_ptr<CollisionPoints<double>> CollisionModelReader::points_of(Compone
       }
     }
     static_cast<void>(object);
+  } else if (state.node->is_unloaded_point_set()) {
+    // Points a Mesh2PointTopologicalMapping placed, which nothing moves (SOFA integrates them with no
+    // mass and no force): a still obstacle.
+    auto x = data_.points(state, "position");
+    if (x.empty()) throw error_at(user.where(), make_error("its MechanicalObject ", state.where(), " has no points"));
+    points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::still(std::move(x)));
   } else {
     for (const GraphNode* node = state.node; node; node = node->parent) {
       if (!node->of_category("odesolver").empty()) {

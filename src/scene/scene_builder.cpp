@@ -70,15 +70,6 @@ bool is_multi_mapped_node(const GraphNode& node) {
 // a mapped node (SOFA's MeshSplittingEngine.scn, STLIB's rigidified objects).
 bool is_independent_node(const GraphNode& node) { return !node.of_category("state").empty() && !is_mapped_node(node); }
 
-// A node whose state only holds the points of a Mesh2PointTopologicalMapping (no mass, force or
-// constraint, no child node; SOFA's Mesh2PointTopologicalMapping.scn): nothing moves them.
-bool is_unloaded_point_set(const GraphNode& node) {
-  bool placed = false;
-  for (const auto& c : node.components) placed = placed || c->type() == "Mesh2PointTopologicalMapping";
-  return placed && node.children.empty() && node.of_category("forcefield").empty() &&
-         node.of_category("mass").empty() && node.of_category("constraint").empty();
-}
-
 Vec3<double> node_vec3(const SceneNode& node, const std::string& name, const Vec3<double>& fallback) {
   const auto it = node.attributes.find(name);
   if (it == node.attributes.end()) return fallback;
@@ -196,7 +187,7 @@ class Builder {
   // `solver_scope`: collecting for the solver's node (independent states below mapped nodes and
   // multi-mapped nodes are gathered), else for a mapped node (they are left to the solver's pass).
   void collect(GraphNode& node, std::vector<GraphNode*>& nodes, std::vector<GraphNode*>& mapped, bool solver_scope = true) {
-    if (is_unloaded_point_set(node)) {
+    if (node.is_unloaded_point_set()) {
       // SOFA integrates this state with no mass and no force: its points stay where the mapping put them.
       info_.push_back(node.scene->location.to_string() + ": node " + node.path + ": the points of its " +
                       "Mesh2PointTopologicalMapping have no mass and no force: they stay put, as in SOFA (not simulated)");

@@ -40,6 +40,13 @@ std::vector<Component*> GraphNode::of_category(std::string_view category) const 
   return found;
 }
 
+bool GraphNode::is_unloaded_point_set() const {
+  bool placed = false;
+  for (const auto& c : components) placed = placed || c->type() == "Mesh2PointTopologicalMapping";
+  return placed && children.empty() && of_category("forcefield").empty() && of_category("mass").empty() &&
+         of_category("constraint").empty();
+}
+
 Mat3<double> euler_rotation(const Vec3<double>& degrees) {
   const Vec3<double> radians = degrees * std::numbers::pi / 180.0;
   return (Eigen::AngleAxisd(radians.z(), Vec3<double>::UnitZ()) * Eigen::AngleAxisd(radians.y(), Vec3<double>::UnitY()) *

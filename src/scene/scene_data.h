@@ -54,6 +54,10 @@ struct GraphNode {
 
   // Components of the given category, in scene order.
   std::vector<Component*> of_category(std::string_view category) const;
+  // Whether its state only holds the points of a Mesh2PointTopologicalMapping (no mass, force or
+  // constraint, no child node; SOFA's Mesh2PointTopologicalMapping.scn): SOFA integrates them with
+  // nothing acting on them, so they stay where the mapping put them.
+  bool is_unloaded_point_set() const;
 };
 
 // Applies scale, then rotation (Euler angles in degrees, R = Rz Ry Rx), then translation, as SOFA's

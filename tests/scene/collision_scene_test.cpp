@@ -156,6 +156,32 @@ TEST(CollisionScene, SofasParallelPhasesAreThePhases) {
   EXPECT_EQ(parallel.simulation.collision_report().contacts, 1);
 }
 
+TEST(CollisionScene, PointsAMesh2PointMappingPlacedAreAStillObstacle) {
+  // SOFA's Mesh2PointTopologicalMapping.scn: spheres on the points the mapping placed (no mass, no
+  // force: SOFA integrates them with nothing acting, so they stay put) meet a falling point.
+  LoadedScene scene = build_scene_text(
+      "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+      "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/><CollisionResponse response=\"PenalityContactForceField\"/>"
+      "<Node name=\"m\"><EulerImplicitSolver/><CGLinearSolver iterations=\"100\" tolerance=\"1e-20\" threshold=\"1e-20\"/>"
+      "<TetrahedronSetTopologyContainer name=\"c1\" position=\"0 0 0 2 0 0 0 2 0 0 0 2\" tetrahedra=\"0 1 2 3\"/>"
+      "<MechanicalObject/><DiagonalMass massDensity=\"1\"/><FixedProjectiveConstraint indices=\"0 1 2 3\"/>"
+      "<Node name=\"points\"><PointSetTopologyContainer name=\"c2\"/>"
+      "<Mesh2PointTopologicalMapping input=\"@c1\" output=\"@c2\" pointBaryCoords=\"0 0 0\"/>"
+      "<MechanicalObject name=\"marks\"/><SphereCollisionModel radius=\"0.25\" contactStiffness=\"20\"/></Node></Node>"
+      "<Node name=\"ball\"><EulerImplicitSolver/><CGLinearSolver iterations=\"100\" tolerance=\"1e-20\" threshold=\"1e-20\"/>"
+      "<MechanicalObject position=\"0 0 2.8\"/><UniformMass totalMass=\"0.1\"/><PointCollisionModel contactStiffness=\"20\"/></Node>",
+      "dt=\"0.01\" gravity=\"0 0 -9.81\"");
+  ASSERT_TRUE(scene.simulation.collisions);
+  for (const auto& line : scene.warnings) EXPECT_EQ(line.find("not simulated"), std::string::npos) << line;
+  int contacts = 0;
+  for (int step = 0; step < 300; ++step) {
+    scene.simulation.step();
+    contacts += scene.simulation.collision_report().contacts;
+  }
+  EXPECT_GT(contacts, 0);
+  EXPECT_GT(scene.simulation.objects.at(1).system.state.position[0].z(), 2.25) << "held above the sphere at (0, 0, 2)";
+}
+
 TEST(CollisionScene, APointThatCrossesTheFloorInOneStepIsReported) {
   // Found 0.4 above the floor moving down at 100 m/s: the penalty cannot stop it within the step.
   LoadedScene fast = build_scene_text(point_over_floor(0.4), "dt=\"0.01\" gravity=\"0 -9.81 0\"");
