@@ -17,8 +17,9 @@ TEST(Machine, ThreadRoundTripIsAPositiveTime) {
   const double ns = thread_round_trip_ns(2000, std::chrono::seconds(5));
   ASSERT_TRUE(std::isfinite(ns));
   EXPECT_GT(ns, 0.0);
-  // 2000 round trips took less than the budget, so each far less than 5 s / 2000.
-  EXPECT_LT(ns, 5e9 / 2000);
+  // A finite figure means at least one timed batch of 256 round trips fitted in the budget (on a
+  // loaded machine, under ThreadSanitizer, not all 2000 may), so each took less than 5 s / 256.
+  EXPECT_LT(ns, 5e9 / 256);
 }
 
 TEST(Machine, NoTimeForAnyRoundTripIsNaN) {
