@@ -63,6 +63,8 @@ void ConstraintProblem<Real>::clear(int rows) {
   d.setZero(rows);
   resolutions.clear();
   first_line.clear();
+  span_begin.clear();
+  spans.clear();
 }
 
 template <class Real>
@@ -75,6 +77,42 @@ template <class Real>
 void ConstraintProblem<Real>::check_blocks() const {
   const int covered = first_line.empty() ? 0 : first_line.back() + resolutions.back()->lines();
   if (covered != size()) throw make_error("constraint problem: the blocks cover ", covered, " rows of ", size());
+}
+
+template <class Real>
+void ConstraintProblem<Real>::find_column_spans() {
+  // A gap this short costs less to multiply through than to step over.
+  constexpr int kShortestGap = 16;
+  const int n = size();
+  span_begin.assign(1, 0);
+  spans.clear();
+  for (std::size_t b = 0; b < resolutions.size(); ++b) {
+    const int first = first_line[b], lines = resolutions[b]->lines();
+    int open = -1, last_nonzero = -1;
+    for (int c = 0; c < n; ++c) {
+      bool nonzero = false;
+      for (int l = first; l < first + lines && !nonzero; ++l) nonzero = w(l, c) != 0;
+      if (!nonzero) continue;
+      if (open >= 0 && c - last_nonzero > kShortestGap) {
+        spans.push_back({open, last_nonzero + 1});
+        open = -1;
+      }
+      if (open < 0) open = c;
+      last_nonzero = c;
+    }
+    if (open >= 0) spans.push_back({open, last_nonzero + 1});
+    span_begin.push_back(static_cast<int>(spans.size()));
+  }
+}
+
+template <class Real>
+Real ConstraintProblem<Real>::row_times_lambda(int row, std::size_t block) const {
+  Real sum = 0;
+  for (int k = span_begin[block]; k < span_begin[block + 1]; ++k) {
+    const auto [begin, end] = spans[static_cast<std::size_t>(k)];
+    sum += w.row(row).segment(begin, end - begin).dot(f.segment(begin, end - begin));
+  }
+  return sum;
 }
 
 template class BilateralResolution3<float>;

@@ -68,6 +68,7 @@ template <class Real>
 void ConstraintSolver<Real>::init_blocks(ConstraintProblem<Real>& problem) const {
   problem.check_blocks();
   regularize(problem);
+  problem.find_column_spans();
   for (std::size_t b = 0; b < problem.resolutions.size(); ++b) {
     problem.resolutions[b]->init(problem.first_line[b], problem.w, problem.f.data());
   }
@@ -82,7 +83,7 @@ void ConstraintSolver<Real>::store_blocks(ConstraintProblem<Real>& problem) cons
 
 template <class Real>
 Real ConstraintSolver<Real>::sweep(ConstraintProblem<Real>& problem, Real tolerance, bool& verified) const {
-  const int n = problem.size();
+  if (problem.span_begin.size() != problem.resolutions.size() + 1) problem.find_column_spans();
   Real* f = problem.f.data();
   Real* d = problem.d.data();
   const Real* dfree = problem.dfree.data();
@@ -99,12 +100,11 @@ Real ConstraintSolver<Real>::sweep(ConstraintProblem<Real>& problem, Real tolera
       before_large.resize(static_cast<std::size_t>(nb));
       old = before_large.data();
     }
-    // d = δ_free + W λ on the block's rows (each a dot product over the full row, vectorised:
-    // the same values as SOFA's loop to round-off).
-    const Eigen::Map<const DenseVector<Real>> lambda(f, n);
+    // d = δ_free + W λ on the block's rows (each a dot product over the row's nonzero spans,
+    // vectorised: the same values as SOFA's loop over the full row to round-off).
     for (int l = 0; l < nb; ++l) {
       old[l] = f[j + l];
-      d[j + l] = dfree[j + l] + w.row(j + l).dot(lambda);
+      d[j + l] = dfree[j + l] + problem.row_times_lambda(j + l, b);
     }
     resolution.resolve(j, w, d, f, dfree);
     Real block_error = 0;

@@ -454,22 +454,37 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
   const Real k1 = element.material[1], k2 = element.material[2];
   std::array<Vec3<Real>, 4> w;
   for (std::size_t i = 0; i < 4; ++i) w[i] = element.rotation * element.gradient[i];
-  // Written entry by entry into the blocks' storage (column-major): through Eigen's 3x3 temporaries
-  // the compiler stored single entries and read them back as pairs, a stalled store each time.
+  // Column c of block (k, l) is k1 w_k w_l[c] + k2 w_l w_k[c], plus the diagonal term in lane c; column
+  // c of its transpose is row c, k1 w_l w_k[c] + k2 w_k w_l[c] with each product's factors swapped (the
+  // same bits as entry by entry). The three columns are added to the block's nine stored values
+  // (column-major) as two packets and one value, so that no store is read back narrower than written.
+  using P = Packed<Real>;
+  const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
+  const auto add_columns = [](const P& c0, const P& c1, const P& c2, Real* to) {
+    store_packed(to, load_packed(to) + __builtin_shufflevector(c0, c1, 0, 1, 2, 4));
+    store_packed(to + 4, load_packed(to + 4) + __builtin_shufflevector(c1, c2, 1, 2, 4, 5));
+    to[8] += c2[2];
+  };
   const auto add_block = [&](std::size_t k, std::size_t l, Real* to, Real* transposed_to) {
     const Vec3<Real>& a = w[k];
     const Vec3<Real>& b = w[l];
-    const Real ka[3] = {k1 * a[0], k1 * a[1], k1 * a[2]};
-    const Real kb[3] = {k2 * b[0], k2 * b[1], k2 * b[2]};
+    const P ka = lanes(k1 * a), kb = lanes(k2 * b);
     const Real diagonal = k2 * a.dot(b);
+    P column[3];
     for (int c = 0; c < 3; ++c) {
-      for (int r = 0; r < 3; ++r) {
-        Real m = ka[r] * b[c] + kb[r] * a[c];
-        if (r == c) m += diagonal;
-        to[r + 3 * c] += m;
-        if (transposed_to != nullptr) transposed_to[c + 3 * r] += m;
-      }
+      column[c] = ka * b[c] + kb * a[c];
+      column[c][c] += diagonal;
     }
+    add_columns(column[0], column[1], column[2], to);
+    if (transposed_to == nullptr) return;
+    const P pb = lanes(b), pa = lanes(a);
+    const Real kac[3] = {k1 * a[0], k1 * a[1], k1 * a[2]};
+    const Real kbc[3] = {k2 * b[0], k2 * b[1], k2 * b[2]};
+    for (int c = 0; c < 3; ++c) {
+      column[c] = pb * kac[c] + pa * kbc[c];
+      column[c][c] += diagonal;
+    }
+    add_columns(column[0], column[1], column[2], transposed_to);
   };
   const Tetrahedron& tet = mesh_->tetrahedron(t);
   for (std::size_t k = 0; k < 4; ++k) add_block(k, k, point_blocks_[static_cast<std::size_t>(tet[k])].data(), nullptr);

@@ -83,6 +83,47 @@ TEST(BlockGaussSeidelSolver, StopsBySofasRuleScaledByTheRowCount) {
   }
 }
 
+// W as contacts on separate objects make it: rows couple only within their group, zero elsewhere
+// (groups interleaved, so that each block's columns fall in several spans, with a short gap).
+TEST(BlockGaussSeidelSolver, SkipsWsZeroColumnsAndGivesTheFullRowsResult) {
+  const int blocks = 12, n = 3 * blocks;
+  const auto group_of = [](int block) { return block < 3 ? 0 : (block < 9 ? 1 + block % 2 : 0); };
+  const DenseMatrix<double> full = spd(n, 7) + 2.0 * spd(n, 8);
+  DenseMatrix<double> w = DenseMatrix<double>::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      if (group_of(i / 3) == group_of(j / 3)) w(i, j) = full(i, j);  // a principal submatrix per group: still SPD
+    }
+  }
+  const DenseVector<double> dfree = random_vector(n, 9);
+  std::vector<Vec3<double>> previous;
+  ConstraintProblem<double> problem = bilateral_problem(w, dfree, previous);
+  problem.find_column_spans();
+  // Block 3 (group 2: blocks 3, 5, 7) reaches columns 9..12, 15..18 and 21..24: gaps of 3 columns
+  // are kept inside one span.
+  ASSERT_EQ(problem.span_begin.size(), static_cast<std::size_t>(blocks + 1));
+  ASSERT_EQ(problem.span_begin[4] - problem.span_begin[3], 1);
+  EXPECT_EQ(problem.spans[static_cast<std::size_t>(problem.span_begin[3])], (std::array<int, 2>{9, 24}));
+  // Block 0 (group 0: blocks 0-2 and 9-11): two spans, the gap between them longer than the
+  // shortest one skipped.
+  ASSERT_EQ(problem.span_begin[1] - problem.span_begin[0], 2);
+  EXPECT_EQ(problem.spans[0], (std::array<int, 2>{0, 9}));
+  EXPECT_EQ(problem.spans[1], (std::array<int, 2>{27, 36}));
+  for (int row = 0; row < n; ++row) {
+    problem.f = random_vector(n, 10 + row);
+    const double expected = w.row(row).dot(problem.f);
+    EXPECT_NEAR(problem.row_times_lambda(row, static_cast<std::size_t>(row / 3)), expected, 1e-13 * (1 + std::abs(expected)));
+  }
+  problem.f.setZero();
+  ConstraintSolverParameters<double> p;
+  p.tolerance = 1e-6;
+  BlockGaussSeidelSolver<double> solver(p);
+  const ConstraintSolveReport report = solver.solve(problem);
+  const Reference expected = reference_gauss_seidel(Eigen::MatrixXd(w), Eigen::VectorXd(dfree), p.tolerance, 1000);
+  EXPECT_EQ(report.iterations, expected.iterations);
+  EXPECT_LT((Eigen::VectorXd(problem.f) - expected.f).norm(), 1e-12 * expected.f.norm());
+}
+
 TEST(BlockGaussSeidelSolver, ReportsAnUnconvergedSolve) {
   const int n = 12;
   const DenseMatrix<double> w = spd(n, 3) + 3.0 * spd(n, 5);

@@ -10,6 +10,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -99,6 +100,12 @@ struct ConstraintProblem {
   // One entry per block, in row order; first_line[b] is block b's first row.
   std::vector<std::unique_ptr<ConstraintResolution<Real>>> resolutions;
   std::vector<int> first_line;
+  // Work for the sweeps: the columns where block b's rows of W may not be zero, as spans
+  // [spans[k][0], spans[k][1]) for k in [span_begin[b], span_begin[b + 1]). W is exactly zero
+  // between rows on no common object (no correction ever adds there), so that a row's product
+  // with λ skips those columns; find_column_spans() makes them from W.
+  std::vector<int> span_begin;
+  std::vector<std::array<int, 2>> spans;
 
   int size() const { return static_cast<int>(dfree.size()); }
   // n rows, everything zero, no blocks.
@@ -107,6 +114,11 @@ struct ConstraintProblem {
   void add_block(std::unique_ptr<ConstraintResolution<Real>> resolution);
   // Throws fastcorot::Error when the blocks do not cover the rows exactly.
   void check_blocks() const;
+  // The spans above, from W as it is now (gaps of fewer than a few columns are kept in a span).
+  void find_column_spans();
+  // Row `row` of W times λ over the spans of `block` (the block holding the row): the full row's
+  // product to round-off.
+  Real row_times_lambda(int row, std::size_t block) const;
 };
 
 }  // namespace fastcorot
