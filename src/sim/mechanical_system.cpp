@@ -176,8 +176,9 @@ void MechanicalSystem<Real>::multiply_own_part(const MatrixFactors<Real>& factor
 }
 
 template <class Real>
-Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<Real>& factors) const {
-  TripletSink<Real> sink;
+const Eigen::SparseMatrix<Real>& MechanicalSystem<Real>::assemble(const MatrixFactors<Real>& factors) const {
+  TripletSink<Real>& sink = sink_;
+  sink.triplets.clear();
   if (mass.size() != 0) mass.add_to_matrix(sink, factors.m);
   for (const auto& field : force_fields) field->add_stiffness(sink, factors.k, 0, factors.b);
   std::vector<bool> is_fixed(static_cast<std::size_t>(size()), false);
@@ -244,10 +245,11 @@ Eigen::SparseMatrix<Real> MechanicalSystem<Real>::assemble(const MatrixFactors<R
   // Off the diagonal, (I - P) is -P's off-diagonal blocks.
   Eigen::SparseMatrix<Real> off = p_matrix;
   off.prune([](Index r, Index c, const Real&) { return r / 3 != c / 3; });
-  Eigen::SparseMatrix<Real> projected_matrix = p_matrix * matrix * p_matrix;
-  projected_matrix += rest_matrix;
-  projected_matrix -= off;
-  return projected_matrix;
+  projected_ = p_matrix * matrix * p_matrix;
+  projected_ += rest_matrix;
+  projected_ -= off;
+  projected_.makeCompressed();
+  return projected_;
 }
 
 template <class Real>

@@ -9,8 +9,7 @@ LinearSolveReport SparseDirectSolver<Real>::solve(const MechanicalSystem<Real>& 
                                                   const MatrixFactors<Real>& factors,
                                                   std::span<const Vec3<Real>> rhs, std::span<Vec3<Real>> x) {
   const PhaseTimer timer(system.timer_slot(&PhaseTimes::solver_vectors));  // assembly and factorisation
-  Eigen::SparseMatrix<Real> matrix = system.assemble(factors);
-  matrix.makeCompressed();
+  const Eigen::SparseMatrix<Real>& matrix = system.assemble(factors);  // compressed
   // The pattern depends only on the topology and the fixed points: one analysis serves every step.
   factored_ = false;
   if (!factorisation_.factorise(matrix)) {

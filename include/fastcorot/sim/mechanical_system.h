@@ -168,8 +168,9 @@ class MechanicalSystem {
                          std::span<Vec3<Real>> out) const;
 
   // The same matrix assembled (3#V × 3#V); each fixed point's rows and columns are cleared and its
-  // diagonal set to 1, as SOFA's projective constraints do to an assembled matrix.
-  Eigen::SparseMatrix<Real> assemble(const MatrixFactors<Real>& factors) const;
+  // diagonal set to 1, as SOFA's projective constraints do to an assembled matrix. Compressed; held
+  // by the system until the next call (copy it to keep it longer).
+  const Eigen::SparseMatrix<Real>& assemble(const MatrixFactors<Real>& factors) const;
 
   // The 3×3 diagonal blocks of the same matrix, one per point, as assemble() has them (identity for
   // fixed and isolated points); overwrites `blocks` (#V blocks). For block-Jacobi preconditioning.
@@ -213,6 +214,8 @@ class MechanicalSystem {
   int threads_ = 1;
   PhaseTimes* times_ = nullptr;
   mutable PatternedAssembly<Real> assembly_;  // assemble()'s matrix, its pattern kept between calls
+  mutable TripletSink<Real> sink_;             // assemble()'s entries (cleared, its capacity kept)
+  mutable Eigen::SparseMatrix<Real> projected_;  // assemble()'s matrix when projections apply
 };
 
 }  // namespace fastcorot
