@@ -40,6 +40,30 @@ def _value_for_scene(value):
     return value
 
 
+class _NamedList(list):
+    """A node's children or objects, as SofaPython3's NodeIterator: a list that also takes names
+    (``"solver" in node.objects``, ``node.children["Visual"]``)."""
+
+    def _named(self, name):
+        return next((item for item in self if item.getName() == name), None)
+
+    def __contains__(self, item):
+        if isinstance(item, str):
+            return self._named(item) is not None
+        return list.__contains__(self, item)
+
+    def __getitem__(self, index):
+        if isinstance(index, str):
+            found = self._named(index)
+            if found is None:
+                raise KeyError(f"no item named '{index}'")
+            return found
+        return list.__getitem__(self, index)
+
+    def at(self, index):
+        return list.__getitem__(self, index)
+
+
 class BaseObject:
     """An object of a node (a SOFA component): its data are attributes (``obj.youngModulus.value``)."""
 
@@ -138,9 +162,11 @@ ForceFieldVec3d = ForceField
 class Node:
     """A node of the scene: children, objects (components and controllers) and its data (dt, gravity)."""
 
-    def __init__(self, name="root"):
+    def __init__(self, name="root", **data):
         self._bind(fastcorot.Node(name))
         object.__setattr__(self._node, "_location", _scene._caller_location())
+        for key, value in data.items():  # the node's data (dt, gravity, ...), as SofaPython3's Node(name, **data)
+            setattr(self, key, value)
 
     def _bind(self, node):
         object.__setattr__(self, "_node", node)
@@ -241,7 +267,9 @@ class Node:
                 return Node._of(child)
         return None
 
-    def getObject(self, name):
+    def getObject(self, name, **kwargs):
+        """The object (or Python component) of that name, None without one; SofaPython3's extra
+        keywords (``warning=False``) are accepted and have no effect."""
         for obj in self._node._objects:
             if obj._data.get("name") == name:
                 return BaseObject._of(obj, self)
@@ -250,17 +278,20 @@ class Node:
                 return controller
         return None
 
+    def hasObject(self, name):
+        return self.getObject(name) is not None
+
     @property
     def children(self):
-        return [Node._of(child) for child in self._node._children]
+        return _NamedList(Node._of(child) for child in self._node._children)
 
     @property
     def objects(self):
-        return [BaseObject._of(obj, self) for obj in self._node._objects] + list(self._python_objects)
+        return _NamedList([BaseObject._of(obj, self) for obj in self._node._objects] + list(self._python_objects))
 
     @property
     def parents(self):
-        return [Node._of(self._node._parent)] if self._node._parent is not None else []
+        return _NamedList([Node._of(self._node._parent)] if self._node._parent is not None else [])
 
     def getName(self):
         return self._node.name

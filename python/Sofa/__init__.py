@@ -12,9 +12,27 @@ What SofaPython3 has and fastcorot does not is a clear exception naming it. docs
 table of what maps and what differs.
 """
 
-from . import Core, Helper, Simulation  # noqa: F401  (Sofa.Gui is imported on demand, as in SofaPython3)
+from . import Core, Helper, Simulation, constants  # noqa: F401  (Sofa.Gui is imported on demand, as in SofaPython3)
 
-__all__ = ["Core", "Helper", "Simulation"]
+__all__ = ["Core", "Helper", "Simulation", "constants"]
+
+
+def _located(kind):
+    def message(target, text):
+        """SofaPython3's Sofa.msg_*(target, message): Sofa.Helper's message with the caller's file and line."""
+        import inspect
+
+        caller = inspect.stack()[1]
+        Helper._message(kind, (target, f"{text} ({caller.filename}:{caller.lineno})"))
+
+    message.__name__ = "msg_" + kind.lower()
+    return message
+
+
+msg_info = _located("INFO")
+msg_warning = _located("WARNING")
+msg_error = _located("ERROR")
+msg_deprecated = _located("DEPRECATED")
 
 
 def __getattr__(name):

@@ -5,15 +5,23 @@ name, their node (getContext) and data of their own (addData). Sofa.Core exports
 from ._data import Data
 
 
+# SOFA's Base and BaseObject data that a component written in Python has too (name apart), with
+# their defaults; SofaPython3 sets `listening` for every Python component.
+_BASE_DATA = {"listening": True, "printLog": False, "tags": "", "bbox": "", "componentState": "Valid"}
+
+
 class _PythonComponent:
-    """What a component written in Python has of SOFA's BaseObject: a name and the node it is in."""
+    """What a component written in Python has of SOFA's BaseObject: a name, SOFA's base data
+    (listening, printLog, tags) and the node it is in. As SofaPython3, a keyword argument naming a
+    datum sets it and the others are ignored; ``self.name = ...`` and ``self.listening = ...`` set them."""
 
     def __init__(self, *args, **kwargs):
         name = kwargs.get("name")
         if name is None:
             name = args[0] if args and isinstance(args[0], str) else type(self).__name__
-        self.__dict__["_sofa_name"] = str(name)
+        self.__dict__["_sofa_name"] = str(name.value if isinstance(name, Data) else name)
         self.__dict__["_sofa_context"] = None
+        self.__dict__["_sofa_base"] = {key: kwargs.get(key, default) for key, default in _BASE_DATA.items()}
 
     def init(self):
         """Called once the simulation is built (Sofa.Simulation.init)."""
@@ -21,8 +29,29 @@ class _PythonComponent:
     def reinit(self):
         pass
 
+    def _base_data(self):
+        return self.__dict__.setdefault("_sofa_base", dict(_BASE_DATA))  # also for a subclass that skipped __init__
+
     def getName(self):
         return self._sofa_name
+
+    def setName(self, name):
+        self._set_data_value("name", name)
+
+    def getClassName(self):
+        return type(self).__name__
+
+    def getTemplateName(self):
+        return ""
+
+    def getData(self, name):
+        """The datum `name` (None when the component has none), as SofaPython3's getData/findData."""
+        return Data(self, name) if name == "name" or name in _BASE_DATA or name in self.__dict__.get("_sofa_data", {}) else None
+
+    findData = getData
+
+    def getDataFields(self):
+        return [Data(self, name) for name in ["name", *_BASE_DATA, *self.__dict__.get("_sofa_data", {})]]
 
     def getContext(self):
         return self._sofa_context
@@ -38,6 +67,10 @@ class _PythonComponent:
     def name(self):
         return Data(self, "name")
 
+    @name.setter
+    def name(self, value):
+        self._set_data_value("name", value.value if isinstance(value, Data) else value)
+
     def addData(self, name, value=None, default=None, help="", group="", type=""):
         """A datum of the component's own (SofaPython3's addData): then ``self.<name>`` is a Data with
         `.value`, and other objects may link to it."""
@@ -48,7 +81,7 @@ class _PythonComponent:
 
     def __getattr__(self, name):
         own = self.__dict__.get("_sofa_data", {})
-        if name in own:
+        if name in own or name in _BASE_DATA:
             return Data(self, name)
         raise AttributeError(f"{type(self).__name__} '{self.__dict__.get('_sofa_name', '?')}' has no attribute '{name}'")
 
@@ -56,6 +89,8 @@ class _PythonComponent:
         own = self.__dict__.get("_sofa_data", {})
         if name in own:
             own[name] = value.value if isinstance(value, Data) else value
+        elif name in _BASE_DATA and name not in self.__dict__:
+            self._base_data()[name] = value.value if isinstance(value, Data) else value
         else:
             object.__setattr__(self, name, value)
 
@@ -63,6 +98,8 @@ class _PythonComponent:
     def _data_value(self, name):
         if name == "name":
             return self._sofa_name
+        if name in _BASE_DATA and name not in self.__dict__.get("_sofa_data", {}):
+            return self._base_data()[name]
         own = self.__dict__.get("_sofa_data", {})
         if name in own:
             return own[name]
@@ -73,8 +110,12 @@ class _PythonComponent:
         if name in own:
             own[name] = value
             return
+        if name in _BASE_DATA:
+            self._base_data()[name] = value
+            return
         if name != "name" or not isinstance(value, str):
-            raise TypeError(f"{self.getPathName()}: a Python component's data are its name (a str) and those of addData")
+            raise TypeError(f"{self.getPathName()}: a Python component's data are its name (a str), "
+                            f"{', '.join(_BASE_DATA)} and those of addData")
         self.__dict__["_sofa_name"] = value
 
     def _live_array(self, name):

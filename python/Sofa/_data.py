@@ -90,7 +90,16 @@ class Data:
         return array.astype(dtype) if dtype is not None else array
 
     def __len__(self):
-        return len(self.array())
+        value = self._owner._data_value(self._name)
+        return len(value) if isinstance(value, str) else len(self.array())  # a text's length, as DataString's
+
+    def __bool__(self):
+        """A text or an array is false when empty (SofaPython3's DataString and DataContainer have a
+        length); any other datum is true."""
+        value = self._owner._data_value(self._name)
+        if isinstance(value, (str, list, tuple, np.ndarray)):
+            return len(value) > 0
+        return True
 
     def __getitem__(self, index):
         return self.array()[index]

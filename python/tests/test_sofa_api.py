@@ -372,3 +372,48 @@ def test_the_remaining_calls_scripts_make(capsys):
         Sofa.Simulation.init("root")
     with pytest.raises(TypeError, match="name .str. or a Sofa.Core.Node"):
         root.addChild(3)
+
+
+def test_calls_stlib_and_softrobots_scripts_make(capsys):
+    """What STLIB's prefabs and SoftRobots' controllers call of SofaPython3 (issue 40's first walls)."""
+    import Sofa.constants.Key as Key
+    from Sofa.constants import KeyCode
+
+    class Named(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+            self.name = "AnimationManager"  # STLIB's AnimationManagerController does this
+            self.listening = True
+            self.steps = 0
+
+        def onKeypressedEvent(self, event):
+            if event["key"] == Key.uparrow:
+                self.steps += 1
+
+    root = Sofa.Core.Node("root", dt=0.02, gravity=[0, -9.81, 0])
+    assert root.dt.value == 0.02 and list(root.gravity.value) == [0, -9.81, 0]
+    state = tetrahedron_scene(root)
+    controller = root.addObject(Named(name="first", printLog=True, unknownOption=3))
+    assert controller.getName() == "AnimationManager" and controller.name.value == "AnimationManager"
+    assert controller.listening.value is True and controller.printLog.value is True
+    assert controller.getData("listening").value is True and controller.findData("unknownOption") is None
+    assert [d.getName() for d in controller.getDataFields()][:2] == ["name", "listening"]
+    controller.setName("renamed")
+    assert root.getObject("renamed", warning=False) is controller and root.hasObject("renamed")
+    assert not root.hasObject("AnimationManager")
+    assert "renamed" in root.objects and "body" in root.children and "nothing" not in root.objects
+    assert root.children["body"] is root.body and root.body.objects["dofs"] is state
+    with pytest.raises(KeyError, match="no item named 'nothing'"):
+        root.objects["nothing"]
+    root._send("KeypressedEvent", key=Key.uparrow)
+    assert controller.steps == 1
+    assert (Key.uparrow, Key.A, Key.KP_0, Key.space) == (chr(19), "A", "0", " ")
+    assert (KeyCode.uparrow, KeyCode.A) == (19, 65)
+    # A text datum is false when empty and has a length (STLIB: `if self.collisionMesh:`).
+    controller.addData(name="surfaceMesh", value="", type="string")
+    controller.addData(name="volumeMesh", value="finger.vtk", type="string")
+    assert not controller.surfaceMesh and len(controller.surfaceMesh) == 0
+    assert controller.volumeMesh and len(controller.volumeMesh) == 10 and state.position and len(state.position) == 4
+    Sofa.msg_warning(controller, "hello")
+    err = capsys.readouterr().err
+    assert "[WARNING]" in err and "[renamed] hello" in err and "test_sofa_api.py" in err
