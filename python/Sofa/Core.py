@@ -32,12 +32,51 @@ def _closest(name, names):
 
 
 def _value_for_scene(value):
-    """A keyword value of addObject as the scene tree takes it: links for Data, objects and nodes."""
+    """A keyword value of addObject as the scene tree takes it: links for Data, objects and nodes; a
+    datum a script added (a prefab's parameter, a controller's addData) gives its value (the scene
+    builder reads the components' data only)."""
+    if isinstance(value, Data) and value._python_owned():
+        return _value_for_scene(value.value)
     if isinstance(value, (Data, BaseObject, Node)):
         return value.getLinkPath()
     if isinstance(value, tuple):
         return list(value)
     return value
+
+
+def _graft_links(top):
+    """`top`, a tree built apart (a prefab made before being added), now hangs below another node:
+    the links its objects hold to objects of its own, absolute while `top` was a root ("@/loader"),
+    are written from the new root ("@/finger/loader"). SOFA resolves such links as the objects are
+    created, so that they keep pointing at the same objects wherever the tree is added."""
+    prefix = "/" + "/".join(n.name for n in top._lineage()[1:])
+
+    def inside(path):  # whether "/a/b.data" names a node or an object of `top`'s tree
+        node = top
+        parts = path.lstrip("/").split(".", 1)[0].split("/")
+        for k, part in enumerate(parts):
+            child = next((c for c in node._children if c.name == part), None)
+            if child is not None:
+                node = child
+            elif k == len(parts) - 1:
+                return any(o._data.get("name") == part for o in node._objects)
+            else:
+                return False
+        return True
+
+    def moved(value):
+        if not isinstance(value, str) or "@/" not in value:
+            return value
+        words = value.split(" ")
+        return " ".join("@" + prefix + w[1:] if w.startswith("@/") and inside(w[1:]) else w for w in words)
+
+    stack = [top]
+    while stack:
+        node = stack.pop()
+        stack.extend(node._children)
+        for obj in node._objects:
+            for key, value in list(obj._data.items()):
+                obj._data[key] = moved(value)
 
 
 class _NamedList(list):
@@ -197,6 +236,7 @@ class Node:
                 raise ValueError(f"addChild: node '{child.getName()}' already has a parent")
             object.__setattr__(child._node, "_parent", self._node)
             self._node._children.append(child._node)
+            _graft_links(child._node)
             self._changed_while_running()
             return child
         if not isinstance(child, str):
@@ -318,9 +358,23 @@ class Node:
             Simulation._regrow(root)
 
     def getData(self, name):
-        return Data(self, name) if name in _NODE_DATA else None
+        return Data(self, name) if name in _NODE_DATA or name in self._extra.get("_added", ()) else None
 
     findData = getData
+
+    def addData(self, name, value=None, default=None, help="", group="", type=""):
+        """A datum of the node's own (SofaPython3's Node.addData, what prefabs' parameters are): then
+        ``node.<name>`` is a Data; a component given it as a value takes its value."""
+        if not isinstance(name, str) or not name.isidentifier():
+            raise TypeError(f"{self.getPathName()}: addData: name must be an identifier, got {name!r}")
+        value = value if value is not None else default
+        if isinstance(type, str) and type.startswith("Vec") and value is not None and not isinstance(value, str):
+            import numpy as np
+
+            value = np.array(value, dtype=float)  # SofaPython3 reads vector data back as arrays
+        self._extra.setdefault("_added", set()).add(name)
+        self._extra[name] = value
+        return Data(self, name)
 
     def _first(self, category):
         for obj in self._node._objects:
@@ -393,7 +447,7 @@ class Node:
         found = self.getChild(name) or self.getObject(name)
         if found is not None:
             return found
-        if name in _NODE_DATA:
+        if name in _NODE_DATA or name in self._extra.get("_added", ()):
             return Data(self, name)
         names = [c.name for c in self._node._children] + [o._data.get("name") for o in self._node._objects]
         names = [n for n in names if isinstance(n, str)] + [c.getName() for c in self._python_objects]
@@ -403,7 +457,7 @@ class Node:
     def __setattr__(self, name, value):
         if name.startswith("_"):
             object.__setattr__(self, name, value)
-        elif name in _NODE_DATA:
+        elif name in _NODE_DATA or name in self._extra.get("_added", ()):
             self._set_data_value(name, value.value if isinstance(value, Data) else value)
         else:
             object.__setattr__(self, name, value)  # a Python attribute of the script's own, as SofaPython3 keeps

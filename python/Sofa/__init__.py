@@ -14,7 +14,9 @@ table of what maps and what differs.
 
 from . import Core, Helper, Simulation, constants  # noqa: F401  (Sofa.Gui is imported on demand, as in SofaPython3)
 
-__all__ = ["Core", "Helper", "Simulation", "constants"]
+from ._prefab import Prefab  # noqa: E402
+
+__all__ = ["Core", "Helper", "Prefab", "Simulation", "constants"]
 
 
 def _located(kind):

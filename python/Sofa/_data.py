@@ -32,6 +32,13 @@ class Data:
     def getOwner(self):
         return self._owner
 
+    def _python_owned(self):
+        """Whether a script made this datum (a node's or a Python component's addData), rather than a
+        component of the scene."""
+        owner = self._owner
+        added = getattr(owner, "_extra", {}).get("_added", ()) if hasattr(owner, "_node") else ()
+        return self._name in added or self._name in getattr(owner, "__dict__", {}).get("_sofa_data", {})
+
     def getLinkPath(self):
         """``@/node/object.datum``: a link to this datum, for another object's attribute."""
         return self._owner.getLinkPath() + "." + self._name
