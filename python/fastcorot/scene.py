@@ -184,6 +184,14 @@ class Object:
             live = {"currentIterations": report["iterations"], "currentError": report["error"],
                     "currentNumConstraints": report["rows"]}
             return live.get(name, _NOT_LIVE)
+        if name in core.constraint_live(index):  # what the constraint keeps of its own (CableConstraint's outputs)
+            values = core.read_constraint(index, name)
+            kind = self._kind(name)
+            if kind == "real":
+                return float(values[0])
+            if kind == "int":
+                return int(values[0])
+            return values
         if self._type == "BilateralLagrangianConstraint" and name in _BILATERAL_LIVE:
             if name != "rest_vector" and self._rigid_pair():
                 return _NOT_LIVE  # kept as written: SOFA's Rigid3 variant reads neither
@@ -241,6 +249,18 @@ class Object:
         raise AttributeError(f"{where} has no data '{name}'; its data: {', '.join(self.data_names())}")
 
     def _write(self, name, value):
+        if self._lagrangian is not None and self._lagrangian[1] is not None:
+            core, index = self._lagrangian
+            if name in core.constraint_live(index):
+                self._check([name])
+                canonical = self._canonical(name, value)
+                live = from_text(self._kind(name), name, canonical, self.location) if isinstance(canonical, str) else canonical
+                try:
+                    core.write_constraint(index, name, np.asarray(live, dtype=float).reshape(-1).tolist())
+                except ValueError as error:
+                    raise ValueError(f"{self.location}: {self._label()}: {error}") from None
+                self._data[name] = canonical
+                return
         if self._lagrangian is not None and self._type == "BilateralLagrangianConstraint" and name in _BILATERAL_LIVE:
             core, index = self._lagrangian
             self._check([name])

@@ -171,6 +171,30 @@ void bind_constraints(py::class_<SimulationCore>& core) {
           },
           py::arg("index"), py::arg("rest_vector") = py::none(), py::arg("activate") = py::none(), py::arg("load") = py::none())
       .def(
+          "constraint_live",
+          [](SimulationCore& c, std::size_t index) { return constraint_at(c, index).live_data(); },
+          "The data of constraint `index` that scripts read or write between steps (SOFA's names).", py::arg("index"))
+      .def(
+          "read_constraint",
+          [](SimulationCore& c, std::size_t index, const std::string& name) {
+            std::vector<double> values;
+            {
+              std::lock_guard lock(c.stepping);  // not while another thread steps
+              values = constraint_at(c, index).read_live(name);
+            }
+            return py::array_t<double>(static_cast<py::ssize_t>(values.size()), values.data());
+          },
+          "Datum `name` of constraint `index` as the running simulation holds it (numbers, a copy).", py::arg("index"),
+          py::arg("name"))
+      .def(
+          "write_constraint",
+          [](SimulationCore& c, std::size_t index, const std::string& name, const std::vector<double>& values) {
+            std::lock_guard lock(c.stepping);  // not while another thread steps
+            constraint_at(c, index).write_live(name, values);
+          },
+          "Changes datum `name` of constraint `index` for the next steps (ValueError naming it when refused).", py::arg("index"),
+          py::arg("name"), py::arg("values"))
+      .def(
           "set_stopper",
           [](SimulationCore& c, std::size_t index, py::object min, py::object max) {
             std::lock_guard lock(c.stepping);

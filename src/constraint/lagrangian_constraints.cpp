@@ -22,6 +22,16 @@ void check_indices(const std::vector<Index>& indices, std::size_t size, const ch
 }  // namespace
 
 template <class Real>
+std::vector<double> LagrangianConstraint<Real>::read_live(const std::string& name) const {
+  throw make_error(where_, ": '", name, "' is not a datum the running simulation keeps");
+}
+
+template <class Real>
+void LagrangianConstraint<Real>::write_live(const std::string& name, std::span<const double>) {
+  throw make_error(where_, ": '", name, "' cannot be changed while the simulation runs");
+}
+
+template <class Real>
 FixedLagrangianConstraint<Real>::FixedLagrangianConstraint(std::string where, ConstraintPoints<Real> points,
                                                            std::vector<Index> indices)
     : LagrangianConstraint<Real>(std::move(where)), points_(std::move(points)), indices_(std::move(indices)) {
@@ -115,6 +125,8 @@ void BilateralLagrangianConstraint<Real>::add_resolutions(ConstraintProblem<Real
   }
 }
 
+template class LagrangianConstraint<float>;
+template class LagrangianConstraint<double>;
 template class FixedLagrangianConstraint<float>;
 template class FixedLagrangianConstraint<double>;
 template class BilateralLagrangianConstraint<float>;

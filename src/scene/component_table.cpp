@@ -18,7 +18,7 @@ const std::vector<ComponentSpec>& table() {
     std::vector<ComponentSpec> all;
     for (auto family : {scene_detail::topology_components, scene_detail::visual_components,
                         scene_detail::mechanics_components, scene_detail::element_fem_components,
-                        scene_detail::constraint_components, scene_detail::lagrangian_components, scene_detail::engine_components, scene_detail::solver_components,
+                        scene_detail::constraint_components, scene_detail::lagrangian_components, scene_detail::softrobots_components, scene_detail::engine_components, scene_detail::solver_components,
                         scene_detail::collision_components}) {
       for (auto& spec : family()) all.push_back(std::move(spec));
     }

@@ -2,6 +2,7 @@
 #include "precomputed_correction_builder.h"
 #include "unsimulated_points.h"
 #include "projective_constraints.h"
+#include "softrobots_builder.h"
 
 #include "fastcorot/constraint/free_motion_animation_loop.h"
 #include "fastcorot/constraint/rigid_lagrangian_constraints.h"
@@ -173,7 +174,7 @@ class LoopBuilder {
     for (Component* c : components) {
       try {
         if (among(kCorrections, c->type())) add_correction(*c);
-        if (among(kConstraints, c->type())) {
+        if (among(kConstraints, c->type()) || is_softrobots_constraint(c->type())) {
           add_constraint(*c);
           parts.constraints.push_back(c->object);
         }
@@ -383,6 +384,21 @@ class LoopBuilder {
   }
 
   void add_constraint(Component& c) {
+    if (is_softrobots_constraint(c.type())) {
+      Component& state = own_state(c);
+      if (on_rigids(c, state)) throw make_error(c.type(), " acts on Vec3 states (a cable's points), not on Rigid3");
+      ConstraintPoints<double> points = points_of(state, c);
+      const auto& object = simulation_.objects[points.object].system.state;
+      std::vector<Vec3<double>> initial;
+      if (points.mapping) {
+        initial.resize(points.mapping->size());
+        points.mapping->positions(object.position, initial);
+      } else {
+        for (const Index b : points.blocks) initial.push_back(object.position[static_cast<std::size_t>(b)]);
+      }
+      loop_->constraints.push_back(build_softrobots_constraint(data_, c, std::move(points), initial));
+      return;
+    }
     if (c.type() == "UniformLagrangianConstraint") {
       typename UniformLagrangianConstraint<double>::Parameters p;
       p.iterative = data_.boolean(c, "iterative", true);
@@ -660,7 +676,8 @@ class LoopBuilder {
 }  // namespace
 
 bool is_lagrangian_component(std::string_view type) {
-  return type == "FreeMotionAnimationLoop" || among(kSolvers, type) || among(kCorrections, type) || among(kConstraints, type);
+  return type == "FreeMotionAnimationLoop" || among(kSolvers, type) || among(kCorrections, type) || among(kConstraints, type) ||
+         is_softrobots_constraint(type);
 }
 
 LagrangianParts build_free_motion_loop(SceneData& data, std::vector<std::string>& info, Simulation<double>& simulation,

@@ -11,7 +11,7 @@ import re
 import sys
 import tempfile
 
-LAYERS = ["core", "topology", "state", "fem", "mapping", "sim", "constraint", "collision", "io", "scene", "render"]
+LAYERS = ["core", "topology", "state", "fem", "mapping", "sim", "constraint", "softrobots", "collision", "io", "scene", "render"]
 INCLUDE = re.compile(r'^\s*#\s*include\s+"fastcorot/([a-z_]+)/')
 
 

@@ -44,6 +44,12 @@ class LagrangianConstraint {
   // Adds what it shows (its points, their forces from its rows, tied pairs) for pictures and the
   // viewer (constraint_drawing.h); nothing by default.
   virtual void draw(ConstraintDrawer<Real>& drawer) const { (void)drawer; }
+  // Data scripts read, and some write, between steps (SofaPython3 controllers), by SOFA's names,
+  // as numbers: none by default. read_live and write_live throw fastcorot::Error for a name not
+  // listed, a datum that is only read, or values the constraint refuses (nothing changed then).
+  virtual std::vector<std::string> live_data() const { return {}; }
+  virtual std::vector<double> read_live(const std::string& name) const;
+  virtual void write_live(const std::string& name, std::span<const double> values);
   // Its rows [first_row(), first_row() + rows()) in the last build.
   int first_row() const { return first_row_; }
   int rows() const { return rows_; }

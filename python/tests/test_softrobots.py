@@ -1,0 +1,81 @@
+"""SoftRobots' components from a SofaPython3 script: a controller pulls a cable step by step,
+as SoftRobots' finger examples do from the keyboard, and reads the cable's outputs."""
+
+import numpy as np
+import pytest
+
+import Sofa
+import Sofa.Simulation
+
+
+def finger(root, value_type="displacement", value=0.0):
+    """A beam 1 long, held at x = 0, with a cable of three points along its top (our own scene)."""
+    root.dt = 0.01
+    root.gravity = [0, -9.81, 0]
+    root.addObject("FreeMotionAnimationLoop")
+    root.addObject("GenericConstraintSolver", maxIterations=1000, tolerance=1e-12)
+    beam = root.addChild("finger")
+    beam.addObject("EulerImplicitSolver", rayleighMass=0.1, rayleighStiffness=0.1)
+    beam.addObject("SparseLDLSolver")
+    beam.addObject("RegularGridTopology", n=[6, 2, 2], min=[0, 0, 0], max=[1, 0.2, 0.2])
+    beam.addObject("MechanicalObject", name="dofs")
+    beam.addObject("TetrahedronFEMForceField", youngModulus=5e4, poissonRatio=0.3)
+    beam.addObject("UniformMass", totalMass=1)
+    beam.addObject("BoxROI", name="box", box=[-0.01, -0.01, -0.01, 0.01, 0.21, 0.21])
+    beam.addObject("FixedProjectiveConstraint", indices="@box.indices")
+    beam.addObject("LinearSolverConstraintCorrection")
+    cable = beam.addChild("cable")
+    cable.addObject("MechanicalObject", name="points", position=[[0.1, 0.18, 0.1], [0.5, 0.18, 0.1], [0.95, 0.18, 0.1]])
+    actuator = cable.addObject("CableConstraint", name="aCable", indices=[0, 1, 2], pullPoint=[-0.1, 0.18, 0.1],
+                               valueType=value_type, value=[value])
+    cable.addObject("BarycentricMapping")
+    return actuator
+
+
+class Puller(Sofa.Core.Controller):
+    """Adds 0.002 to the cable's command at each step up to 0.02, as SoftRobots' FingerController does per key press."""
+
+    def __init__(self, *args, **kwargs):
+        Sofa.Core.Controller.__init__(self, *args, **kwargs)
+        self.cable = kwargs["cable"]
+        self.name = "FingerController"
+
+    def onAnimateBeginEvent(self, event):
+        command = self.cable.value.value[0]
+        self.cable.value = [min(command + 0.002, 0.02)]
+
+
+def test_a_controller_pulls_the_cable_and_reads_its_outputs():
+    root = Sofa.Core.Node("root")
+    cable = finger(root)
+    root.addObject(Puller(cable=cable))
+    Sofa.Simulation.init(root)
+    initial = cable.cableInitialLength.value
+    assert initial == pytest.approx(1.05, abs=1e-12)
+    tip = root.finger.dofs.position.value[5].copy()
+    for _ in range(400):
+        Sofa.Simulation.animate(root, root.dt.value)
+    assert list(cable.value.value) == [0.02]
+    assert cable.displacement.value == pytest.approx(0.02, abs=1e-7)
+    assert cable.cableLength.value == pytest.approx(initial - 0.02, abs=1e-7)
+    assert cable.force.value > 0
+    assert root.finger.dofs.position.value[5][1] > tip[1] + 1e-3  # the finger bends up
+    with pytest.raises(ValueError, match="aCable.*force is an output"):
+        cable.force = 3.0
+    with pytest.raises(ValueError, match="valueIndex = 2 but value has 1 entries"):
+        cable.valueIndex = 2
+    assert cable.valueIndex.value == 0
+    cable.pullPoint = [-0.2, 0.18, 0.1]
+    assert list(cable.pullPoint.value) == [-0.2, 0.18, 0.1]
+
+
+def test_force_mode_from_a_script_imposes_the_impulse():
+    root = Sofa.Core.Node("root")
+    cable = finger(root, "force", 0.05)
+    Sofa.Simulation.init(root)
+    for _ in range(5):
+        Sofa.Simulation.animate(root, root.dt.value)
+    assert cable.force.value == 0.05
+    cable.value = [0.0]
+    Sofa.Simulation.animate(root, root.dt.value)
+    assert cable.force.value == 0.0
