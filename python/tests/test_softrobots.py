@@ -79,3 +79,41 @@ def test_force_mode_from_a_script_imposes_the_impulse():
     cable.value = [0.0]
     Sofa.Simulation.animate(root, root.dt.value)
     assert cable.force.value == 0.0
+
+
+def test_a_cavity_inflated_from_a_script():
+    """A closed cube of 12 triangles inside a block held at its base, as a pneumatic actuator."""
+    corners = [[0.3, 0.3, 0.3], [0.7, 0.3, 0.3], [0.7, 0.7, 0.3], [0.3, 0.7, 0.3],
+               [0.3, 0.3, 0.7], [0.7, 0.3, 0.7], [0.7, 0.7, 0.7], [0.3, 0.7, 0.7]]
+    triangles = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 1, 5], [0, 5, 4],
+                 [3, 7, 6], [3, 6, 2], [0, 4, 7], [0, 7, 3], [1, 2, 6], [1, 6, 5]]
+    root = Sofa.Core.Node("root")
+    root.dt = 0.01
+    root.addObject("FreeMotionAnimationLoop")
+    root.addObject("GenericConstraintSolver", maxIterations=1000, tolerance=1e-14)
+    block = root.addChild("block")
+    block.addObject("EulerImplicitSolver", rayleighMass=0.1, rayleighStiffness=0.1)
+    block.addObject("SparseLDLSolver")
+    block.addObject("RegularGridTopology", n=[5, 5, 5], min=[0, 0, 0], max=[1, 1, 1])
+    block.addObject("MechanicalObject")
+    block.addObject("TetrahedronFEMForceField", youngModulus=1e3, poissonRatio=0.3)
+    block.addObject("UniformMass", totalMass=1)
+    block.addObject("BoxROI", name="base", box=[-0.01, -0.01, -0.01, 1.01, 0.01, 1.01])
+    block.addObject("FixedProjectiveConstraint", indices="@base.indices")
+    block.addObject("LinearSolverConstraintCorrection")
+    cavity = block.addChild("cavity")
+    cavity.addObject("MeshTopology", name="surface", position=corners, triangles=triangles)
+    cavity.addObject("MechanicalObject", position=corners)
+    pressure = cavity.addObject("SurfacePressureConstraint", name="pressure", triangles="@surface.triangles",
+                                valueType="volumeGrowth", value=0.0)
+    cavity.addObject("BarycentricMapping")
+    Sofa.Simulation.init(root)
+    assert pressure.initialCavityVolume.value == pytest.approx(0.064, abs=1e-15)
+    for step in range(300):
+        pressure.value = [min(0.0001 * (step + 1), 0.002)]  # inflated gradually, as SoftRobots' controllers do
+        Sofa.Simulation.animate(root, root.dt.value)
+    assert pressure.volumeGrowth.value == pytest.approx(0.002, abs=1e-9)
+    assert pressure.cavityVolume.value == pytest.approx(0.066, abs=1e-9)
+    assert pressure.pressure.value > 0
+    with pytest.raises(ValueError, match="volumeGrowth is an output"):
+        pressure.volumeGrowth = 1.0

@@ -19,7 +19,7 @@ std::vector<ComponentSpec> mechanics_components();
 std::vector<ComponentSpec> constraint_components();
 // Constraint-based animation: FreeMotionAnimationLoop, constraint solvers, corrections, Lagrangian constraints.
 std::vector<ComponentSpec> lagrangian_components();
-// SoftRobots' constraints (softrobots_builder.cpp): CableConstraint.
+// SoftRobots' constraints (softrobots_builder.cpp): CableConstraint, SurfacePressureConstraint.
 std::vector<ComponentSpec> softrobots_components();
 // Engines: generated meshes and regions of interest.
 std::vector<ComponentSpec> engine_components();

@@ -4,6 +4,8 @@
 #include "component_families.h"
 #include "fastcorot/core/error.h"
 #include "fastcorot/softrobots/cable_constraint.h"
+#include "fastcorot/softrobots/surface_pressure_constraint.h"
+#include "index_tuples.h"
 
 #include <optional>
 
@@ -39,16 +41,59 @@ std::vector<ComponentSpec> softrobots_components() {
         {"surfaceTopology", "link", "", "accepted with method sphere or geodesic only"},
         {"endTime", "real", "-1", "accepted (-1: always active)"},
         {"color", "string", "0.4 0.4 0.4 1", "accepted (drawing)"}}},
+      {"SurfacePressureConstraint", "lagrangian",
+       "SoftRobots' cavity: triangles and quads of the node's state (a mapped state on a deformable body) bounding a volume, as one "
+       "Lagrangian row (the area vectors shared among their vertices) that imposes its pressure (valueType pressure, an impulse "
+       "λ = pressure × dt) or its volume growth; outputs cavityVolume, volumeGrowth (as of the step's start, as SoftRobots) and "
+       "pressure (λ). Under a FreeMotionAnimationLoop.",
+       {{"triangles", "indices", "", "the surface's triangles (with quads empty too: the node's topology's)"},
+        {"quads", "indices", "", "the surface's quads, each as two triangles for the volume"},
+        {"flipNormal", "bool", "false", "the surface's normals face into the cavity"},
+        {"value", "reals", "0", "the commands; value[valueIndex] is imposed"},
+        {"valueIndex", "int", "0", "which command"},
+        {"valueType", "string", "pressure", "pressure (an impulse, pressure × dt) or volumeGrowth; also 0 or 1"},
+        {"maxPressure", "real", "", "upper bound of λ (unset: none)"},
+        {"minPressure", "real", "", "lower bound of λ (unset: none)"},
+        {"maxPressureVariation", "real", "", "largest change of the commanded pressure from the current one per step (unset: none)"},
+        {"maxVolumeGrowth", "real", "", "largest growth (unset: none)"},
+        {"minVolumeGrowth", "real", "", "smallest growth (unset: none; in pressure mode it has no effect, as in SoftRobots)"},
+        {"maxVolumeGrowthVariation", "real", "", "largest change of the commanded growth per step (unset: none)"},
+        {"initialCavityVolume", "real", "", "output: the volume as the scene is built"},
+        {"cavityVolume", "real", "", "output: the volume at the last step's start"},
+        {"volumeGrowth", "real", "", "output: cavityVolume - initialCavityVolume"},
+        {"pressure", "real", "", "output: the last impulse λ (pressure × dt)"},
+        {"eqPressure", "real", "0", "accepted (inverse models only)"},
+        {"eqVolumeGrowth", "real", "0", "accepted (inverse models only)"},
+        {"drawPressure", "bool", "false", "accepted (drawing)"},
+        {"drawScale", "real", "0.1", "accepted (drawing)"},
+        {"visualization", "bool", "false", "accepted (SoftRobots' older drawPressure)"},
+        {"showVisuScale", "real", "0.1", "accepted (SoftRobots' older drawScale)"},
+        {"endTime", "real", "-1", "accepted (-1: always active)"}}},
   };
 }
 
-bool is_softrobots_constraint(std::string_view type) { return type == "CableConstraint"; }
+bool is_softrobots_constraint(std::string_view type) { return type == "CableConstraint" || type == "SurfacePressureConstraint"; }
 
 namespace {
 
 std::optional<double> optional_real(SceneData& data, Component& c, const char* name) {
   if (!c.has(name)) return std::nullopt;
   return data.real(c, name, 0.0);
+}
+
+// SoftRobots' value/valueIndex: an empty value is one zero; a valueIndex beyond it is 0, warned.
+void read_command(SceneData& data, Component& c, std::vector<double>& value, std::size_t& value_index) {
+  const Numbers& given = data.data(c, "value");
+  value.assign(given.begin(), given.end());
+  if (value.empty()) value = {0.0};
+  const int index = data.whole_number(c, "valueIndex", 0);
+  if (index < 0) throw make_error("valueIndex = ", index, ": must be >= 0");
+  value_index = static_cast<std::size_t>(index);
+  if (value_index >= value.size()) {
+    data.warn(c.where() + ": valueIndex " + std::to_string(index) + " is beyond value's " + std::to_string(value.size()) +
+              " entries: 0 is used, as SoftRobots does");
+    value_index = 0;
+  }
 }
 
 std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Component& c, ConstraintPoints<double> points,
@@ -63,17 +108,7 @@ std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Compo
   p.pull_point = data.vec3(c, "pullPoint", Vec3<double>::Zero());
   p.has_pull_point = data.boolean(c, "hasPullPoint", true);
   p.initial_length = optional_real(data, c, "cableInitialLength");
-  const Numbers& value = data.data(c, "value");
-  p.value.assign(value.begin(), value.end());
-  if (p.value.empty()) p.value = {0.0};
-  const int index = data.whole_number(c, "valueIndex", 0);
-  if (index < 0) throw make_error("valueIndex = ", index, ": must be >= 0");
-  p.value_index = static_cast<std::size_t>(index);
-  if (p.value_index >= p.value.size()) {
-    data.warn(c.where() + ": valueIndex " + std::to_string(index) + " is beyond value's " + std::to_string(p.value.size()) +
-              " entries: 0 is used, as SoftRobots does");
-    p.value_index = 0;
-  }
+  read_command(data, c, p.value, p.value_index);
   const std::string type = data.text(c, "valueType", "displacement");
   if (type == "displacement" || type == "0") {
     p.value_type = CableConstraint<double>::ValueType::displacement;
@@ -90,12 +125,47 @@ std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Compo
   return std::make_unique<CableConstraint<double>>(c.where(), std::move(points), initial_positions, std::move(p));
 }
 
+std::unique_ptr<LagrangianConstraint<double>> build_cavity(SceneData& data, Component& c, ConstraintPoints<double> points,
+                                                           std::span<const Vec3<double>> initial_positions) {
+  typename SurfacePressureConstraint<double>::Parameters p;
+  p.triangles = index_tuples<3>(data, c, "triangles");
+  p.quads = index_tuples<4>(data, c, "quads");
+  if (p.triangles.empty() && p.quads.empty()) {
+    // SoftRobots takes the context topology's triangles and quads.
+    Component* topology = data.topology_of(*c.node);
+    if (topology == nullptr) throw make_error("no triangles or quads given and no topology in its node or above");
+    p.triangles = index_tuples<3>(data, *topology, "triangles");
+    p.quads = index_tuples<4>(data, *topology, "quads");
+    if (p.triangles.empty() && p.quads.empty()) {
+      throw make_error("no triangles or quads given, and its topology ", topology->where(), " has none");
+    }
+  }
+  p.flip_normal = data.boolean(c, "flipNormal", false);
+  read_command(data, c, p.value, p.value_index);
+  const std::string type = data.text(c, "valueType", "pressure");
+  if (type == "pressure" || type == "0") {
+    p.value_type = SurfacePressureConstraint<double>::ValueType::pressure;
+  } else if (type == "volumeGrowth" || type == "1") {
+    p.value_type = SurfacePressureConstraint<double>::ValueType::volume_growth;
+  } else {
+    throw make_error("valueType = \"", type, "\": expected pressure or volumeGrowth");
+  }
+  p.max_pressure = optional_real(data, c, "maxPressure");
+  p.min_pressure = optional_real(data, c, "minPressure");
+  p.max_pressure_variation = optional_real(data, c, "maxPressureVariation");
+  p.max_volume_growth = optional_real(data, c, "maxVolumeGrowth");
+  p.min_volume_growth = optional_real(data, c, "minVolumeGrowth");
+  p.max_volume_growth_variation = optional_real(data, c, "maxVolumeGrowthVariation");
+  return std::make_unique<SurfacePressureConstraint<double>>(c.where(), std::move(points), initial_positions, std::move(p));
+}
+
 }  // namespace
 
 std::unique_ptr<LagrangianConstraint<double>> build_softrobots_constraint(SceneData& data, Component& c, ConstraintPoints<double> points,
                                                                           std::span<const Vec3<double>> initial_positions) {
   const std::string templ = data.text(c, "template", "Vec3d");
   if (templ.rfind("Vec2", 0) == 0) throw make_error("template = \"", templ, "\": ", c.type(), " is simulated on Vec3 states only");
+  if (c.type() == "SurfacePressureConstraint") return build_cavity(data, c, std::move(points), initial_positions);
   return build_cable(data, c, std::move(points), initial_positions);
 }
 

@@ -1,4 +1,5 @@
-// SoftRobots' constraints in a scene (docs/softrobots.md): CableConstraint, built by the loop
+// SoftRobots' constraints in a scene (docs/softrobots.md): CableConstraint and
+// SurfacePressureConstraint, built by the loop
 // builder (lagrangian_builder.cpp) in scene-graph order among SOFA's Lagrangian constraints.
 // Internal to src/scene.
 #pragma once

@@ -1,6 +1,7 @@
 #include "fastcorot/softrobots/cable_constraint.h"
 
 #include "fastcorot/core/error.h"
+#include "actuator_resolution.h"
 
 #include <cmath>
 #include <limits>
@@ -16,44 +17,6 @@ Vec3<Real> unit(const Vec3<Real>& v) {
   const Real n = v.norm();
   return n > std::numeric_limits<Real>::epsilon() ? Vec3<Real>(v / n) : v;
 }
-
-// The two resolutions (SoftRobots' CableDisplacementConstraintResolution and
-// CableForceConstraintResolution); after the solve each stores λ and the displacement output.
-template <class Real>
-class CableResolution final : public ConstraintResolution<Real> {
- public:
-  CableResolution(bool force, Real command, Real low, Real high, std::shared_ptr<typename CableConstraint<Real>::Outputs> outputs)
-      : ConstraintResolution<Real>(1), force_(force), command_(command), low_(low), high_(high), outputs_(std::move(outputs)) {}
-
-  void init(int line, const DenseMatrix<Real>& w, Real*) override { w_ = w(line, line); }
-
-  void resolve(int line, const DenseMatrix<Real>&, const Real* d, Real* f, const Real*) override {
-    if (!force_) {  // low, high: the impulse's bounds
-      f[line] -= (d[line] - command_) / w_;
-      if (f[line] < low_) f[line] = low_;
-      if (f[line] > high_) f[line] = high_;
-      return;
-    }
-    const Real displacement = w_ * command_ + d[line];  // low, high: the displacement's bounds
-    if (displacement < low_) {
-      f[line] -= (d[line] - low_) / w_;
-    } else if (displacement > high_) {
-      f[line] -= (d[line] - high_) / w_;
-    } else {
-      f[line] = command_;
-    }
-  }
-
-  void store(int line, const Real* f) override {
-    outputs_->force = f[line];
-    outputs_->displacement = outputs_->initial_length - outputs_->cable_length;
-  }
-
- private:
-  bool force_;
-  Real command_, low_, high_, w_ = 1;
-  std::shared_ptr<typename CableConstraint<Real>::Outputs> outputs_;
-};
 
 }  // namespace
 
@@ -185,7 +148,12 @@ template <class Real>
 void CableConstraint<Real>::add_resolutions(ConstraintProblem<Real>& problem) {
   Real low = 0, high = 0;
   const Real c = command(low, high);
-  problem.add_block(std::make_unique<CableResolution<Real>>(parameters_.value_type == ValueType::force, c, low, high, outputs_));
+  using Resolution = softrobots_detail::ActuatorResolution<Real>;
+  const auto command = parameters_.value_type == ValueType::force ? Resolution::Command::impulse : Resolution::Command::motion;
+  problem.add_block(std::make_unique<Resolution>(command, c, low, high, [outputs = outputs_](Real lambda) {
+    outputs->force = lambda;
+    outputs->displacement = outputs->initial_length - outputs->cable_length;
+  }));
 }
 
 template <class Real>
