@@ -27,8 +27,8 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 62> kIgnored = {
-    "RequiredPlugin", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
+constexpr std::array<std::string_view, 65> kIgnored = {
+    "RequiredPlugin", "AddPluginRepository", "AddDataRepository", "AddResourceRepository", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
     "DiscreteIntersection", "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel",

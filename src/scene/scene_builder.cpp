@@ -85,7 +85,9 @@ Vec3<double> node_vec3(const SceneNode& node, const std::string& name, const Vec
 class Builder {
  public:
   Builder(const SceneNode& root, const SceneOptions& options)
-      : data_(root, info_, options.strict ? nullptr : &warnings_), allow_empty_(options.allow_empty) {}
+      : repositories_(add_repositories(root)), data_(root, info_, options.strict ? nullptr : &warnings_), allow_empty_(options.allow_empty) {
+    for (const auto& line : repositories_) (options.strict ? info_ : warnings_).push_back(line);
+  }
 
   LoadedScene build() {
     const SceneNode& root = *data_.root().scene;
@@ -826,8 +828,34 @@ class Builder {
     }
   }
 
+  // SOFA's AddDataRepository and AddResourceRepository add their folder (absolute, or relative to
+  // the scene file's folder, which SOFA makes the current one while it loads a scene) to where
+  // files are found, before any file is read; returns a warning per folder that does not exist.
+  static std::vector<std::string> add_repositories(const SceneNode& node) {
+    std::vector<std::string> problems;
+    for (const auto& object : node.objects) {
+      if (object.type != "AddDataRepository" && object.type != "AddResourceRepository") continue;
+      const auto path = object.attributes.find("path");
+      if (path == object.attributes.end()) continue;
+      std::filesystem::path folder(path->second);
+      if (folder.is_relative()) folder = object.location.file.parent_path() / folder;
+      std::error_code ec;
+      if (!std::filesystem::is_directory(folder, ec)) {
+        problems.push_back(object.location.to_string() + ": " + object.type + ": path " + folder.string() + " is not a folder (ignored, as SOFA does)");
+        continue;
+      }
+      add_data_repository(folder.lexically_normal());
+    }
+    for (const auto& child : node.children) {
+      auto more = add_repositories(child);
+      problems.insert(problems.end(), more.begin(), more.end());
+    }
+    return problems;
+  }
+
   std::vector<std::string> info_;
   std::vector<std::string> warnings_;
+  std::vector<std::string> repositories_;  // add_repositories' warnings (before data_, which reads files)
   std::vector<GraphNode*> mapped_;  // the mapped child nodes with visual models of the object being built
   std::vector<GraphNode*> multi_mapped_;  // the nodes of its SubsetMultiMappings, in scene order
   SceneData data_;

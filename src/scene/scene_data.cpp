@@ -88,6 +88,8 @@ std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNo
                                " ignored: collisions and contacts are not simulated by fastcorot";
       if (!warnings_) throw make_error(line);
       warnings_->push_back(line);
+    } else if (!component->spec && (object.type == "AddDataRepository" || object.type == "AddResourceRepository")) {
+      info.push_back(object.location.to_string() + ": " + object.type + ": files are also looked for in its path");
     } else if (!component->spec) {
       info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
     }

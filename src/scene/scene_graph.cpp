@@ -5,7 +5,9 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <mutex>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -238,6 +240,31 @@ class Parser {
 
 }  // namespace
 
+namespace {
+
+std::mutex& repositories_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
+std::vector<std::filesystem::path>& repositories() {
+  static std::vector<std::filesystem::path> folders;
+  return folders;
+}
+
+}  // namespace
+
+void add_data_repository(const std::filesystem::path& folder) {
+  const std::lock_guard lock(repositories_mutex());
+  auto& folders = repositories();
+  if (std::find(folders.begin(), folders.end(), folder) == folders.end()) folders.push_back(folder);
+}
+
+std::vector<std::filesystem::path> data_repositories() {
+  const std::lock_guard lock(repositories_mutex());
+  return repositories();
+}
+
 std::filesystem::path find_data_file(const std::filesystem::path& from, const std::string& name) {
   const std::filesystem::path relative(name);
   if (relative.is_absolute()) {
@@ -263,6 +290,9 @@ std::filesystem::path find_data_file(const std::filesystem::path& from, const st
       }
       start = end + 1;
     }
+  }
+  for (const auto& folder : data_repositories()) {
+    if (found(folder / relative)) return folder / relative;
   }
   std::error_code ec;
   for (std::filesystem::path above = std::filesystem::absolute(from, ec).parent_path(); !above.empty();

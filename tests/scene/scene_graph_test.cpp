@@ -1,9 +1,11 @@
 #include "fastcorot/scene/scene_graph.h"
+#include "fastcorot/scene/scene_builder.h"
 
 #include "fastcorot/core/error.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -130,6 +132,28 @@ TEST(SceneGraph, BoxAndPlaneConstraintAreSofasObjectFilesBuiltIn) {
   EXPECT_EQ(root.objects[4].type, "PlaneROI");
   EXPECT_EQ(root.objects[4].attributes.at("plane"), "0 0 0 1 0 0 1 1 0 0.5");
   EXPECT_EQ(root.objects[5].type, "FixedProjectiveConstraint");
+}
+
+TEST_F(SceneFiles, AddDataRepositoryAddsItsFolderRelativeToTheScene) {
+  // The mesh lies only in dir/repository_<pid>/; the scene names it by its file name.
+  const std::string folder = "repository_" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir_ / folder);
+  std::filesystem::copy_file(std::filesystem::path(FASTCOROT_SOURCE_DIR) / "examples/meshes/cylinder.msh",
+                             dir_ / folder / "cylinder_in_repository.msh");
+  const std::string body = R"(<Node name="body"><EulerImplicitSolver/><CGLinearSolver iterations="10"/>
+    <MeshGmshLoader name="loader" filename="cylinder_in_repository.msh"/><TetrahedronSetTopologyContainer src="@loader"/>
+    <MechanicalObject/><UniformMass totalMass="1"/><TetrahedronFEMForceField youngModulus="100"/></Node>)";
+  const auto without = write("without.scn", "<Node name=\"root\">" + body + "</Node>");
+  EXPECT_THROW(load_scene_file(without), Error);
+  const auto with = write("with.scn", "<Node name=\"root\"><AddDataRepository path=\"" + folder + "\"/>"
+                                      "<AddResourceRepository path=\"absent\"/><AddPluginRepository path=\"x\"/>" + body + "</Node>");
+  const LoadedScene scene = load_scene_file(with);
+  EXPECT_GT(scene.simulation.objects.at(0).system.size(), 0);
+  bool warned = false;
+  for (const auto& line : scene.warnings) warned = warned || line.find("AddResourceRepository: path") != std::string::npos;
+  EXPECT_TRUE(warned) << "a missing folder is warned";
+  const auto repositories = data_repositories();
+  EXPECT_NE(std::find(repositories.begin(), repositories.end(), (dir_ / folder).lexically_normal()), repositories.end());
 }
 
 TEST_F(SceneFiles, DataFilesAreFoundAsSofasRepositoriesFindThem) {

@@ -44,6 +44,12 @@ struct SceneNode {
 // looked when none does.
 std::filesystem::path find_data_file(const std::filesystem::path& from, const std::string& name);
 
+// SOFA's AddDataRepository (and AddResourceRepository): find_data_file also looks in `folder`, after
+// the folders of FASTCOROT_DATA_PATH, for the rest of the process (SOFA's DataRepository is
+// process-wide too). Adding a folder twice keeps it once. Thread-safe.
+void add_data_repository(const std::filesystem::path& folder);
+std::vector<std::filesystem::path> data_repositories();
+
 // Parses a scene file. Throws fastcorot::Error naming the file and line for malformed XML, a root
 // that is not a Node, an include that cannot be read, or an include cycle. <include href="F" a="v">
 // works as SOFA's: F is found with find_data_file; attribute a (not href or name) replaces the
