@@ -186,7 +186,8 @@ SimulatedObject<double> build_rigid_object(SceneData& data, std::vector<std::str
   std::vector<RigidCoord<double>> coords, rest;
   try {
     coords = parse_rigid_coords<double>(data.data(state, "position"), "position");
-    rest = state.has("rest_position") ? parse_rigid_coords<double>(data.data(state, "rest_position"), "rest_position") : coords;
+    // rest_position: as written, else the positions before translation2 / rotation2 (SOFA's order).
+    rest = parse_rigid_coords<double>(data.data(state, "rest_position"), "rest_position");
   } catch (const Error& error) {
     throw error_at(state.where(), error);
   }

@@ -300,7 +300,11 @@ Vec3<double> SceneData::placement(Component& c, const std::string& name) {
   // SOFA's short forms (MechanicalObject::parse, VisualModelImpl::parse): dx dy dz, rx ry rz, and
   // scale (uniform) or sx sy sz.
   const bool scale = name == "scale3d";
-  const char* const* parts = name == "translation" ? kTranslationParts : name == "rotation" ? kRotationParts : kScaleParts;
+  const char* const* parts = name == "translation"    ? kTranslationParts
+                             : name == "rotation"     ? kRotationParts
+                             : name == "translation2" ? kSecondTranslationParts
+                             : name == "rotation2"    ? kSecondRotationParts
+                                                      : kScaleParts;
   const double fallback = scale ? 1 : 0;
   if (scale && c.has("scale")) return Vec3<double>::Constant(real(c, "scale", 1));
   if (c.has(parts[0]) || c.has(parts[1]) || c.has(parts[2])) {

@@ -127,6 +127,8 @@ class SceneData {
   // sz) as SOFA's MechanicalObject and visual models read them.
   Vec3<double> placement(Component& c, const std::string& name);
   static constexpr const char* kTranslationParts[3] = {"dx", "dy", "dz"};
+  static constexpr const char* kSecondTranslationParts[3] = {"dx2", "dy2", "dz2"};
+  static constexpr const char* kSecondRotationParts[3] = {"rx2", "ry2", "rz2"};
   static constexpr const char* kRotationParts[3] = {"rx", "ry", "rz"};
   static constexpr const char* kScaleParts[3] = {"sx", "sy", "sz"};
   // The grid a RegularGridTopology describes (validated; errors name the component). For a

@@ -387,8 +387,33 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (name == "triangles") return flatten_indices(tetrahedron_set_triangles(tetrahedra_of(c)));
     return {};
   }
+  if (type == "MechanicalObject" && (name == "position" || name == "rest_position") &&
+      (c.has("translation2") || c.has("rotation2") || c.has("dx2") || c.has("dy2") || c.has("dz2") || c.has("rx2") ||
+       c.has("ry2") || c.has("rz2"))) {
+    // SOFA's MechanicalObject::init: translation2 and rotation2 move the positions after the rest
+    // positions were taken from them (rotation2 first; on Rigid3 states it turns the orientations too).
+    const Numbers first = compute(c, "placed_position");
+    if (name == "rest_position") return first;
+    const Vec3<double> rotation = placement(c, "rotation2"), translation = placement(c, "translation2");
+    Numbers values = first;
+    const bool rigid = is_rigid_template(text(c, "template", "Vec3d"));
+    const std::size_t width = rigid ? 7 : 3;
+    const Eigen::Quaterniond turn(euler_rotation(rotation));
+    for (std::size_t k = 0; k + width <= values.size(); k += width) {
+      const Vec3<double> moved =
+          transformed({Vec3<double>(values[k], values[k + 1], values[k + 2])}, Vec3<double>::Ones(), rotation, translation).front();
+      for (int j = 0; j < 3; ++j) values[k + j] = moved[j];
+      if (rigid && rotation != Vec3<double>::Zero()) {
+        const Eigen::Quaterniond q = turn * Eigen::Quaterniond(values[k + 6], values[k + 3], values[k + 4], values[k + 5]);
+        values[k + 3] = q.x(), values[k + 4] = q.y(), values[k + 5] = q.z(), values[k + 6] = q.w();
+      }
+    }
+    return values;
+  }
   if (type == "MechanicalObject") {
-    if (name == "position" && is_rigid_template(text(c, "template", "Vec3d"))) {
+    // "placed_position": the positions before translation2 and rotation2 (above).
+    const bool position = name == "position" || name == "placed_position";
+    if (position && is_rigid_template(text(c, "template", "Vec3d"))) {
       // A Rigid3 state: 7 numbers per rigid (x y z qx qy qz qw), one rigid at the origin by default
       // (SOFA's size-one state); the placement moves the centres, and a rotation also turns the
       // orientations (SOFA's MechanicalObject<Rigid3>::applyRotation).
@@ -413,7 +438,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
       }
       return values;
     }
-    if (name == "position") {
+    if (position) {
       const std::string tmpl = text(c, "template", "Vec3d");
       if (tmpl == "Vec1" || tmpl == "Vec1d" || tmpl == "Vec1f") {
         throw make_error(c.where(), ": the positions of a Vec1 state are asked for: Vec1 states are supported only as the output of a ",

@@ -70,6 +70,28 @@ TEST(RigidScene, FallsAndSpinsAsImplicitEulerWithoutGyroscopicTerm) {
   EXPECT_LT((v[0] - (v0 + n * h * g)).norm(), 1e-12);
 }
 
+TEST(RigidScene, Translation2AndRotation2MoveThePositionsAfterTheRestPositionsWereTaken) {
+  // STLIB's Floor and Cube place their rigid this way: rest where written, position moved.
+  LoadedScene scene = build_scene_text(
+      body("position=\"1 0 0 0 0 0 1\" translation=\"0 1 0\" rotation2=\"0 0 90\" translation2=\"0 0 5\"", "<UniformMass totalMass=\"1\"/>"),
+      "dt=\"0.01\" gravity=\"0 0 0\"");
+  const auto& system = scene.simulation.objects.at(0).system;
+  const RigidCoord<double> x = rigid(scene), rest = system.rigids->rest_coord(system.state.rest_position, 0);
+  EXPECT_LT((rest.center - Vec3<double>(1, 1, 0)).norm(), 1e-15);
+  EXPECT_LT(quaternion_distance(rest.orientation, Eigen::Quaterniond::Identity()), 1e-15);
+  // (1, 1, 0) turned 90 degrees about z is (-1, 1, 0); then up 5; the orientation turns too.
+  EXPECT_LT((x.center - Vec3<double>(-1, 1, 5)).norm(), 1e-14);
+  EXPECT_LT(quaternion_distance(x.orientation, turn(Vec3<double>(0, 0, M_PI / 2))), 1e-15);
+  // The same on points, with SOFA's short forms.
+  LoadedScene points = build_scene_text(
+      "<Node name=\"points\"><EulerImplicitSolver/><CGLinearSolver/><MechanicalObject position=\"1 0 0  0 1 0\" dx2=\"2\" rz2=\"180\"/>"
+      "<UniformMass totalMass=\"1\"/></Node>", "dt=\"0.01\"");
+  const auto& state = points.simulation.objects.at(0).system.state;
+  EXPECT_LT((state.position[0] - Vec3<double>(1, 0, 0)).norm(), 1e-15);   // (-1, 0, 0) + (2, 0, 0)
+  EXPECT_LT((state.position[1] - Vec3<double>(2, -1, 0)).norm(), 1e-15);
+  EXPECT_EQ(state.rest_position[1], Vec3<double>(0, 1, 0));
+}
+
 TEST(RigidScene, ExplicitEulerTurnsAndFallsAsSymplecticEuler) {
   const Vec3<double> w(0, 2, 0), g(0, 0, -10);
   LoadedScene scene = build_scene_text(body("velocity=\"0 0 0 0 2 0\"", "<UniformMass totalMass=\"3\"/>", "",
