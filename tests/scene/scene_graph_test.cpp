@@ -135,8 +135,10 @@ TEST(SceneGraph, BoxAndPlaneConstraintAreSofasObjectFilesBuiltIn) {
 }
 
 TEST_F(SceneFiles, AddDataRepositoryAddsItsFolderRelativeToTheScene) {
-  // The mesh lies only in dir/repository_<pid>/; the scene names it by its file name.
-  const std::string folder = "repository_" + std::to_string(::getpid());
+  // The mesh lies only in dir/repository_<pid>_<run>/; the scene names it by its file name.
+  // A new folder each run: repositories stay added for the rest of the process (--gtest_repeat).
+  static int run = 0;
+  const std::string folder = "repository_" + std::to_string(::getpid()) + "_" + std::to_string(run++);
   std::filesystem::create_directories(dir_ / folder);
   std::filesystem::copy_file(std::filesystem::path(FASTCOROT_SOURCE_DIR) / "examples/meshes/cylinder.msh",
                              dir_ / folder / "cylinder_in_repository.msh");
