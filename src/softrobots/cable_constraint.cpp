@@ -2,6 +2,7 @@
 
 #include "fastcorot/core/error.h"
 #include "actuator_resolution.h"
+#include "fastcorot/constraint/constraint_drawing.h"
 
 #include <cmath>
 #include <limits>
@@ -154,6 +155,22 @@ void CableConstraint<Real>::add_resolutions(ConstraintProblem<Real>& problem) {
     outputs->force = lambda;
     outputs->displacement = outputs->initial_length - outputs->cable_length;
   }));
+}
+
+template <class Real>
+void CableConstraint<Real>::draw(ConstraintDrawer<Real>& drawer) const {
+  drawer.begin(this->where());
+  std::size_t previous = parameters_.has_pull_point ? drawer.point_at(parameters_.pull_point) : 0;
+  bool first = parameters_.has_pull_point;
+  for (const Index index : parameters_.indices) {
+    const std::size_t drawn = drawer.point(points_, static_cast<std::size_t>(index));
+    if (first) drawer.pair(previous, drawn);
+    previous = drawn;
+    first = true;
+    for (const auto& [i, c] : row_) {
+      if (i == static_cast<std::size_t>(index)) drawer.force(drawn, this->first_row_, c);
+    }
+  }
 }
 
 template <class Real>

@@ -31,7 +31,7 @@ INSTANTIATE_TEST_SUITE_P(Examples, ExampleScene,
                          ::testing::Values("four_beams.scn", "cantilever_beam_40x10x10.scn",
                                            "cantilever_beam_76x16x16.scn", "cylinder_static.scn", "beam_cut.scn",
                                            "cantilever_beam_40x10x10_pcg.scn", "cantilever_beam_40x10x10_tfem.scn",
-                                           "tetrahedron_fem_beams.scn"),
+                                           "tetrahedron_fem_beams.scn", "softrobots/cable_finger.scn"),
                          [](const auto& info) {
                            std::string name = info.param.substr(0, info.param.find('.'));
                            for (char& c : name) {

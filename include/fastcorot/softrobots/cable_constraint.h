@@ -63,6 +63,8 @@ class CableConstraint final : public LagrangianConstraint<Real> {
   void build(ConstraintRows<Real>& rows) override;
   void violation(ConstraintOrder order, Real dt, Real* dfree) const override;
   void add_resolutions(ConstraintProblem<Real>& problem) override;
+  // The pull point and the cable's points joined in order, with the cable's forces on them.
+  void draw(ConstraintDrawer<Real>& drawer) const override;
 
   // The cable's length at positions x (of the whole state).
   Real length(std::span<const Vec3<Real>> x) const;
