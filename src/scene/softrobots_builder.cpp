@@ -5,8 +5,10 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/softrobots/cable_constraint.h"
 #include "fastcorot/softrobots/surface_pressure_constraint.h"
+#include "fastcorot/softrobots/unilateral_plane_constraint.h"
 #include "index_tuples.h"
 
+#include <algorithm>
 #include <optional>
 
 namespace fastcorot::scene_detail {
@@ -69,10 +71,18 @@ std::vector<ComponentSpec> softrobots_components() {
         {"visualization", "bool", "false", "accepted (SoftRobots' older drawPressure)"},
         {"showVisuScale", "real", "0.1", "accepted (SoftRobots' older drawScale)"},
         {"endTime", "real", "-1", "accepted (-1: always active)"}}},
+      {"UnilateralPlaneConstraint", "lagrangian",
+       "SoftRobots' unilateral plane: point indices[0] of the node's state kept on the side of the plane through points indices[1..3] "
+       "its normal (p2 - p1) × (p3 - p1) points to, by one unilateral row; the row uses the normal as it is, the gap its unit "
+       "vector (SoftRobots' formula). Under a FreeMotionAnimationLoop.",
+       {{"indices", "indices", "", "four points: the one kept, then three of the plane"},
+        {"flipNormal", "bool", "false", "the point is kept on the other side"}}},
   };
 }
 
-bool is_softrobots_constraint(std::string_view type) { return type == "CableConstraint" || type == "SurfacePressureConstraint"; }
+bool is_softrobots_constraint(std::string_view type) {
+  return type == "CableConstraint" || type == "SurfacePressureConstraint" || type == "UnilateralPlaneConstraint";
+}
 
 namespace {
 
@@ -166,6 +176,14 @@ std::unique_ptr<LagrangianConstraint<double>> build_softrobots_constraint(SceneD
   const std::string templ = data.text(c, "template", "Vec3d");
   if (templ.rfind("Vec2", 0) == 0) throw make_error("template = \"", templ, "\": ", c.type(), " is simulated on Vec3 states only");
   if (c.type() == "SurfacePressureConstraint") return build_cavity(data, c, std::move(points), initial_positions);
+  if (c.type() == "UnilateralPlaneConstraint") {
+    const std::vector<Index> indices = data.indices(c, "indices");
+    if (indices.size() != 4) throw make_error("indices: ", indices.size(), " given; four are needed (the point, then three of the plane)");
+    typename UnilateralPlaneConstraint<double>::Parameters p;
+    std::copy(indices.begin(), indices.end(), p.indices.begin());
+    p.flip_normal = data.boolean(c, "flipNormal", false);
+    return std::make_unique<UnilateralPlaneConstraint<double>>(c.where(), std::move(points), p);
+  }
   return build_cable(data, c, std::move(points), initial_positions);
 }
 
