@@ -23,10 +23,33 @@ class PluginRepository:
 
 
 class DataRepository:
+    """Where data files are found, as in scene files: the script's folder, then FASTCOROT_DATA_PATH,
+    then the folders added here or by AddDataRepository, then the share/ and examples/ folders of the
+    nearest ancestor (docs/sofa-components.md)."""
+
     @staticmethod
     def addFirstPath(path):
-        """Data files resolve as in scene files: the script's folder, then FASTCOROT_DATA_PATH, then
-        the share/ and examples/ folders of the nearest ancestor (docs/sofa-components.md)."""
+        """Adds `path` (relative: to the current folder) to the folders searched (after FASTCOROT_DATA_PATH)."""
+        import os
+
+        from fastcorot import _core
+
+        _core.add_data_repository(os.path.abspath(str(path)))
+
+    addLastPath = addFirstPath
+
+    @staticmethod
+    def getFile(name):
+        """The full path of data file `name` as a scene in the current folder would find it (`name`
+        itself when nothing is found, as SOFA returns it)."""
+        import os
+
+        from fastcorot import _core
+
+        try:
+            return str(_core.find_data_file(os.path.join(os.getcwd(), "scene.py"), str(name)))
+        except (ValueError, FileNotFoundError):
+            return str(name)
 
 
 def getPythonCallingPoint():

@@ -7,6 +7,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/scene/component_table.h"
+#include "fastcorot/scene/scene_graph.h"
 #include "fastcorot/sim/simulation.h"
 
 #include <pybind11/stl.h>
@@ -83,6 +84,14 @@ void bind_scene(py::module_& m) {
         "The table entry of a supported component (or alias): {name, category, doc, attributes: [(name, "
         "type, default, doc)], aliases}; None otherwise.");
   m.def("is_ignored_component", [](const std::string& type) { return is_ignored_component(type); });
+  m.def(
+      "add_data_repository", [](const std::filesystem::path& folder) { add_data_repository(folder); }, py::arg("folder"),
+      "SOFA's AddDataRepository: files are also looked for in `folder`, after FASTCOROT_DATA_PATH, for the rest of the process.");
+  m.def(
+      "find_data_file", [](const std::filesystem::path& from, const std::string& name) { return find_data_file(from, name); },
+      py::arg("from_file"), py::arg("name"),
+      "Where a scene file `from_file` finds `name` (its folder, FASTCOROT_DATA_PATH, the data repositories, share/ above); "
+      "ValueError listing where it looked when nowhere.");
   m.def("is_common_attribute", [](const std::string& name) { return is_common_attribute(name); });
   m.def("component_documentation", &component_documentation,
         "The supported SOFA components and their attributes, as Markdown (`fastcorot components`).");

@@ -417,3 +417,28 @@ def test_calls_stlib_and_softrobots_scripts_make(capsys):
     Sofa.msg_warning(controller, "hello")
     err = capsys.readouterr().err
     assert "[WARNING]" in err and "[renamed] hello" in err and "test_sofa_api.py" in err
+
+
+def test_data_repositories_from_scripts(tmp_path):
+    import shutil
+
+    import SofaRuntime
+
+    from conftest import REPOSITORY
+
+    folder = tmp_path / "meshes"
+    folder.mkdir()
+    shutil.copy(REPOSITORY / "examples/meshes/cylinder.msh", folder / "cylinder_from_repository.msh")
+    assert SofaRuntime.DataRepository.getFile("cylinder_from_repository.msh") == "cylinder_from_repository.msh"
+    SofaRuntime.DataRepository.addFirstPath(str(folder))
+    assert SofaRuntime.DataRepository.getFile("cylinder_from_repository.msh") == str(folder / "cylinder_from_repository.msh")
+    root = Sofa.Core.Node("root")
+    body = root.addChild("body")
+    body.addObject("EulerImplicitSolver")
+    body.addObject("CGLinearSolver", iterations=10)
+    loader = body.addObject("MeshGmshLoader", name="loader", filename="cylinder_from_repository.msh")
+    body.addObject("TetrahedronSetTopologyContainer", src=loader.getLinkPath())
+    body.addObject("MechanicalObject", name="dofs")
+    body.addObject("UniformMass", totalMass=1)
+    Sofa.Simulation.init(root)
+    assert len(body.dofs.position.value) > 4
