@@ -9,6 +9,8 @@ namespace fastcorot {
 namespace {
 
 constexpr Index kLeafSize = 4;
+// Leaves of at most this many elements are scanned whole; larger ones through their x order.
+constexpr Index kScannedLeaf = 8;
 // SOFA's CollisionPipeline depth (its default, 6): the levels of cells below the root.
 constexpr int kMaxDepth = 6;
 
@@ -56,7 +58,7 @@ void AabbTree<Real>::index_leaves() {
   leaf_width_.assign(nodes_.size(), Real(0));
   for (std::size_t n = 0; n < nodes_.size(); ++n) {
     const Node& node = nodes_[n];
-    if (node.left >= 0) continue;
+    if (node.left >= 0 || node.count <= kScannedLeaf) continue;
     const auto begin = by_x_.begin() + node.first, end = begin + node.count;
     for (Index p = node.first; p < node.first + node.count; ++p) by_x_[static_cast<std::size_t>(p)] = p;
     const auto min_x = [&](Index p) { return boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])].min.x(); };
@@ -72,6 +74,12 @@ void AabbTree<Real>::index_leaves() {
 
 template <class Real>
 void AabbTree<Real>::leaf_overlaps(const Node& node, const Aabb<Real>& box, Real margin, std::vector<Index>& out) const {
+  if (node.count <= kScannedLeaf) {
+    for (Index p = node.first; p < node.first + node.count; ++p) {
+      if (boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])].overlaps(box, margin)) out.push_back(p);
+    }
+    return;
+  }
   const std::size_t begin = out.size();
   const auto first = by_x_.begin() + node.first, last = first + node.count;
   const auto n = static_cast<std::size_t>(&node - nodes_.data());
@@ -169,7 +177,7 @@ void AabbTree<Real>::pairs(const AabbTree& a, const AabbTree& b, Real margin, st
   while (!stack.empty()) {
     const auto [ra, rb] = stack.back();
     stack.pop_back();
-    if (!ra.cells && !rb.cells && rb.leaf >= 0 && rb.count > 8) {
+    if (!ra.cells && !rb.cells && rb.leaf >= 0 && rb.count > kScannedLeaf) {
       // Two element ranges: each of the first against the second's elements in order, those
       // overlapping found through the second leaf's x order (the same pairs, in the same order).
       const Node& leaf = b.nodes_[static_cast<std::size_t>(rb.leaf)];

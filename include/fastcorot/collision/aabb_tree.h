@@ -69,7 +69,8 @@ class AabbTree {
   static void check(std::span<const Aabb<Real>> boxes);
   // Beyond SOFA's cost (not its results): each leaf's positions sorted by their boxes' min x, and
   // its widest box along x, so that a leaf's elements overlapping a box are found without testing
-  // all of them (SOFA's depth limit leaves about n / 64 elements in a leaf).
+  // all of them (SOFA's depth limit leaves about n / 64 elements in a leaf). Leaves of eight
+  // elements or fewer are scanned whole instead, and not indexed.
   void index_leaves();
   // Positions p in leaf `node` (order_[p]) whose boxes overlap `box` within `margin`, appended to
   // `out` in increasing p.
