@@ -484,7 +484,12 @@ class Node:
                 method(event)
 
 
-__all__ = ["BaseObject", "Controller", "Data", "ForceField", "ForceFieldVec3d", "Node", "Object"]
+# SofaPython3's Data subclasses by value kind (texts, vectors, lists of texts): one class here, so
+# that isinstance checks scripts make hold.
+DataString = DataContainer = DataVectorString = Data
+
+__all__ = ["BaseObject", "Controller", "Data", "DataContainer", "DataString", "DataVectorString", "ForceField",
+           "ForceFieldVec3d", "Node", "Object"]
 
 
 def __getattr__(name):

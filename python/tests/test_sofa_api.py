@@ -413,6 +413,7 @@ def test_calls_stlib_and_softrobots_scripts_make(capsys):
     controller.addData(name="surfaceMesh", value="", type="string")
     controller.addData(name="volumeMesh", value="finger.vtk", type="string")
     assert not controller.surfaceMesh and len(controller.surfaceMesh) == 0
+    assert isinstance(controller.surfaceMesh, Sofa.Core.DataString) and isinstance(state.position, Sofa.Core.DataContainer)
     assert controller.volumeMesh and len(controller.volumeMesh) == 10 and state.position and len(state.position) == 4
     Sofa.msg_warning(controller, "hello")
     err = capsys.readouterr().err
