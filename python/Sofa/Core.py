@@ -233,7 +233,9 @@ class Node:
         """A new child node of that name (or `child`, a Node made apart)."""
         if isinstance(child, Node):
             if child._node._parent is not None:
-                raise ValueError(f"addChild: node '{child.getName()}' already has a parent")
+                raise ValueError(f"addChild: node '{child.getName()}' already has a parent ({Node._of(child._node._parent).getPathName()}): "
+                                 "a node with several parents (SOFA's graph, as STLIB's Rigidify makes) is not supported by fastcorot "
+                                 "yet")
             object.__setattr__(child._node, "_parent", self._node)
             self._node._children.append(child._node)
             _graft_links(child._node)
