@@ -22,6 +22,13 @@ from ._matrices import object_methods
 
 _scene.INTERNAL_FOLDERS.add(os.path.dirname(os.path.abspath(__file__)))
 
+# SOFA's outputs of loaders, engines and topologies that scripts link to before the scene is built.
+_OUTPUTS = frozenset({
+    "position", "positions", "edges", "triangles", "quads", "tetrahedra", "tetras", "hexahedra", "normals",
+    "indices", "pointsInROI", "edgesInROI", "trianglesInROI", "quadsInROI", "tetrahedraInROI", "hexahedraInROI",
+    "edgeIndices", "triangleIndices", "quadIndices", "tetrahedronIndices", "hexahedronIndices", "nbIndices",
+    "indicesOut", "output_position", "outputPoints", "outputTetrahedra", "outputTriangles"})
+
 # A node's own data (SOFA's Node and its context); only dt and gravity change the mechanics.
 _NODE_DATA = ("name", "dt", "gravity", "time", "bbox", "animate", "activated", "multiThreadSimulation")
 
@@ -155,10 +162,22 @@ class BaseObject:
     reinit = init
 
     def _has_data(self, name):
-        return name in self._object.data_names() or _core.is_common_attribute(name)
+        return name in self._object.data_names() or _core.is_common_attribute(name) or self._is_output(name)
+
+    def _is_output(self, name):
+        """Whether `name` is one of SOFA's outputs of this loader, engine or topology (a loader's
+        position, a BoxROI's indices): computed as the scene is built, so given to other components
+        as a link (``roi.indices.getLinkPath()``)."""
+        if name in self._object._data or name not in _OUTPUTS:
+            return False
+        spec = _core.component_spec(self._object.type)
+        return spec is not None and spec["category"] in ("loader", "engine", "topology", "trianglecontainer")
 
     # the owner protocol of Data
     def _data_value(self, name):
+        if self._is_output(name) and name not in self._object.data_names():
+            raise AttributeError(f"{self.getPathName()}.{name} is computed as the scene is built: give it to another "
+                                 f"component as a link ({self.getLinkPath()}.{name}, its getLinkPath())")
         return self._object._read(name)
 
     def _set_data_value(self, name, value):
@@ -311,9 +330,14 @@ class Node:
 
     def getObject(self, name, **kwargs):
         """The object (or Python component) of that name, None without one; SofaPython3's extra
-        keywords (``warning=False``) are accepted and have no effect."""
+        keywords (``warning=False``) are accepted and have no effect. An object given no name is
+        found by its type's, as SOFA names it (``root.VisualStyle``)."""
         for obj in self._node._objects:
             if obj._data.get("name") == name:
+                return BaseObject._of(obj, self)
+        for obj in self._node._objects:
+            own = obj._data.get("name")
+            if not (isinstance(own, str) and own) and obj.type == name:
                 return BaseObject._of(obj, self)
         for controller in self._python_objects:
             if controller.getName() == name:

@@ -44,6 +44,11 @@ class Data:
         return self._owner.getLinkPath() + "." + self._name
 
     @property
+    def linkpath(self):
+        """SofaPython3's attribute spelling of getLinkPath()."""
+        return self.getLinkPath()
+
+    @property
     def value(self):
         """The value: a number, text, or a read-only numpy array (a view of the state for a simulated
         MechanicalObject's position, velocity and rest_position)."""

@@ -28,16 +28,35 @@ def _is_bool(value):
 
 def _number(value, label, integer):
     wanted = "an integer" if integer else "a number"
+    if integer and isinstance(value, numbers.Real) and not _is_bool(value) and float(value).is_integer():
+        return int(value)  # 1e4 for an integer: SOFA reads "10000.0" as 10000, as SofaPython3 writes it
     if _is_bool(value) or not isinstance(value, numbers.Integral if integer else numbers.Real):
         raise TypeError(f"{label}: expected {wanted}, got {type(value).__name__} {value!r}")
     return int(value) if integer else float(value)
+
+
+def _flat(value):
+    """A ragged nesting of lists, tuples and arrays of numbers as one flat list (SofaPython3 writes
+    [m, V, [i0 .. i8]] into SOFA's text as its numbers in order)."""
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [x for item in value for x in _flat(item)]
+    return [value]
+
+
+def _as_array(value):
+    try:
+        return np.asarray(value)
+    except ValueError:
+        if isinstance(value, (list, tuple)):
+            return np.asarray(_flat(value))  # ragged: flattened, as SofaPython3 writes it for SOFA
+        raise
 
 
 def _array(value, label, integer, expected):
     if _is_bool(value) or isinstance(value, (bytes, dict, set)):
         raise TypeError(f"{label}: expected {expected}, got {type(value).__name__}")
     try:
-        array = np.asarray(value)
+        array = _as_array(value)
     except (TypeError, ValueError) as error:
         raise TypeError(f"{label}: expected {expected}, got {type(value).__name__} ({error})") from None
     if array.dtype.kind not in ("iu" if integer else "iuf"):
@@ -55,6 +74,15 @@ def canonical(kind, name, value, where):
         return os.fspath(value)
     if kind in TEXT_TYPES and _is_text_list(value):
         return " ".join(value)  # SOFA reads a list of texts as the texts separated by spaces
+    if kind == "string" and name != "name" and not _is_bool(value):
+        # Numbers for a text (valueType=1, an option's index; color=[1, 0, 0, 1]): SofaPython3 writes
+        # them into SOFA's text, which reads them as written.
+        if isinstance(value, numbers.Real):
+            return to_text(value)
+        if isinstance(value, (list, tuple, np.ndarray)):
+            array = np.asarray(value)
+            if array.size and array.dtype.kind in "iuf":
+                return " ".join(to_text(v) for v in array.reshape(-1).tolist())
     if kind in TEXT_TYPES or name == "name":
         raise TypeError(f"{label}: expected a str, got {type(value).__name__} {value!r}")
     if kind == "bool":
@@ -97,7 +125,7 @@ def canonical(kind, name, value, where):
         return value
     if _is_text_list(value):
         return " ".join(value)
-    return np.asarray(value)
+    return _as_array(value)
 
 
 def _is_text_list(value):
@@ -114,7 +142,7 @@ def to_text(value):
         return str(int(value))
     if isinstance(value, numbers.Real):
         return repr(float(value))
-    array = np.asarray(value).reshape(-1)
+    array = _as_array(value).reshape(-1)
     if array.dtype.kind == "b":
         return " ".join("true" if v else "false" for v in array.tolist())
     if array.dtype.kind in "iu":

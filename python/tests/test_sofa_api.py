@@ -443,3 +443,33 @@ def test_data_repositories_from_scripts(tmp_path):
     body.addObject("UniformMass", totalMass=1)
     Sofa.Simulation.init(root)
     assert len(body.dofs.position.value) > 4
+
+
+def test_what_stlib_and_softrobots_scenes_write():
+    """Calls taken from STLIB's prefabs and SoftRobots' tutorials, each once a wall."""
+    from conftest import REPOSITORY
+
+    root = Sofa.Core.Node("root")
+    root.addObject("VisualStyle")  # unnamed: found by its type's name, as SOFA names it
+    root.VisualStyle.displayFlags = "showBehavior"
+    assert root.getObject("VisualStyle") is not None
+    body = root.addChild("body")
+    body.addObject("EulerImplicitSolver")
+    body.addObject("CGLinearSolver", iterations=25.0, tolerance=1e-5, threshold=1e-5)  # 25.0 for an integer
+    loader = body.addObject("MeshGmshLoader", name="loader", filename=str(REPOSITORY / "examples/meshes/cylinder.msh"))
+    # A loader's outputs, given as links before the scene is built (STLIB's ElasticMaterialObject).
+    body.addObject("TetrahedronSetTopologyContainer", position=loader.position.getLinkPath(), tetras=loader.tetras.linkpath)
+    with pytest.raises(AttributeError, match="computed as the scene is built"):
+        loader.position.value
+    body.addObject("MechanicalObject", name="dofs")
+    body.addObject("UniformMass", totalMass=1)
+    roi = body.addObject("BoxROI", name="roi", box=[-1, -1, -1, 1, 1, 0.1])
+    body.addObject("RestShapeSpringsForceField", points=roi.indices.getLinkPath(), stiffness=1e6)
+    body.addObject("TetrahedronFEMForceField", youngModulus=1e4, poissonRatio=0.3)
+    body.addObject("OglModel", color=[0.0, 0.7, 0.7, 1])  # numbers for a text
+    rigid = root.addChild("rigid")
+    rigid.addObject("MechanicalObject", name="mstate", template="Rigid3", translation2=[0, 1, 0])
+    rigid.addObject("UniformMass", name="mass", vertexMass=[1.0, 1.0, [1, 0, 0, 0, 1, 0, 0, 0, 1]])  # ragged, as STLIB
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, 0.01)
+    assert len(body.dofs.position.value) > 4

@@ -67,7 +67,18 @@ MeshData read_mesh_file(const std::filesystem::path& path) {
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".msh") return read_gmsh(path);
-  if (extension == ".vtk") return read_vtk_legacy(path);
+  if (extension == ".vtk") {
+    // SOFA's MeshVTKLoader reads both VTK formats whatever the extension: an XML file (<VTKFile ...>)
+    // named .vtk is read as one.
+    std::ifstream in(path, std::ios::binary);
+    std::string start(64, '\0');
+    in.read(start.data(), static_cast<std::streamsize>(start.size()));
+    start.resize(static_cast<std::size_t>(in.gcount()));
+    const auto first = start.find_first_not_of(" \t\r\n");
+    if (first != std::string::npos && start.compare(first, 8, "<VTKFile") == 0) return read_vtu(path);
+    if (first != std::string::npos && start.compare(first, 5, "<?xml") == 0) return read_vtu(path);
+    return read_vtk_legacy(path);
+  }
   if (extension == ".vtu") return read_vtu(path);
   if (extension == ".gidmsh") return read_gid(path);
   throw make_error(path.string(), ": unknown mesh file extension '", path.extension().string(),

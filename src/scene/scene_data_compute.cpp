@@ -340,7 +340,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
   if (type == "MeshGmshLoader" || type == "MeshVTKLoader" || type == "GIDMeshLoader") {
     const MeshData& mesh = mesh_file(c);
     if (name == "position") return flatten(mesh.points);
-    if (name == "tetrahedra") return flatten_indices(mesh.tetrahedra);
+    if (name == "tetrahedra" || name == "tetras") return flatten_indices(mesh.tetrahedra);  // tetras: SOFA's other name
     if (name == "triangles") return flatten_indices(mesh.triangles);
     return {};
   }

@@ -279,6 +279,13 @@ std::filesystem::path find_data_file(const std::filesystem::path& from, const st
   };
   const std::filesystem::path folder = from.parent_path();
   if (found(folder / relative)) return folder / relative;
+  // The current folder, as SOFA looks first (it makes the scene's folder the current one as it
+  // loads; a script run from its folder names files from there, also in the modules it imports).
+  {
+    std::error_code ec;
+    const std::filesystem::path here = std::filesystem::current_path(ec);
+    if (!ec && here != std::filesystem::absolute(folder, ec) && found(here / relative)) return here / relative;
+  }
   if (const char* data_path = std::getenv("FASTCOROT_DATA_PATH")) {
     std::string list = data_path;
     std::size_t start = 0;

@@ -125,7 +125,8 @@ std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Compo
   } else if (type == "force" || type == "1") {
     p.value_type = CableConstraint<double>::ValueType::force;
   } else {
-    throw make_error("valueType = \"", type, "\": expected displacement or force");
+    // SOFA's OptionsGroup keeps its default on an unknown item, with a warning.
+    data.warn(c.where() + ": valueType = \"" + type + "\" is not displacement or force: displacement is used, as SOFA does");
   }
   p.max_force = optional_real(data, c, "maxForce");
   p.min_force = optional_real(data, c, "minForce");
@@ -158,7 +159,7 @@ std::unique_ptr<LagrangianConstraint<double>> build_cavity(SceneData& data, Comp
   } else if (type == "volumeGrowth" || type == "1") {
     p.value_type = SurfacePressureConstraint<double>::ValueType::volume_growth;
   } else {
-    throw make_error("valueType = \"", type, "\": expected pressure or volumeGrowth");
+    data.warn(c.where() + ": valueType = \"" + type + "\" is not pressure or volumeGrowth: pressure is used, as SOFA does");
   }
   p.max_pressure = optional_real(data, c, "maxPressure");
   p.min_pressure = optional_real(data, c, "minPressure");

@@ -97,6 +97,16 @@ TEST(MeshFile, ExtensionChoosesTheReaderWhateverItsCase) {
   }
 }
 
+TEST(MeshFile, AVtkXmlFileNamedVtkIsReadAsSofasLoaderReadsIt) {
+  // SoftRobots ships VTK XML meshes named .vtk (Tentacle.vtk); SOFA's MeshVTKLoader reads them.
+  const auto dir = temp_dir();
+  std::filesystem::copy_file(meshes_dir() / "box_vtk_ascii.vtu", dir / "xml_named.vtk",
+                             std::filesystem::copy_options::overwrite_existing);
+  const MeshData xml = read_mesh_file(dir / "xml_named.vtk");
+  EXPECT_EQ(xml.tetrahedra, read_mesh_file(meshes_dir() / "box_vtk_ascii.vtu").tetrahedra);
+  EXPECT_EQ(xml.tetrahedra.size(), 90u);
+}
+
 TEST(MeshFile, UnknownExtensionAndMissingFileAreErrors) {
   try {
     read_mesh_file("mesh.stl");

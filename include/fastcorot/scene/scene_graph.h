@@ -37,7 +37,8 @@ struct SceneNode {
 };
 
 // Finds a file a scene names (a mesh, an included file) as SOFA's data repositories find it: `name`
-// itself when absolute; else in the folder of `from` (the file that names it), then in each folder of
+// itself when absolute; else in the folder of `from` (the file that names it), then in the current
+// folder, then in each folder of
 // the environment variable FASTCOROT_DATA_PATH (colon-separated), then in the `share/`,
 // `share/mesh/` and `examples/` folders of each folder above `from` that has a `share/` or an
 // `examples/` folder, nearest first. Returns the first that exists; throws fastcorot::Error listing where it
