@@ -106,6 +106,18 @@ void read_command(SceneData& data, Component& c, std::vector<double>& value, std
   }
 }
 
+// A SoftRobots valueType (SOFA's OptionsGroup of two items, given by name or index): whether it
+// is the second item; an unknown one keeps the first, warned, as the OptionsGroup keeps its default.
+bool second_option(SceneData& data, Component& c, const char* first, const char* second) {
+  const std::string type = data.text(c, "valueType", first);
+  if (type == second || type == "1") return true;
+  if (type != first && type != "0") {
+    data.warn(c.where() + ": valueType = \"" + type + "\" is not " + first + " or " + second + ": " + first +
+              " is used, as SOFA does");
+  }
+  return false;
+}
+
 std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Component& c, ConstraintPoints<double> points,
                                                           std::span<const Vec3<double>> initial_positions) {
   const std::string method = data.text(c, "method", "point");
@@ -119,15 +131,8 @@ std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Compo
   p.has_pull_point = data.boolean(c, "hasPullPoint", true);
   p.initial_length = optional_real(data, c, "cableInitialLength");
   read_command(data, c, p.value, p.value_index);
-  const std::string type = data.text(c, "valueType", "displacement");
-  if (type == "displacement" || type == "0") {
-    p.value_type = CableConstraint<double>::ValueType::displacement;
-  } else if (type == "force" || type == "1") {
-    p.value_type = CableConstraint<double>::ValueType::force;
-  } else {
-    // SOFA's OptionsGroup keeps its default on an unknown item, with a warning.
-    data.warn(c.where() + ": valueType = \"" + type + "\" is not displacement or force: displacement is used, as SOFA does");
-  }
+  p.value_type = second_option(data, c, "displacement", "force") ? CableConstraint<double>::ValueType::force
+                                                                : CableConstraint<double>::ValueType::displacement;
   p.max_force = optional_real(data, c, "maxForce");
   p.min_force = optional_real(data, c, "minForce");
   p.max_positive_displacement = optional_real(data, c, "maxPositiveDisp");
@@ -153,14 +158,8 @@ std::unique_ptr<LagrangianConstraint<double>> build_cavity(SceneData& data, Comp
   }
   p.flip_normal = data.boolean(c, "flipNormal", false);
   read_command(data, c, p.value, p.value_index);
-  const std::string type = data.text(c, "valueType", "pressure");
-  if (type == "pressure" || type == "0") {
-    p.value_type = SurfacePressureConstraint<double>::ValueType::pressure;
-  } else if (type == "volumeGrowth" || type == "1") {
-    p.value_type = SurfacePressureConstraint<double>::ValueType::volume_growth;
-  } else {
-    data.warn(c.where() + ": valueType = \"" + type + "\" is not pressure or volumeGrowth: pressure is used, as SOFA does");
-  }
+  p.value_type = second_option(data, c, "pressure", "volumeGrowth") ? SurfacePressureConstraint<double>::ValueType::volume_growth
+                                                                   : SurfacePressureConstraint<double>::ValueType::pressure;
   p.max_pressure = optional_real(data, c, "maxPressure");
   p.min_pressure = optional_real(data, c, "minPressure");
   p.max_pressure_variation = optional_real(data, c, "maxPressureVariation");

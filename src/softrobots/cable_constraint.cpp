@@ -1,6 +1,7 @@
 #include "fastcorot/softrobots/cable_constraint.h"
 
 #include "fastcorot/core/error.h"
+#include "actuator_command.h"
 #include "actuator_resolution.h"
 #include "fastcorot/constraint/constraint_drawing.h"
 
@@ -51,13 +52,7 @@ CableConstraint<Real>::CableConstraint(std::string where, ConstraintPoints<Real>
 template <class Real>
 void CableConstraint<Real>::check_parameters() const {
   const auto& p = parameters_;
-  if (p.value.empty()) throw make_error("value is empty: one command at least is needed");
-  if (p.value_index >= p.value.size()) {
-    throw make_error("valueIndex = ", p.value_index, " but value has ", p.value.size(), " entries");
-  }
-  for (std::size_t k = 0; k < p.value.size(); ++k) {
-    if (!std::isfinite(p.value[k])) throw make_error("value[", k, "] is not finite");
-  }
+  softrobots_detail::check_command(p.value, p.value_index);
   if (!p.pull_point.allFinite()) throw make_error("pullPoint is not finite");
   for (const auto& bound : {p.max_force, p.min_force, p.max_positive_displacement, p.max_negative_displacement,
                             p.max_displacement_variation}) {
@@ -193,26 +188,15 @@ std::vector<double> CableConstraint<Real>::read_live(const std::string& name) co
 
 template <class Real>
 void CableConstraint<Real>::write_live(const std::string& name, std::span<const double> values) {
-  const Parameters kept = parameters_;
-  if (name == "value") {
-    parameters_.value.assign(values.begin(), values.end());
-  } else if (name == "valueIndex") {
-    if (values.size() != 1 || values[0] < 0 || values[0] != std::floor(values[0])) throw make_error(this->where(), ": valueIndex: expected one whole number >= 0");
-    parameters_.value_index = static_cast<std::size_t>(values[0]);
-  } else if (name == "pullPoint") {
-    if (values.size() != 3) throw make_error(this->where(), ": pullPoint: expected 3 numbers, got ", values.size());
-    parameters_.pull_point = Vec3<Real>(static_cast<Real>(values[0]), static_cast<Real>(values[1]), static_cast<Real>(values[2]));
-  } else if (name == "cableInitialLength" || name == "cableLength" || name == "displacement" || name == "force") {
+  if (name == "cableInitialLength" || name == "cableLength" || name == "displacement" || name == "force") {
     throw make_error(this->where(), ": ", name, " is an output (read-only while the simulation runs)");
-  } else {
-    LagrangianConstraint<Real>::write_live(name, values);
   }
-  try {
-    check_parameters();
-  } catch (const Error& error) {
-    parameters_ = kept;
-    throw make_error(this->where(), ": ", error.what());
-  }
+  if (name != "value" && name != "valueIndex" && name != "pullPoint") return LagrangianConstraint<Real>::write_live(name, values);
+  softrobots_detail::write_checked(this->where(), parameters_, [&] {
+    if (softrobots_detail::write_command(name, values, parameters_.value, parameters_.value_index)) return;
+    if (values.size() != 3) throw make_error("pullPoint: expected 3 numbers, got ", values.size());
+    parameters_.pull_point = Vec3<Real>(static_cast<Real>(values[0]), static_cast<Real>(values[1]), static_cast<Real>(values[2]));
+  }, [&] { check_parameters(); });
 }
 
 template class CableConstraint<float>;

@@ -1,5 +1,6 @@
 #include "fastcorot/softrobots/surface_pressure_constraint.h"
 
+#include "actuator_command.h"
 #include "actuator_resolution.h"
 #include "fastcorot/core/error.h"
 
@@ -37,11 +38,7 @@ SurfacePressureConstraint<Real>::SurfacePressureConstraint(std::string where, Co
 template <class Real>
 void SurfacePressureConstraint<Real>::check_parameters() const {
   const auto& p = parameters_;
-  if (p.value.empty()) throw make_error("value is empty: one command at least is needed");
-  if (p.value_index >= p.value.size()) throw make_error("valueIndex = ", p.value_index, " but value has ", p.value.size(), " entries");
-  for (std::size_t k = 0; k < p.value.size(); ++k) {
-    if (!std::isfinite(p.value[k])) throw make_error("value[", k, "] is not finite");
-  }
+  softrobots_detail::check_command(p.value, p.value_index);
   for (const auto& bound : {p.max_pressure, p.min_pressure, p.max_pressure_variation, p.max_volume_growth, p.min_volume_growth,
                             p.max_volume_growth_variation}) {
     if (bound && !std::isfinite(*bound)) {
@@ -158,23 +155,12 @@ std::vector<double> SurfacePressureConstraint<Real>::read_live(const std::string
 
 template <class Real>
 void SurfacePressureConstraint<Real>::write_live(const std::string& name, std::span<const double> values) {
-  const Parameters kept = parameters_;
-  if (name == "value") {
-    parameters_.value.assign(values.begin(), values.end());
-  } else if (name == "valueIndex") {
-    if (values.size() != 1 || values[0] < 0 || values[0] != std::floor(values[0])) throw make_error(this->where(), ": valueIndex: expected one whole number >= 0");
-    parameters_.value_index = static_cast<std::size_t>(values[0]);
-  } else if (name == "initialCavityVolume" || name == "cavityVolume" || name == "volumeGrowth" || name == "pressure") {
+  if (name == "initialCavityVolume" || name == "cavityVolume" || name == "volumeGrowth" || name == "pressure") {
     throw make_error(this->where(), ": ", name, " is an output (read-only while the simulation runs)");
-  } else {
-    LagrangianConstraint<Real>::write_live(name, values);
   }
-  try {
-    check_parameters();
-  } catch (const Error& error) {
-    parameters_ = kept;
-    throw make_error(this->where(), ": ", error.what());
-  }
+  if (name != "value" && name != "valueIndex") return LagrangianConstraint<Real>::write_live(name, values);
+  softrobots_detail::write_checked(this->where(), parameters_, [&] { softrobots_detail::write_command(name, values, parameters_.value, parameters_.value_index); },
+                                   [&] { check_parameters(); });
 }
 
 template class SurfacePressureConstraint<float>;
