@@ -22,10 +22,10 @@ __all__ = ["Core", "Helper", "Prefab", "Simulation", "constants"]
 def _located(kind):
     def message(target, text):
         """SofaPython3's Sofa.msg_*(target, message): Sofa.Helper's message with the caller's file and line."""
-        import inspect
+        import sys
 
-        caller = inspect.stack()[1]
-        Helper._message(kind, (target, f"{text} ({caller.filename}:{caller.lineno})"))
+        caller = sys._getframe(1)  # the caller's frame alone (inspect.stack() reads every frame's source)
+        Helper._message(kind, (target, f"{text} ({caller.f_code.co_filename}:{caller.f_lineno})"))
 
     message.__name__ = "msg_" + kind.lower()
     return message
