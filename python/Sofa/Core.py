@@ -171,7 +171,7 @@ class BaseObject:
         if name in self._object._data or name not in _OUTPUTS:
             return False
         spec = _core.component_spec(self._object.type)
-        return spec is not None and spec["category"] in ("loader", "engine", "topology", "trianglecontainer")
+        return spec is not None and spec["category"] in ("loader", "surfaceloader", "engine", "topology", "trianglecontainer")
 
     # the owner protocol of Data
     def _data_value(self, name):

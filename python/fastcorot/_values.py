@@ -86,6 +86,8 @@ def canonical(kind, name, value, where):
     if kind in TEXT_TYPES or name == "name":
         raise TypeError(f"{label}: expected a str, got {type(value).__name__} {value!r}")
     if kind == "bool":
+        if isinstance(value, numbers.Integral) and not _is_bool(value) and value in (0, 1):
+            return bool(value)  # SOFA reads "1" and "0" as a bool, as SofaPython3 writes an int
         if not _is_bool(value):
             raise TypeError(f"{label}: expected True or False, got {type(value).__name__} {value!r}")
         return bool(value)

@@ -159,8 +159,8 @@ class Object:
 
     # --- data -----------------------------------------------------------------------------------
     def _canonical(self, name, value):
-        if name in _STATE_VIEWS and self._is_rigid() and not isinstance(value, str):
-            # Rigid3 rows (7 or 6 numbers each) are kept as SOFA's text: flat numbers.
+        if name in _STATE_VIEWS and self._is_rigid_or_vec12() and not isinstance(value, str):
+            # Rigid3 rows (7 or 6 numbers each), Vec1 and Vec2 rows are kept as SOFA's text: flat numbers.
             return to_text(np.asarray(value, dtype=float).reshape(-1))
         kind = self._kind(name)
         if (kind == "vec3s" and self._type == "BilateralLagrangianConstraint" and name == "rest_vector"
@@ -169,6 +169,16 @@ class Object:
         if isinstance(value, Object) and kind == "link":
             value = value.link()
         return canonical(kind, name, value, f"{self.location}: {self._label()}")
+
+    def _is_rigid_or_vec12(self):
+        template = self._data.get("template")
+        return self._is_rigid() or (isinstance(template, str) and template.startswith(("Vec1", "Vec2")))
+
+    def _state_width(self, name):
+        """Numbers per row of state vector `name`: Rigid3 7 (velocities 6), Vec1 1, Vec2 2."""
+        if self._is_rigid():
+            return 6 if name == "velocity" else 7
+        return int(self._data["template"][3])
 
     def _is_rigid(self):
         template = self._data.get("template")
@@ -223,14 +233,15 @@ class Object:
             return core.von_mises_stress(k, name == "vonMisesPerNode")
         kind = self._kind(name)
         where = f"{self.location}: {self._label()}"
-        if name in _STATE_VIEWS and self._is_rigid() and name in self._data:
+        if name in _STATE_VIEWS and self._is_rigid_or_vec12() and name in self._data:
             value = self._data[name]
             if isinstance(value, str) and value.startswith("@"):
                 return value
             array = from_text("reals", name, value, where) if isinstance(value, str) else np.asarray(value, dtype=float)
-            width = 6 if name == "velocity" else 7
+            width = self._state_width(name)
             if array.size % width:
-                raise ValueError(f"{where}: {name} has {array.size} numbers: {width} per rigid are needed")
+                raise ValueError(f"{where}: {name} has {array.size} numbers: {width} per "
+                                 f"{'rigid' if self._is_rigid() else 'point'} are needed")
             return array.reshape(-1, width)
         if name in self._data:
             value = self._data[name]

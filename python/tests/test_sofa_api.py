@@ -473,3 +473,37 @@ def test_what_stlib_and_softrobots_scenes_write():
     Sofa.Simulation.init(root)
     Sofa.Simulation.animate(root, 0.01)
     assert len(body.dofs.position.value) > 4
+
+
+def test_what_softrobots_tutorials_write(tmp_path):
+    """SoftRobots' Tripod and thematic docs: an STL loader's points for a MechanicalObject, a Vec1
+    state's rows, an integer for a bool (as SOFA reads "1")."""
+    stl = tmp_path / "square.stl"
+    facets = [((0, 0, 0), (1, 0, 0), (0, 1, 0)), ((1, 0, 0), (1, 1, 0), (0, 1, 0))]
+    stl.write_text("solid square\n" + "".join(
+        "facet normal 0 0 1\nouter loop\n" + "".join(f"vertex {x} {y} {z}\n" for x, y, z in facet) + "endloop\nendfacet\n"
+        for facet in facets) + "endsolid square\n")
+    root = Sofa.Core.Node("root")
+    body = root.addChild("body")
+    body.addObject("EulerImplicitSolver")
+    body.addObject("CGLinearSolver", iterations=10, tolerance=1e-9, threshold=1e-9)
+    loader = body.addObject("MeshSTLLoader", name="loader", filename=str(stl))
+    body.addObject("MechanicalObject", name="dofs", position=loader.position.getLinkPath(), rotation=[90, 0, 0])
+    body.addObject("UniformMass", totalMass=1)
+    angle = root.addChild("angle")
+    angle.addObject("MechanicalObject", name="dofs", template="Vec1", position=[[0]], rest_position=[[0.5]])
+    assert angle.dofs.position.value.tolist() == [[0.0]]
+    assert angle.dofs.rest_position.value.tolist() == [[0.5]]
+    tet = root.addChild("tet")
+    tet.addObject("TetrahedronSetTopologyContainer", name="topology", tetrahedra=[0, 1, 2, 3], createTriangleArray=1)
+    assert tet.topology.createTriangleArray.value is True
+    with pytest.raises(TypeError, match="expected True or False"):
+        tet.topology.createTriangleArray = 2
+    Sofa.Simulation.init(root)
+    Sofa.Simulation.animate(root, 0.01)
+    # The file's four distinct points, turned a quarter about x, after one step of free fall.
+    expected = np.array([[0, 0, 0], [1, 0, 0], [0, 0, 1], [1, 0, 1]], dtype=float)
+    moved = body.dofs.position.value
+    assert moved.shape == (4, 3)
+    np.testing.assert_allclose(moved[:, [0, 2]], expected[:, [0, 2]], atol=1e-12)
+    assert np.all(moved[:, 1] < 0)

@@ -136,6 +136,12 @@ std::string suggestion(std::string_view name, const Names& candidates) {
 // SOFA components fastcorot knows it does not simulate, and why: a scene with one is refused in one
 // line saying so (an unknown component's line would not say what is missing).
 std::span<const std::pair<std::string_view, std::string_view>> refused_components() {
+  static constexpr std::string_view kInverse =
+      "inverse models (SoftRobots.Inverse) are not simulated: they need a QP solver over the actuators' and "
+      "effectors' rows (qpOASES or ProxQP in SoftRobots.Inverse, neither packaged by Debian), which fastcorot "
+      "does not have yet; the direct actuators (CableConstraint, SurfacePressureConstraint) are simulated";
+  static constexpr std::string_view kArticulated =
+      "articulated systems (ArticulatedSystemPlugin: Vec1 joint angles driving rigid bodies) are not simulated";
   static constexpr std::pair<std::string_view, std::string_view> kRefused[] = {
       {"UnilateralLagrangianConstraint", "a UnilateralLagrangianConstraint written in a scene is not simulated yet (those a FrictionContactConstraint response makes are)"},
       {"AugmentedLagrangianConstraint", "AugmentedLagrangianConstraint is not simulated yet"},
@@ -143,6 +149,33 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
       {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
       {"StandardTetrahedralFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
+      // SoftRobots.Inverse's solver and the actuators, effectors and sensors it alone resolves.
+      {"QPInverseProblemSolver", kInverse},
+      {"CableActuator", kInverse},
+      {"CableEffector", kInverse},
+      {"CableEquality", kInverse},
+      {"CableSensor", kInverse},
+      {"SurfacePressureActuator", kInverse},
+      {"SurfacePressureEquality", kInverse},
+      {"SurfacePressureSensor", kInverse},
+      {"PositionEffector", kInverse},
+      {"PositionEquality", kInverse},
+      {"ForcePointActuator", kInverse},
+      {"ForceSurfaceActuator", kInverse},
+      {"JointActuator", kInverse},
+      {"SlidingActuator", kInverse},
+      {"YoungModulusActuator", kInverse},
+      {"VolumeEffector", kInverse},
+      {"BarycentricCenterEffector", kInverse},
+      {"BeamRestPositionActuator", kInverse},
+      // ArticulatedSystemPlugin: Vec1 joint angles mapped to rigid bodies along a kinematic chain.
+      {"ArticulatedSystemMapping", kArticulated},
+      {"ArticulatedHierarchyContainer", kArticulated},
+      {"ArticulationCenter", kArticulated},
+      {"Articulation", kArticulated},
+      {"PositionConstraint", "SoftRobots' PositionConstraint is not simulated yet (CableConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
+      {"JointConstraint", "SoftRobots' JointConstraint is not simulated yet (CableConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
+      {"PartialRigidificationConstraint", "SoftRobots' PartialRigidificationConstraint is not simulated yet (CableConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
   };
   return kRefused;
 }

@@ -474,6 +474,21 @@ class LoopBuilder {
   }
 
   void add_correction(Component& c) {
+    const bool through_solver = c.type() == "LinearSolverConstraintCorrection" || c.type() == "GenericConstraintCorrection";
+    if (through_solver && c.node->of_category("state").empty()) {
+      // Beside the ODE solver, above the objects it integrates (SoftRobots' Trunk): SOFA's
+      // correction then serves every state that solver solves.
+      bool found = false;
+      for (std::size_t o = 0; o < solver_nodes_.size() && o < simulation_.objects.size(); ++o) {
+        if (solver_nodes_[o] != c.node) continue;
+        add_solver_correction(c, o);
+        found = true;
+      }
+      if (!found) {
+        throw make_error(c.where(), ": node ", c.node->path, " has no MechanicalObject and no ODE solver whose objects it could correct");
+      }
+      return;
+    }
     Component& state = own_state(c);
     const StateLocation where = locate(state, c);
     if (where.mapped) {
@@ -505,7 +520,12 @@ class LoopBuilder {
       loop_->corrections.push_back(std::make_unique<UncoupledConstraintCorrection<double>>(c.where(), o, std::move(parameters)));
       return;
     }
-    // LinearSolverConstraintCorrection and GenericConstraintCorrection: through the object's solver.
+    add_solver_correction(c, o);
+  }
+
+  // LinearSolverConstraintCorrection and GenericConstraintCorrection of object o: through its solver.
+  void add_solver_correction(Component& c, std::size_t o) {
+    auto& object = simulation_.objects[o];
     if (kind_.count(o)) {
       if (kind_[o] == "PrecomputedConstraintCorrection") throw make_error(object.path, " already has a PrecomputedConstraintCorrection: one kind of correction per ODE solver's object");
       if (kind_[o] == "uncoupled") throw make_error(object.path, " already has an UncoupledConstraintCorrection: one kind of correction per ODE solver's object");

@@ -61,6 +61,29 @@ TEST(LagrangianScene, FixedLagrangianConstraintGivesTheProjectiveTrajectory) {
   EXPECT_TRUE(lagrangian.simulation.constraint_report().converged);
 }
 
+TEST(LagrangianScene, ACorrectionBesideTheOdeSolverServesTheObjectsBelowIt) {
+  // SoftRobots' Trunk: solvers and GenericConstraintCorrection in one node, the body in a child.
+  const std::string solver = "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"200\" tolerance=\"1e-12\"/>";
+  const std::string held = kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/>";
+  LoadedScene together = build_scene_text(solver + beam("beam", 0, held + "<GenericConstraintCorrection/>"), kRoot);
+  const std::string body = beam("beam", 0, held);
+  const std::string solvers = "<EulerImplicitSolver rayleighMass=\"0.1\" rayleighStiffness=\"0.1\"/><SparseLDLSolver/>";
+  std::string child = body;
+  child.replace(child.find(solvers), solvers.size(), "");
+  LoadedScene above = build_scene_text(solver + "<Node name=\"Simulation\">" + solvers + "<GenericConstraintCorrection/>" + child + "</Node>", kRoot);
+  ASSERT_EQ(above.simulation.objects.size(), 1u);
+  for (int step = 1; step <= 50; ++step) {
+    together.simulation.step();
+    above.simulation.step();
+  }
+  EXPECT_EQ(together.simulation.objects[0].system.state.position, above.simulation.objects[0].system.state.position);
+  EXPECT_EQ(above.simulation.constraint_report().rows, 12);
+  // Without an ODE solver there, nothing to correct: refused naming the node.
+  EXPECT_NE(scene_error(solver + "<Node name=\"S\"><GenericConstraintCorrection/>" + body + "</Node>")
+                .find("node root/S has no MechanicalObject and no ODE solver whose objects it could correct"),
+            std::string::npos);
+}
+
 TEST(LagrangianScene, WithoutConstraintsTheLoopGivesTheDefaultTrajectoryToTheBit) {
   const std::string body = beam("beam", 0, kLeftEnd + "<FixedProjectiveConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>");
   LoadedScene plain = build_scene_text(body, kRoot);

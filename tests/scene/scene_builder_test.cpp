@@ -240,6 +240,17 @@ TEST(SceneBuilder, ComponentsFastcorotDoesNotSimulateAreRefusedSayingWhy) {
   EXPECT_NE(error_of(kTet + "\n<StandardTetrahedralFEMForceField/>")
                 .find("StandardTetrahedralFEMForceField: this scene needs what fastcorot does not have: hyperelastic FEM is not simulated"),
             std::string::npos);
+  // SoftRobots.Inverse and ArticulatedSystemPlugin: one line naming what is missing, not the list of
+  // every supported component.
+  const std::string inverse = error_of(kTet + "\n<QPInverseProblemSolver/>");
+  EXPECT_NE(inverse.find("QPInverseProblemSolver: this scene needs what fastcorot does not have: inverse models "
+                         "(SoftRobots.Inverse) are not simulated: they need a QP solver"),
+            std::string::npos)
+      << inverse;
+  EXPECT_EQ(inverse.find('\n'), std::string::npos) << inverse;
+  EXPECT_NE(error_of(kTet + "\n<PositionEffector/>").find("inverse models (SoftRobots.Inverse)"), std::string::npos);
+  EXPECT_NE(error_of(kTet + "\n<ArticulatedSystemMapping/>").find("articulated systems (ArticulatedSystemPlugin"),
+            std::string::npos);
 }
 
 TEST(SceneBuilder, IndexListsTakeSofasRanges) {
