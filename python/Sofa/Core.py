@@ -86,6 +86,46 @@ def _graft_links(top):
                 obj._data[key] = moved(value)
 
 
+def _add_parent(child, parent):
+    """SOFA's graph lets a node have several parents: STLIB's Scene hangs its Modelling node under
+    Simulation too (whose solvers then integrate it), Rigidify its object under the two mapped nodes
+    that feed its SubsetMultiMapping. fastcorot's tree has one parent per node: the node moves under
+    the last parent it is added to, and stays found by name from the earlier ones (node.Modelling);
+    the links written to it through its old path are rewritten to the new one."""
+    if any(node is child for node in parent._lineage()):
+        raise ValueError(f"addChild: node '{child.name}' is '{parent.name}' or above it: the graph would have a cycle")
+    old_root = child._lineage()[0]
+    old_path = "/" + "/".join(n.name for n in child._lineage()[1:])
+    old_parent = child._parent
+    old_parent._children.remove(child)
+    aliases = getattr(old_parent, "_alias_children", None)
+    if aliases is None:
+        aliases = []
+        object.__setattr__(old_parent, "_alias_children", aliases)
+    aliases.append(child)
+    object.__setattr__(child, "_parent", parent)
+    parent._children.append(child)
+    new_path = "/" + "/".join(n.name for n in child._lineage()[1:])
+    root_name = "/" + old_root.name
+
+    def moved(word):
+        for prefix in (old_path, root_name + old_path):  # SOFA's "@/Modelling/x", fastcorot's "@/root/Modelling/x"
+            rest = word[1 + len(prefix):]
+            if word.startswith("@" + prefix) and (rest == "" or rest[0] in "/."):
+                return "@" + new_path + rest
+        return word
+
+    for root in {id(old_root): old_root, id(child._lineage()[0]): child._lineage()[0]}.values():
+        stack = [root]
+        while stack:
+            node = stack.pop()
+            stack.extend(node._children)
+            for obj in node._objects:
+                for key, value in list(obj._data.items()):
+                    if isinstance(value, str) and "@/" in value:
+                        obj._data[key] = " ".join(moved(w) for w in value.split(" "))
+
+
 class _NamedList(list):
     """A node's children or objects, as SofaPython3's NodeIterator: a list that also takes names
     (``"solver" in node.objects``, ``node.children["Visual"]``)."""
@@ -251,10 +291,12 @@ class Node:
     def addChild(self, child):
         """A new child node of that name (or `child`, a Node made apart)."""
         if isinstance(child, Node):
+            if child._node._parent is self._node:
+                return child
             if child._node._parent is not None:
-                raise ValueError(f"addChild: node '{child.getName()}' already has a parent ({Node._of(child._node._parent).getPathName()}): "
-                                 "a node with several parents (SOFA's graph, as STLIB's Rigidify makes) is not supported by fastcorot "
-                                 "yet")
+                _add_parent(child._node, self._node)
+                self._changed_while_running()
+                return child
             object.__setattr__(child._node, "_parent", self._node)
             self._node._children.append(child._node)
             _graft_links(child._node)
@@ -325,6 +367,9 @@ class Node:
     def getChild(self, name):
         for child in self._node._children:
             if child.name == name:
+                return Node._of(child)
+        for child in getattr(self._node, "_alias_children", ()):  # moved below a second parent
+            if child.name == name and child._parent is not self._node:
                 return Node._of(child)
         return None
 

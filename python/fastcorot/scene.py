@@ -496,6 +496,9 @@ class Node:
         for obj in self._objects:
             if obj._data.get("name") == name:
                 return obj
+        for child in getattr(self, "_alias_children", ()):  # moved below a second parent (Sofa's addChild)
+            if child._name == name and child._parent is not self:
+                return child
         return None
 
     def __getattr__(self, name):

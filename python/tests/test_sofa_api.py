@@ -507,3 +507,45 @@ def test_what_softrobots_tutorials_write(tmp_path):
     assert moved.shape == (4, 3)
     np.testing.assert_allclose(moved[:, [0, 2]], expected[:, [0, 2]], atol=1e-12)
     assert np.all(moved[:, 1] < 0)
+
+
+def _stlib_scene(second_parent):
+    """STLIB's Scene: the body in root/Modelling, the solvers in root/Simulation, and (second_parent)
+    Simulation.addChild(Modelling); or the body written under Simulation directly."""
+    root = Sofa.Core.Node("root")
+    root.gravity = [0, -9.81, 0]
+    simulation = root.addChild("Simulation")
+    simulation.addObject("EulerImplicitSolver", rayleighStiffness=0.1, rayleighMass=0.1)
+    simulation.addObject("SparseLDLSolver")
+    modelling = root.addChild("Modelling") if second_parent else simulation.addChild("Modelling")
+    modelling.addObject("RegularGridTopology", name="grid", n=[5, 2, 2], min=[0, 0, 0], max=[1, 0.2, 0.2])
+    body = modelling.addChild("body")
+    body.addObject("MechanicalObject", name="dofs", position=modelling.grid.position.getLinkPath())
+    body.addObject("UniformMass", totalMass=1)
+    body.addObject("TetrahedronFEMForceField", youngModulus=1e4, poissonRatio=0.3,
+                   topology=modelling.grid.getLinkPath())
+    roi = modelling.addChild("box")
+    roi.addObject("BoxROI", name="roi", box=[-0.01, -0.01, -0.01, 0.01, 0.21, 0.21], position=body.dofs.rest_position.getLinkPath())
+    held = roi.addChild("held")
+    body.addChild(held)  # FixingBox: the springs below the body as well
+    held.addObject("RestShapeSpringsForceField", points=roi.roi.indices.getLinkPath(), stiffness=1e8)
+    if second_parent:
+        simulation.addChild(modelling)
+    return root
+
+
+def test_a_node_with_a_second_parent_moves_below_it_and_keeps_its_links():
+    moved, written = _stlib_scene(True), _stlib_scene(False)
+    assert moved.Modelling is moved.Simulation.Modelling  # still found from its first parent
+    assert moved.Modelling.getPathName() == "/Simulation/Modelling"
+    assert moved.Simulation.Modelling.box.held.getPathName() == "/Simulation/Modelling/body/held"
+    for root in (moved, written):
+        Sofa.Simulation.init(root)
+        for _ in range(20):
+            Sofa.Simulation.animate(root, 0.01)
+    a = moved.Simulation.Modelling.body.dofs.position.value
+    b = written.Simulation.Modelling.body.dofs.position.value
+    assert np.array_equal(a, b)
+    assert np.all(np.abs(a[0] - [0, 0, 0]) < 1e-6) and a[4][1] < -1e-3  # held at x = 0, sagging at the tip
+    with pytest.raises(ValueError, match="cycle"):
+        moved.Simulation.Modelling.body.addChild(moved.Simulation)

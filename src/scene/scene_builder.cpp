@@ -819,6 +819,7 @@ class Builder {
   // The boxes are kept for drawing only; the selection itself is BoxROI's `indices` data.
   void add_boxes(Component& c, SimulatedObject<double>& object) {
     const Numbers& box = data_.data(c, "box");
+    if (box.empty() && c.has("orientedBox")) return;  // oriented boxes only: nothing aligned to draw
     if (box.empty() || box.size() % 6 != 0) {
       throw make_error(c.where(), ": box needs 6 numbers per box (xmin ymin zmin xmax ymax zmax), got ", box.size());
     }
