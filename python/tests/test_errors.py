@@ -148,8 +148,8 @@ def test_wrong_data_types_and_shapes_are_rejected_naming_the_data():
     with pytest.raises(ValueError, match=r"MechanicalObject 'dofs': position: expected an \(n, 3\) array of numbers, "
                                          r"got shape \(4, 2\)"):
         body.add_object("MechanicalObject", name="dofs", position=np.zeros((4, 2)))
-    with pytest.raises(TypeError, match="drawing: expected True or False, got int 1"):
-        body.add_object("FastTetrahedralCorotationalForceField", drawing=1)
+    with pytest.raises(TypeError, match="drawing: expected True or False, got int 2"):
+        body.add_object("FastTetrahedralCorotationalForceField", drawing=2)  # 0 and 1 are SOFA's bools
     with pytest.raises(TypeError, match="method: expected a str, got dict"):
         body.add_object("FastTetrahedralCorotationalForceField", method={"qr": 1})
     # A number for a text is written as SOFA reads it (an option's index, valueType=1); a wrong one
