@@ -46,9 +46,22 @@ def _value_for_scene(value):
         return _value_for_scene(value.value)
     if isinstance(value, (Data, BaseObject, Node)):
         return value.getLinkPath()
-    if isinstance(value, tuple):
-        return list(value)
+    if isinstance(value, (list, tuple)):
+        return [_nested_value(item) for item in value]
     return value
+
+
+def _nested_value(item):
+    """An item of a list given to addObject: a Data there stands for its value, as SofaPython3
+    writes it into SOFA's text (`position=[[self.angleIn]]`)."""
+    if isinstance(item, Data):
+        try:
+            return _nested_value(item.value)
+        except AttributeError:  # an output computed as the scene is built: its link
+            return item.getLinkPath()
+    if isinstance(item, (list, tuple)):
+        return [_nested_value(x) for x in item]
+    return item
 
 
 def _graft_links(top):

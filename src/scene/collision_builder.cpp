@@ -240,6 +240,17 @@ class CollisionBuilder {
         responses.kind[k] = Response::none;
         continue;
       }
+      const auto uncorrected = [&](const CollisionModel<double>& side) {
+        return side.points->is_still() || !corrected.count(side.points->object());
+      };
+      if (uncorrected(a) && uncorrected(b)) {
+        // Neither side's compliance reaches W, and no correction moves either: SOFA builds the rows
+        // and nothing comes of them (STLIB's RigidObject has no correction).
+        data_.warn(manager.where() + ": " + a.where + " and " + b.where + ": no constraint correction on either side, so their " +
+                   name + " contacts move neither, as in SOFA (add an UncoupledConstraintCorrection to a moving body)");
+        responses.kind[k] = Response::none;
+        continue;
+      }
       for (const auto* side : {&a, &b}) {
         if (side->points->is_still() || corrected.count(side->points->object())) continue;
         throw error_at(side->where, make_error("its object ", simulation_.objects[side->points->object()].path,

@@ -1,6 +1,7 @@
 #include "collision_model_reader.h"
 #include "hexahedron_builders.h"
 #include "index_tuples.h"
+#include "unsimulated_points.h"
 
 #include "fastcorot/collision/new_proximity.h"
 #include "fastcorot/collision/self_collision.h"
@@ -9,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <set>
 
 namespace fastcorot::scene_detail {
@@ -248,8 +250,23 @@ std::shared_ptr<CollisionPoints<double>> CollisionModelReader::points_of(Compone
         throw NotSimulated{user.where() + ": its state " + state.where() + " is under an ODE solver but not one fastcorot follows"};
       }
     }
-    for (Component* m : state.node->of_category("visualmapping")) {
-      throw NotSimulated{user.where() + ": its still state " + state.where() + " is filled by " + m->where()};
+    if (!state.node->of_category("visualmapping").empty()) {
+      // Under a RigidMapping from a rigid no solver moves (STLIB's Floor and Cube, fixed): an
+      // obstacle whose points the rigid's frame places once.
+      std::vector<std::string> said;
+      std::optional<ConstraintPoints<double>> placed;
+      try {
+        placed = UnsimulatedPoints(data_, said, locate_).points(state, user);
+      } catch (const Error& error) {
+        throw NotSimulated{user.where() + ": its still state " + state.where() + ": " + error.what()};
+      }
+      if (!placed || placed->motion) {
+        throw NotSimulated{user.where() + ": its state " + state.where() + " is carried by a moving rigid: moving obstacles are not "
+                           "simulated yet"};
+      }
+      points = std::make_shared<CollisionPoints<double>>(CollisionPoints<double>::still(std::move(placed->position)));
+      points_.emplace(&state, points);
+      return points;
     }
     for (const auto& c : state.node->components) {
       const std::string_view type = c->type();

@@ -104,6 +104,50 @@ TEST(FrictionContactScene, APointOnAnInclineSticksIffTanThetaIsBelowMu) {
   }
 }
 
+TEST(FrictionContactScene, AnObstacleOnAStillRigidIsPlacedByItsFrame) {
+  // STLIB's Floor: a rigid no solver moves, its triangle under a RigidMapping in the rigid's frame
+  // (here moved by (1, -2, 3) and turned a quarter about y: local (x, 0, z) lands at (1 + z, -2, 3 - x)).
+  // The point rests on it as on the same triangle written in the world.
+  const std::string header = "<FreeMotionAnimationLoop/><BlockGaussSeidelConstraintSolver maxIterations=\"100\" tolerance=\"1e-15\"/>"
+                             "<CollisionPipeline/><BruteForceBroadPhase/><BVHNarrowPhase/>"
+                             "<MinProximityIntersection alarmDistance=\"0.5\" contactDistance=\"0.2\"/>"
+                             "<CollisionResponse response=\"FrictionContactConstraint\" responseParams=\"mu=0.5\"/>";
+  const std::string ball = "<Node name=\"ball\"><EulerImplicitSolver rayleighMass=\"0\" rayleighStiffness=\"0\"/><SparseLDLSolver/>"
+                           "<MechanicalObject name=\"point\" position=\"1.1 -1.7 3.2\"/><UniformMass totalMass=\"0.5\"/>"
+                           "<PointCollisionModel/>%s</Node>";
+  const std::string corrected = "<LinearSolverConstraintCorrection/>";
+  const auto with = [&](const std::string& correction) {
+    std::string text = ball;
+    text.replace(text.find("%s"), 2, correction);
+    return text;
+  };
+  const std::string s = number(std::sqrt(0.5));
+  const std::string carried = "<Node name=\"floor\"><MechanicalObject template=\"Rigid3\" position=\"1 -2 3 0 " + s + " 0 " + s +
+                              "\"/><Node name=\"collision\"><MeshTopology position=\"10 0 -10  10 0 10  -20 0 0\" triangles=\"0 2 1\"/>"
+                              "<MechanicalObject/><TriangleCollisionModel simulated=\"0\" moving=\"0\"/><RigidMapping/></Node></Node>";
+  const std::string world = "<Node name=\"floor\"><MeshTopology position=\"-9 -2 -7  11 -2 -7  1 -2 23\" triangles=\"0 2 1\"/>"
+                            "<MechanicalObject/><TriangleCollisionModel simulated=\"0\" moving=\"0\"/></Node>";
+  LoadedScene on_rigid = build_scene_text(header + with(corrected) + carried, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  LoadedScene in_world = build_scene_text(header + with(corrected) + world, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  const auto& a = on_rigid.simulation.objects[0].system.state.position;
+  const auto& b = in_world.simulation.objects[0].system.state.position;
+  for (int step = 0; step < 100; ++step) {
+    on_rigid.simulation.step();
+    in_world.simulation.step();
+    ASSERT_NEAR((a[0] - b[0]).norm(), 0.0, 1e-12) << "step " << step;
+  }
+  EXPECT_EQ(on_rigid.simulation.collision_report().contacts, 1);
+  EXPECT_NEAR(a[0].y(), -1.8, 1e-9) << "resting at the contact distance above y = -2";
+  // Without a correction on the ball, neither side's compliance reaches W: warned, no contact
+  // response, the ball falls through as in SOFA.
+  LoadedScene uncorrected = build_scene_text(header + with("") + carried, "dt=\"0.01\" gravity=\"0 -9.81 0\"");
+  bool warned = false;
+  for (const auto& line : uncorrected.warnings) warned = warned || line.find("no constraint correction on either side") != std::string::npos;
+  EXPECT_TRUE(warned);
+  for (int step = 0; step < 100; ++step) uncorrected.simulation.step();
+  EXPECT_LT(uncorrected.simulation.objects[0].system.state.position[0].y(), -2.0);
+}
+
 TEST(FrictionContactScene, APointOnASteeperInclineGainsCoulombsSpeedEachStep) {
   const double theta = std::atan(0.4);
   const double gx = kG * std::sin(theta), gy = -kG * std::cos(theta);
@@ -272,8 +316,14 @@ TEST(FrictionContactScene, BadInputAndUnsupportedSettingsAreSaid) {
   std::string negative = point_on_incline(0.3);
   negative.replace(negative.find("mu=0.29999999999999999"), std::string("mu=0.29999999999999999").size(), "mu=-1");
   EXPECT_NE(scene_error(negative).find("mu, tol and epsilon must be ≥ 0"), std::string::npos) << scene_error(negative);
+  // A moving floor without a correction against the corrected point: refused (with neither side
+  // corrected, the contacts are warned to move neither: AnObstacleOnAStillRigidIsPlacedByItsFrame).
   std::string uncorrected = point_on_incline(0.3);
-  uncorrected.replace(uncorrected.find("<LinearSolverConstraintCorrection/>"), std::string("<LinearSolverConstraintCorrection/>").size(), "");
+  const std::string still_floor = "<Node name=\"floor\"><MeshTopology";
+  uncorrected.replace(uncorrected.find(still_floor), still_floor.size(),
+                      "<Node name=\"floor\"><EulerImplicitSolver/><SparseLDLSolver/><UniformMass totalMass=\"1\"/><MeshTopology");
+  uncorrected.replace(uncorrected.find("<TriangleCollisionModel simulated=\"0\" moving=\"0\"/>"),
+                      std::string("<TriangleCollisionModel simulated=\"0\" moving=\"0\"/>").size(), "<TriangleCollisionModel/>");
   EXPECT_NE(scene_error(uncorrected).find("has no constraint correction"), std::string::npos) << scene_error(uncorrected);
   // Under the default loop: the scene loads, its collisions said to need FreeMotionAnimationLoop.
   std::string default_loop = point_on_incline(0.3);
