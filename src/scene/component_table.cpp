@@ -173,9 +173,8 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       {"ArticulatedHierarchyContainer", kArticulated},
       {"ArticulationCenter", kArticulated},
       {"Articulation", kArticulated},
-      {"PositionConstraint", "SoftRobots' PositionConstraint is not simulated yet (CableConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
-      {"JointConstraint", "SoftRobots' JointConstraint is not simulated yet (CableConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
-      {"PartialRigidificationConstraint", "SoftRobots' PartialRigidificationConstraint is not simulated yet (CableConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
+      {"JointConstraint", "SoftRobots' JointConstraint is not simulated yet (CableConstraint, PositionConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
+      {"PartialRigidificationConstraint", "SoftRobots' PartialRigidificationConstraint is not simulated yet (CableConstraint, PositionConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
   };
   return kRefused;
 }

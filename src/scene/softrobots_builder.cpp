@@ -4,6 +4,7 @@
 #include "component_families.h"
 #include "fastcorot/core/error.h"
 #include "fastcorot/softrobots/cable_constraint.h"
+#include "fastcorot/softrobots/position_constraint.h"
 #include "fastcorot/softrobots/surface_pressure_constraint.h"
 #include "fastcorot/softrobots/unilateral_plane_constraint.h"
 #include "index_tuples.h"
@@ -71,6 +72,25 @@ std::vector<ComponentSpec> softrobots_components() {
         {"visualization", "bool", "false", "accepted (SoftRobots' older drawPressure)"},
         {"showVisuScale", "real", "0.1", "accepted (SoftRobots' older drawScale)"},
         {"endTime", "real", "-1", "accepted (-1: always active)"}}},
+      {"PositionConstraint", "lagrangian",
+       "SoftRobots' position actuator: points of the node's state moved along one direction from where they were at init, one "
+       "Lagrangian row per point imposing the displacement (valueType displacement; SoftRobots drops its force bounds there) or "
+       "the impulse λ = force × dt (valueType force); output force (λ of the first row). One direction only (SoftRobots lines "
+       "up one resolution per point). Under a FreeMotionAnimationLoop.",
+       {{"indices", "indices", "0", "the points moved"},
+        {"directions", "vec3s", "1 0 0 0 1 0 0 0 1", "three directions (normalised)"},
+        {"useDirections", "reals", "1 1 1", "which of the three directions act (1 or 0 each): exactly one"},
+        {"weight", "reals", "1 1 1", "a factor on each direction's row"},
+        {"value", "reals", "0", "the commands; value[valueIndex] is imposed"},
+        {"valueIndex", "int", "0", "which command"},
+        {"valueType", "string", "displacement", "displacement or force (the impulse); also 0 or 1"},
+        {"maxForce", "real", "", "force mode: upper bound of the command (unset: none)"},
+        {"minForce", "real", "", "force mode: lower bound of the command (unset: none)"},
+        {"maxPositiveDisp", "real", "", "largest displacement (unset: none)"},
+        {"maxNegativeDisp", "real", "", "largest displacement backwards (unset: none)"},
+        {"force", "real", "", "output: λ of the first row (force × dt)"},
+        {"displacement", "real", "0", "output: stays 0, as SoftRobots never sets it"},
+        {"delta", "vec3s", "", "accepted (inverse models only)"}}},
       {"UnilateralPlaneConstraint", "lagrangian",
        "SoftRobots' unilateral plane: point indices[0] of the node's state kept on the side of the plane through points indices[1..3] "
        "its normal (p2 - p1) × (p3 - p1) points to, by one unilateral row; the row uses the normal as it is, the gap its unit "
@@ -81,7 +101,8 @@ std::vector<ComponentSpec> softrobots_components() {
 }
 
 bool is_softrobots_constraint(std::string_view type) {
-  return type == "CableConstraint" || type == "SurfacePressureConstraint" || type == "UnilateralPlaneConstraint";
+  return type == "CableConstraint" || type == "SurfacePressureConstraint" || type == "UnilateralPlaneConstraint" ||
+         type == "PositionConstraint";
 }
 
 namespace {
@@ -169,6 +190,39 @@ std::unique_ptr<LagrangianConstraint<double>> build_cavity(SceneData& data, Comp
   return std::make_unique<SurfacePressureConstraint<double>>(c.where(), std::move(points), initial_positions, std::move(p));
 }
 
+std::unique_ptr<LagrangianConstraint<double>> build_position(SceneData& data, Component& c, ConstraintPoints<double> points,
+                                                             std::span<const Vec3<double>> initial_positions) {
+  typename PositionConstraint<double>::Parameters p;
+  if (c.has("indices")) {
+    p.indices = data.indices(c, "indices");
+  } else {
+    data.warn(c.where() + ": no indices: point 0 is moved, as SoftRobots does");
+  }
+  if (c.has("directions")) {
+    const auto directions = data.points(c, "directions");
+    if (directions.size() != 3) throw make_error("directions: ", directions.size(), " given; three are needed");
+    std::copy(directions.begin(), directions.end(), p.directions.begin());
+  }
+  if (c.has("useDirections")) {
+    const Numbers& use = data.data(c, "useDirections");
+    if (use.size() != 3) throw make_error("useDirections: ", use.size(), " values given; three are needed (1 or 0 each)");
+    for (std::size_t j = 0; j < 3; ++j) p.use_directions[j] = use[j] != 0;
+  }
+  if (c.has("weight")) {
+    const Numbers& weight = data.data(c, "weight");
+    if (weight.empty()) throw make_error("weight is empty");
+    for (std::size_t j = 0; j < 3; ++j) p.weight[j] = weight.size() == 3 ? weight[j] : weight[0];  // SoftRobots' resize rule
+  }
+  read_command(data, c, p.value, p.value_index);
+  p.value_type = second_option(data, c, "displacement", "force") ? PositionConstraint<double>::ValueType::force
+                                                                : PositionConstraint<double>::ValueType::displacement;
+  p.max_force = optional_real(data, c, "maxForce");
+  p.min_force = optional_real(data, c, "minForce");
+  p.max_positive_displacement = optional_real(data, c, "maxPositiveDisp");
+  p.max_negative_displacement = optional_real(data, c, "maxNegativeDisp");
+  return std::make_unique<PositionConstraint<double>>(c.where(), std::move(points), initial_positions, std::move(p));
+}
+
 }  // namespace
 
 std::unique_ptr<LagrangianConstraint<double>> build_softrobots_constraint(SceneData& data, Component& c, ConstraintPoints<double> points,
@@ -176,6 +230,7 @@ std::unique_ptr<LagrangianConstraint<double>> build_softrobots_constraint(SceneD
   const std::string templ = data.text(c, "template", "Vec3d");
   if (templ.rfind("Vec2", 0) == 0) throw make_error("template = \"", templ, "\": ", c.type(), " is simulated on Vec3 states only");
   if (c.type() == "SurfacePressureConstraint") return build_cavity(data, c, std::move(points), initial_positions);
+  if (c.type() == "PositionConstraint") return build_position(data, c, std::move(points), initial_positions);
   if (c.type() == "UnilateralPlaneConstraint") {
     const std::vector<Index> indices = data.indices(c, "indices");
     if (indices.size() != 4) throw make_error("indices: ", indices.size(), " given; four are needed (the point, then three of the plane)");
