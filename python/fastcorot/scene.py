@@ -13,8 +13,9 @@ the folder of that file, as in a .scn file.
 
 Once a Simulation is built from a root, the simulated MechanicalObjects' `position` and
 `velocity` are numpy arrays viewing the simulation's state (writing into them, or assigning them,
-changes the state), `rest_position` is a read-only view, and the root's `dt` and `gravity` are the
-simulation's. Other data stay the description: a change takes effect in the next Simulation built
+changes the state), `rest_position` is a read-only view that assigning replaces (SOFA's
+RestShapeSpringsForceField follows it; the other fields keep the rest shape of init, as in SOFA),
+and the root's `dt` and `gravity` are the simulation's. Other data stay the description: a change takes effect in the next Simulation built
 from the tree (as SOFA applies most changes at the next init).
 """
 
@@ -298,8 +299,16 @@ class Object:
         if self._binding is not None and name in _STATE_VIEWS:
             core, k, start, stop = self._binding
             if name == "rest_position":
-                raise ValueError(f"{self.location}: {self._label()}: rest_position cannot change once the "
-                                 "Simulation is built (the force fields' rest data come from it)")
+                # SOFA's RestShapeSpringsForceField reads the rest positions at every step and follows;
+                # the other fields keep the rest shape they took at init, as SOFA's do.
+                try:
+                    if self._is_rigid():
+                        core.set_rigid_rest_position(k, np.asarray(value, dtype=float).reshape(-1), start, stop)
+                    else:
+                        core.set_rest_position(k, np.asarray(value, dtype=float).reshape(-1, 3), start, stop)
+                except (ValueError, IndexError) as error:
+                    raise ValueError(f"{self.location}: {self._label()}: {error}") from None
+                return
             if self._is_rigid():
                 if name == "position":
                     try:

@@ -356,6 +356,47 @@ void bind_simulation(py::module_& m) {
           },
           py::arg("k"), py::arg("value"), py::arg("start"), py::arg("stop"))
       .def(
+          "set_rest_position",
+          [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
+            assign(c, k, &MechanicalState<double>::rest_position, value, start, stop, "rest_position");
+            std::lock_guard lock(c.stepping);
+            return c.simulation().objects[k].system.follow_rest_positions();
+          },
+          py::arg("k"), py::arg("value"), py::arg("start"), py::arg("stop"),
+          "Writes rest positions; the fields that read them each step in SOFA (RestShapeSpringsForceField) follow. "
+          "Returns how many did.")
+      .def(
+          "set_rigid_rest_position",
+          [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
+            c.state(k);
+            const auto picked = rigids_in(c, k, start, stop);
+            const auto numbers = number_list(value, "rest_position");
+            if (numbers.size() != 7 * picked.size()) {
+              throw py::value_error("rest_position: " + std::to_string(numbers.size()) + " numbers for " +
+                                    std::to_string(picked.size()) + " rigids (7 each: x y z qx qy qz qw)");
+            }
+            std::vector<RigidCoord<double>> coords;
+            try {
+              coords = parse_rigid_coords<double>(numbers, "rest_position");
+            } catch (const Error& error) {
+              throw py::value_error(error.what());
+            }
+            std::lock_guard lock(c.stepping);
+            auto& system = c.simulation().objects[k].system;
+            auto& rigids = *system.rigids;
+            for (std::size_t i = 0; i < picked.size(); ++i) {
+              const auto b = static_cast<std::size_t>(rigids.block[picked[i]]);
+              system.state.rest_position[b] = coords[i].center;
+              rigids.rest_orientation[picked[i]] = coords[i].orientation;
+            }
+            for (auto& [follower, first] : rigids.followers) {  // merged objects' own blocks
+              std::copy_n(rigids.rest_orientation.begin() + static_cast<std::ptrdiff_t>(first), follower->size(),
+                          follower->rest_orientation.begin());
+            }
+            return system.follow_rest_positions();
+          },
+          py::arg("k"), py::arg("value"), py::arg("start"), py::arg("stop"))
+      .def(
           "set_velocity",
           [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
             assign(c, k, &MechanicalState<double>::velocity, value, start, stop, "velocity");

@@ -548,3 +548,62 @@ def test_a_node_with_a_second_parent_moves_below_it_and_keeps_its_links():
     assert np.all(np.abs(a[0] - [0, 0, 0]) < 1e-6) and a[4][1] < -1e-3  # held at x = 0, sagging at the tip
     with pytest.raises(ValueError, match="cycle"):
         moved.Simulation.Modelling.body.addChild(moved.Simulation)
+
+
+def _held_beam():
+    """A beam held at its left end by stiff rest-shape springs (SoftRobots' grippers hold their
+    fingers so), and a rigid goal pulled to its rest by springs (the Tripod's maze)."""
+    root = Sofa.Core.Node("root")
+    root.gravity = [0, -9.81, 0]
+    beam = root.addChild("beam")
+    beam.addObject("EulerImplicitSolver", rayleighStiffness=0.1, rayleighMass=0.1)
+    beam.addObject("SparseLDLSolver")
+    beam.addObject("RegularGridTopology", name="grid", n=[5, 2, 2], min=[0, 0, 0], max=[1, 0.2, 0.2])
+    beam.addObject("MechanicalObject", name="dofs")
+    beam.addObject("UniformMass", totalMass=1)
+    beam.addObject("TetrahedronFEMForceField", youngModulus=1e4, poissonRatio=0.3)
+    beam.addObject("BoxROI", name="box", box=[-0.01, -0.01, -0.01, 0.01, 0.21, 0.21])
+    beam.addObject("RestShapeSpringsForceField", points=beam.box.indices.linkpath, stiffness=1e7)
+    goal = root.addChild("goal")
+    goal.addObject("EulerImplicitSolver", firstOrder=True)
+    goal.addObject("CGLinearSolver", iterations=100, tolerance=1e-12, threshold=1e-12)
+    goal.addObject("MechanicalObject", name="dofs", template="Rigid3", position=[0, 0, 0, 0, 0, 0, 1])
+    goal.addObject("UniformMass", totalMass=1)
+    goal.addObject("RestShapeSpringsForceField", points=0, stiffness=1e5, angularStiffness=1e5)
+    return root
+
+
+def test_rest_positions_written_by_a_script_move_the_springs_anchors():
+    import math
+
+    root = _held_beam()
+    Sofa.Simulation.init(root)
+    dofs = root.beam.dofs
+    start = dofs.position.value.copy()
+    rest = dofs.rest_position.value.copy()
+    for _ in range(100):  # SoftRobots' gripper controllers: the whole rest shape moved 1 mm a step
+        rest[:, 0] += 0.001
+        dofs.rest_position.value = rest
+        Sofa.Simulation.animate(root, 0.01)
+    for _ in range(200):  # then still: the body settles where the springs now hold it
+        Sofa.Simulation.animate(root, 0.01)
+    np.testing.assert_allclose(dofs.rest_position.value, rest)
+    held = [0, 5, 10, 15]  # the left end's points (x = 0)
+    np.testing.assert_allclose(dofs.position.value[held, 0], start[held, 0] + 0.1, atol=1e-4)
+    # The FEM keeps its rest shape of init (as SOFA's): the beam is carried along, not stretched; it
+    # ends as the same beam left in place, moved by 0.1 along x.
+    still = _held_beam()
+    Sofa.Simulation.init(still)
+    for _ in range(300):
+        Sofa.Simulation.animate(still, 0.01)
+    np.testing.assert_allclose(dofs.position.value - [0.1, 0, 0], still.beam.dofs.position.value, atol=1e-4)
+    # A rigid's rest pose: its springs pull it there (centre and orientation).
+    half = math.radians(30) / 2
+    root.goal.dofs.rest_position.value = [[0.5, 0.2, 0, 0, 0, math.sin(half), math.cos(half)]]
+    for _ in range(200):
+        Sofa.Simulation.animate(root, 0.01)
+    sag = 9.81 * 1 / 1e5  # its weight on the springs
+    np.testing.assert_allclose(root.goal.dofs.position.value[0], [0.5, 0.2 - sag, 0, 0, 0, math.sin(half), math.cos(half)],
+                               atol=1e-7)
+    with pytest.raises(ValueError, match="rest_position"):
+        root.goal.dofs.rest_position.value = [[0, 0, 0]]

@@ -177,6 +177,21 @@ std::size_t RestShapeSpringsForceField<Real>::memory_bytes() const {
   return p_.points.size() * (sizeof(Index) + sizeof(Vec3<Real>)) + p_.stiffness.size() * sizeof(Real);
 }
 
+template <class Real>
+bool RestShapeSpringsForceField<Real>::follow_rest(std::span<const Vec3<Real>> rest_position) {
+  if (!p_.anchors_follow_rest) return false;
+  for (std::size_t i = 0; i < p_.points.size(); ++i) {
+    if (p_.rigids) {
+      const RigidCoord<Real> rest = p_.rigids->rest_coord(rest_position, static_cast<std::size_t>(p_.rigid_of_point[i]));
+      p_.anchors[i] = rest.center;
+      p_.rest_orientations[i] = rest.orientation;
+    } else {
+      p_.anchors[i] = rest_position[static_cast<std::size_t>(p_.points[i])];
+    }
+  }
+  return true;
+}
+
 template class RestShapeSpringsForceField<double>;
 template class RestShapeSpringsForceField<float>;
 

@@ -57,6 +57,7 @@ std::shared_ptr<ForceField<double>> rigid_rest_shape_springs(SceneData& data, Co
       if (c.has(unsupported)) throw make_error(unsupported, " is not supported on rigid bodies");
     }
     RestShapeSpringsForceField<double>::Parameters p;
+    p.anchors_follow_rest = true;
     std::vector<Index> picked = data.indices(c, "points");
     if (picked.empty()) {
       for (Index k = 0; k < count; ++k) picked.push_back(k);

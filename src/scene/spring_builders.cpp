@@ -305,6 +305,7 @@ std::shared_ptr<ForceField<double>> build_rest_shape_springs(SceneData& data, Co
         throw make_error("external_points has ", external_points.size(), " points for ", p.points.size(), " points");
       }
       for (Index i : p.points) p.anchors.push_back(rest[static_cast<std::size_t>(i)]);
+      p.anchors_follow_rest = true;
     }
     return std::make_shared<RestShapeSpringsForceField<double>>(std::move(mesh), std::move(p));
   } catch (const Error& error) {

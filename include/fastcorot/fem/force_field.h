@@ -74,6 +74,13 @@ class ForceField {
   virtual std::string unsaved_state() const { return {}; }
   // Values that define the model (material, method, damping), for checkpoints' fingerprints.
   virtual std::vector<double> model_values() const = 0;
+  // A script wrote the state's rest positions (SOFA's rest_position, `rest_position` here the whole
+  // state's): a field that reads them at every step in SOFA (RestShapeSpringsForceField) takes them
+  // again and returns true; the others keep what they took at init, as SOFA's do.
+  virtual bool follow_rest(std::span<const Vec3<Real>> rest_position) {
+    static_cast<void>(rest_position);
+    return false;
+  }
 
   virtual void set_threads(int threads) = 0;
   virtual int threads() const = 0;

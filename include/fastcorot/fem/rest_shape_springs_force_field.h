@@ -37,6 +37,9 @@ class RestShapeSpringsForceField final : public ForceField<Real> {
     std::vector<Real> angular_stiffness;
     std::vector<Eigen::Quaternion<Real>> rest_orientations;
     std::array<bool, 3> active_rotations{true, true, true};
+    // The anchors are the state's own rest positions (not an external_rest_shape): SOFA reads them
+    // at every step, so a script that moves them moves the anchors (follow_rest).
+    bool anchors_follow_rest = false;
   };
 
   // Throws fastcorot::Error for a point outside the mesh's points, as many anchors as points
@@ -60,6 +63,11 @@ class RestShapeSpringsForceField final : public ForceField<Real> {
   // The points and anchors are fixed at init: topological changes of the mesh are refused.
   void check_new_tetrahedra(std::span<const Tetrahedron> tetrahedra) const override;
   void apply(const TopologyChange& change) override;
+
+  // After a script wrote the state's rest positions (the whole state's, and the rigids' rest
+  // orientations in Parameters::rigids): the anchors and rest orientations are read again from
+  // them when anchors_follow_rest; nothing happens otherwise. Returns whether they were.
+  bool follow_rest(std::span<const Vec3<Real>> rest_position) override;
 
   std::vector<double> model_values() const override;
   void set_threads(int threads) override { threads_ = threads; }

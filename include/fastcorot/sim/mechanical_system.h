@@ -202,6 +202,14 @@ class MechanicalSystem {
   // and again by finalize); results are bitwise the same for any count.
   void set_threads(int threads);
   int threads() const { return threads_; }
+  // After state.rest_position (and rigids->rest_orientation) changed between steps: the force
+  // fields that read the rest positions at every step in SOFA take them again (follow_rest); the
+  // number that did.
+  int follow_rest_positions() {
+    int followed = 0;
+    for (const auto& field : force_fields) followed += field->follow_rest(state.rest_position) ? 1 : 0;
+    return followed;
+  }
   // Where the force fields, the products and the solvers add their time (null: not timed).
   void set_phase_times(PhaseTimes* times);
   PhaseTimes* phase_times() const { return times_; }

@@ -45,6 +45,7 @@ class OffsetForceField final : public ForceField<Real> {
   void check_new_tetrahedra(std::span<const Tetrahedron>) const override;
   void apply(const TopologyChange&) override;
   std::vector<double> model_values() const override;
+  bool follow_rest(std::span<const Vec3<Real>> rest_position) override { return inner_->follow_rest(range(rest_position)); }
   std::string unsaved_state() const override { return inner_->unsaved_state(); }
   void set_threads(int threads) override { inner_->set_threads(threads); }
   int threads() const override { return inner_->threads(); }
