@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/core/phase_times.h"
 
+#include <algorithm>
 #include <chrono>
 #include <string_view>
 
@@ -112,7 +113,7 @@ ConstraintReport FreeMotionAnimationLoop<Real>::correct(std::span<SimulatedObjec
         correction->add_compliance(objects[o], ht[o], order, dt, problem_.w);
         corrected = true;
       }
-      if (!corrected) {
+      if (!corrected && std::find(uncorrected.begin(), uncorrected.end(), o) == uncorrected.end()) {
         throw make_error(objects[o].path, ": Lagrangian constraints act on it but it has no constraint correction "
                          "(add a LinearSolverConstraintCorrection or an UncoupledConstraintCorrection)");
       }

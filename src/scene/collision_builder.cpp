@@ -253,9 +253,12 @@ class CollisionBuilder {
       }
       for (const auto* side : {&a, &b}) {
         if (side->points->is_still() || corrected.count(side->points->object())) continue;
-        throw error_at(side->where, make_error("its object ", simulation_.objects[side->points->object()].path,
-                                               " has no constraint correction, which its contacts (", name,
-                                               ") need: add a LinearSolverConstraintCorrection or an UncoupledConstraintCorrection"));
+        // Only the other side's compliance reaches W and only it is corrected: the uncorrected body
+        // moves on as if nothing touched it, as in SOFA.
+        loop_->uncorrected.push_back(side->points->object());
+        data_.warn(side->where + ": its object " + simulation_.objects[side->points->object()].path +
+                   " has no constraint correction: its " + name + " contacts push the other side only, as in SOFA (add a "
+                   "LinearSolverConstraintCorrection or an UncoupledConstraintCorrection for both to respond)");
       }
       const std::string where = manager.where() + ": contacts of " + a.where + " and " + b.where;
       if (kind == Response::stick_constraint) {

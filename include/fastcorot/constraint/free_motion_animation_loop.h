@@ -33,6 +33,10 @@ class FreeMotionAnimationLoop final : public ConstraintStage<Real> {
   // In row order (SOFA's scene-graph order).
   std::vector<std::shared_ptr<LagrangianConstraint<Real>>> constraints;
   std::vector<std::unique_ptr<ConstraintCorrection<Real>>> corrections;
+  // Objects that rows may touch with no correction of theirs (contacts with a body that has none,
+  // warned when the scene is built): as in SOFA, W lacks their compliance and nothing corrects them.
+  // Rows on any other uncorrected object are an error.
+  std::vector<std::size_t> uncorrected;
 
   ConstraintReport correct(std::span<SimulatedObject<Real>> objects, std::span<const MechanicalState<Real>> start, Real dt,
                            double time) override;
