@@ -25,7 +25,7 @@ _scene.INTERNAL_FOLDERS.add(os.path.dirname(os.path.abspath(__file__)))
 # SOFA's outputs of loaders, engines and topologies that scripts link to before the scene is built.
 _OUTPUTS = frozenset({
     "position", "positions", "edges", "triangles", "quads", "tetrahedra", "tetras", "hexahedra", "normals",
-    "indices", "pointsInROI", "edgesInROI", "trianglesInROI", "quadsInROI", "tetrahedraInROI", "hexahedraInROI",
+    "indices", "pointIndices", "pointsInROI", "edgesInROI", "trianglesInROI", "quadsInROI", "tetrahedraInROI", "hexahedraInROI",
     "edgeIndices", "triangleIndices", "quadIndices", "tetrahedronIndices", "hexahedronIndices", "nbIndices",
     "indicesOut", "output_position", "outputPoints", "outputTetrahedra", "outputTriangles"})
 

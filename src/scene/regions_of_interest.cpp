@@ -1,8 +1,9 @@
 // SOFA's regions of interest (Sofa.Component.Engine.Select): BoxROI (axis-aligned and oriented
-// boxes), PlaneROI (slabs over a parallelogram) and PairBoxROI (the shell between two boxes), with
+// boxes), SphereROI (balls, BoxROI's rules with its own edge and triangle angle filters), PlaneROI
+// (slabs over a parallelogram) and PairBoxROI (the shell between two boxes), with
 // their outputs: the points and elements (edges, triangles, quads, tetrahedra, hexahedra) inside,
-// and for BoxROI those outside. Read from
-// SOFA's BoxROI.inl, BaseROI.inl and PlaneROI.inl (master 2a278d891f): bounds are inclusive, a
+// and for BoxROI and SphereROI those outside. Read from
+// SOFA's BoxROI.inl, SphereROI.inl, BaseROI.inl and PlaneROI.inl (master 2a278d891f): bounds are inclusive, a
 // point is in the region when it is in any of the shapes, outputs keep the input order, and each
 // point or element appears once.
 #include "scene_data.h"
@@ -106,8 +107,9 @@ constexpr ElementKind kElementKinds[] = {
      "tetrahedraOutROI", 4, "tetrahedron"},
     {"hexahedra", "computeHexahedra", "hexahedronIndices", "hexahedraInROI", "", "", 8, "hexahedron"}};
 
-// SOFA's other spellings of BoxROI's data.
+// SOFA's other spellings of BoxROI's and SphereROI's data.
 std::string canonical_name(const std::string& name) {
+  if (name == "pointIndices") return "indices";  // SphereROI's
   if (name == "quad") return "quads";
   if (name == "computeQuad") return "computeQuads";
   if (name == "quadInROI") return "quadsInROI";
@@ -117,7 +119,9 @@ std::string canonical_name(const std::string& name) {
 }  // namespace
 
 Numbers SceneData::region_of_interest(Component& c, const std::string& asked) {
-  const bool box_roi = c.type() == "BoxROI";
+  // BoxROI and SphereROI share SOFA's BaseROI: its outputs, strict rule and outputs of what is out.
+  const bool sphere_roi = c.type() == "SphereROI";
+  const bool box_roi = c.type() == "BoxROI" || sphere_roi;
   const std::string name = canonical_name(asked);
   if (name == "position") return rest_positions_around(c);
   if (c.type() == "PairBoxROI") {
@@ -141,7 +145,7 @@ Numbers SceneData::region_of_interest(Component& c, const std::string& asked) {
     }
     return out;
   }
-  if (box_roi && name == "box") return c.has("orientedBox") ? Numbers{} : Numbers{0, 0, 0, 1, 1, 1};
+  if (box_roi && !sphere_roi && name == "box") return c.has("orientedBox") ? Numbers{} : Numbers{0, 0, 0, 1, 1, 1};
   if (!box_roi && name == "plane") return Numbers(10, 0.0);  // SOFA's default: one all-zero plane
 
   // The shapes.
@@ -155,7 +159,16 @@ Numbers SceneData::region_of_interest(Component& c, const std::string& asked) {
     }
     for (std::size_t s = 0; s < values.size(); s += 10) slabs.emplace_back(&values[s], !box_roi);
   };
-  if (box_roi) {
+  std::vector<std::pair<Vec3<double>, double>> spheres;  // centre, radius
+  if (sphere_roi) {
+    const auto centres = points(c, "centers");
+    Numbers radii = data(c, "radii");
+    if (radii.size() == 1) radii.assign(centres.size(), radii[0]);  // one radius for every centre, as SOFA
+    if (radii.size() != centres.size()) {
+      throw make_error(c.where(), ": ", centres.size(), " centers but ", radii.size(), " radii (one each, or one for all)");
+    }
+    for (std::size_t k = 0; k < centres.size(); ++k) spheres.emplace_back(centres[k], radii[k]);
+  } else if (box_roi) {
     const Numbers& box = data(c, "box");
     if (box.size() % 6 != 0) {
       throw make_error(c.where(), ": box needs 6 numbers per box (xmin ymin zmin xmax ymax zmax), got ", box.size());
@@ -172,10 +185,29 @@ Numbers SceneData::region_of_interest(Component& c, const std::string& asked) {
     for (const auto& slab : slabs) {
       if (slab.contains(p)) return true;
     }
+    for (const auto& [centre, radius] : spheres) {
+      if ((p - centre).squaredNorm() <= radius * radius) return true;
+    }
     return false;
   };
+  // SphereROI's filters: an edge whose direction is within edgeAngle (degrees) of `direction`, a
+  // triangle whose normal (p2 - p0) × (p1 - p0) is within triAngle of `normal`, is left out; 0: none.
+  const double edge_angle = sphere_roi ? real(c, "edgeAngle", 0.0) : 0.0;
+  const double triangle_angle = sphere_roi ? real(c, c.has("triAngle") || !c.has("angle") ? "triAngle" : "angle", 0.0) : 0.0;
+  const Vec3<double> direction = edge_angle > 0 ? normalized(vec3(c, "direction", Vec3<double>::Zero())) : Vec3<double>::Zero();
+  const Vec3<double> normal = triangle_angle > 0 ? normalized(vec3(c, "normal", Vec3<double>::Zero())) : Vec3<double>::Zero();
+  const auto passes_filter = [&](const std::vector<Vec3<double>>& p) {
+    if (p.size() == 2 && edge_angle > 0) {
+      return std::abs(normalized(p[1] - p[0]).dot(direction)) < std::abs(std::cos(edge_angle * M_PI / 180.0));
+    }
+    if (p.size() == 3 && triangle_angle > 0) {
+      return normalized((p[2] - p[0]).cross(p[1] - p[0])).dot(normal) < std::cos(triangle_angle * M_PI / 180.0);
+    }
+    return true;
+  };
 
-  const auto positions = points(c, "position");
+  const bool rest_alias = sphere_roi && !c.has("position") && c.has("rest_position");  // SphereROI's other name
+  const auto positions = points(c, rest_alias ? "rest_position" : "position");
   const auto emit_point = [&](Numbers& out, std::size_t i, bool as_index) {
     if (as_index) {
       out.push_back(static_cast<double>(i));
@@ -241,11 +273,11 @@ Numbers SceneData::region_of_interest(Component& c, const std::string& asked) {
         }
         return false;
       }
-      if (!strict) return in_box(centre);
+      if (!strict) return in_box(centre) && passes_filter(points);
       for (const auto& p : points) {
         if (!in_box(p)) return false;
       }
-      return true;
+      return passes_filter(points);
     };
     const bool want_inside = in_out;
     const bool as_indices = name == kind.indices || name == kind.out_indices;

@@ -512,7 +512,7 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     if (name == "tetrahedra") return flatten_indices(mesh.tetrahedra);
     return {};
   }
-  if (type == "BoxROI" || type == "PlaneROI" || type == "PairBoxROI") return region_of_interest(c, name);
+  if (type == "BoxROI" || type == "SphereROI" || type == "PlaneROI" || type == "PairBoxROI") return region_of_interest(c, name);
   if (type == "SubsetTopology") return subset_topology(*this, c, name);
   if (type == "NearestPointROI") return nearest_point_roi(c, name);
   if (type == "IndexValueMapper" && name == "outputValues") {

@@ -184,6 +184,48 @@ TEST(BoxRoi, StrictOffTakesElementsByTheirCentreAndBooleansReadAsSofaReadsThem) 
   }
 }
 
+TEST(SphereRoi, SelectsThePointsWithinAnyBallAndKeepsBoxRoisRules) {
+  // Two balls of radius 0.6 (one radius for both): points within 0.6 of (-1, -1, -1) or (1, 1, 1).
+  Roi roi("<SphereROI name=\"roi\" centers=\"-1 -1 -1  1 1 1\" radii=\"0.6\"/>");
+  std::vector<Index> expected;
+  for (std::size_t i = 0; i < roi.points().size(); ++i) {
+    const Vec3<double>& p = roi.points()[i];
+    if ((p - Vec3<double>(-1, -1, -1)).norm() <= 0.6 || (p - Vec3<double>(1, 1, 1)).norm() <= 0.6) {
+      expected.push_back(static_cast<Index>(i));
+    }
+  }
+  EXPECT_EQ(expected.size(), 8u);  // each corner and its three neighbours at 0.5
+  EXPECT_EQ(roi.indices(), expected);
+  EXPECT_EQ(roi.indices("pointIndices"), expected);  // SphereROI's other name
+  EXPECT_EQ(roi.indices("indicesOut").size(), roi.points().size() - expected.size());
+  // No tetrahedron has its four points within 0.6 of a corner; with radius 0.9 some do.
+  EXPECT_TRUE(roi.indices("tetrahedronIndices").empty());
+  Roi wider("<SphereROI name=\"roi\" centers=\"-1 -1 -1\" radii=\"0.9\"/>");
+  const auto tetrahedra = wider.tetrahedra();
+  const auto in_tets = wider.indices("tetrahedronIndices");
+  EXPECT_FALSE(in_tets.empty());
+  for (Index t : in_tets) {
+    for (int j = 0; j < 4; ++j) {
+      const Vec3<double>& p = wider.points()[static_cast<std::size_t>(tetrahedra[static_cast<std::size_t>(4 * t + j)])];
+      EXPECT_LE((p - Vec3<double>(-1, -1, -1)).norm(), 0.9);
+    }
+  }
+}
+
+TEST(SphereRoi, EdgeAngleLeavesOutEdgesAlongTheDirection) {
+  // Edges (0,1) along x and (0,5) along y, both within the ball around point 0 (-1, -1, -1).
+  const std::string ball = "<SphereROI name=\"roi\" centers=\"-1 -1 -1\" radii=\"0.6\" edges=\"0 1  0 5\"";
+  EXPECT_EQ(Roi(ball + "/>").indices("edgeIndices"), (std::vector<Index>{0, 1}));
+  EXPECT_EQ(Roi(ball + " edgeAngle=\"10\" direction=\"1 0 0\"/>").indices("edgeIndices"), std::vector<Index>{1});
+  Roi mismatched("<SphereROI name=\"roi\" centers=\"0 0 0  1 1 1  2 2 2\" radii=\"1 2\"/>");
+  try {
+    mismatched("indices");
+    ADD_FAILURE() << "3 centres and 2 radii accepted";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("3 centers but 2 radii"), std::string::npos) << error.what();
+  }
+}
+
 TEST(RegionsOfInterest, BadShapesAreErrorsNamingTheData) {
   for (const auto& [roi, message] : std::initializer_list<std::pair<const char*, const char*>>{
            {"<BoxROI name=\"roi\" box=\"0 0 0 1 1\"/>", "box needs 6 numbers per box"},
