@@ -27,7 +27,7 @@ _OUTPUTS = frozenset({
     "position", "positions", "edges", "triangles", "quads", "tetrahedra", "tetras", "hexahedra", "normals",
     "indices", "pointIndices", "pointsInROI", "edgesInROI", "trianglesInROI", "quadsInROI", "tetrahedraInROI", "hexahedraInROI",
     "edgeIndices", "triangleIndices", "quadIndices", "tetrahedronIndices", "hexahedronIndices", "nbIndices",
-    "indicesOut", "output_position", "outputPoints", "outputTetrahedra", "outputTriangles"})
+    "indicesOut", "volume", "output_position", "outputPoints", "outputTetrahedra", "outputTriangles"})
 
 # A node's own data (SOFA's Node and its context); only dt and gravity change the mechanics.
 _NODE_DATA = ("name", "dt", "gravity", "time", "bbox", "animate", "activated", "multiThreadSimulation")

@@ -75,6 +75,27 @@ std::vector<ComponentSpec> engine_components() {
         {"drawSphere", "bool", "false", "accepted (display); also isVisible"},
         {"isVisible", "bool", "false", "accepted (display)"},
         {"doUpdate", "bool", "true", "accepted; the selection is made at init"}}},
+      {"VolumeFromVolumetricElements", "engine",
+       "SOFA's volume of a mesh's tetrahedra and hexahedra (each hexahedron as SOFA's six tetrahedra), output volume, "
+       "computed from the positions as the scene is built.",
+       {{"position", "vec3s", "", "points (default: the nearest MechanicalObject's at or above)"},
+        {"tetras", "indices", "", "tetrahedra (default: the node's topology's)"},
+        {"hexas", "indices", "", "hexahedra (default: the node's topology's)"},
+        {"update", "bool", "false", "SOFA recomputes the volume at each step: here it is the one of init (warned)"},
+        {"topology", "link", "", "accepted (the node's topology is used)"},
+        {"mechanical", "link", "", "accepted (the nearest MechanicalObject is used)"},
+        {"volume", "real", "", "output: the volume"}},
+       {"VolumeFromTetrahedrons"}},
+      {"VolumeFromTriangles", "engine",
+       "SOFA's volume inside a closed surface of triangles and quads (the divergence theorem), output volume, computed "
+       "from the positions as the scene is built.",
+       {{"position", "vec3s", "", "points (default: the nearest MechanicalObject's at or above)"},
+        {"triangles", "indices", "", "triangles (default: the node's topology's)"},
+        {"quads", "indices", "", "quads (default: the node's topology's)"},
+        {"update", "bool", "false", "SOFA recomputes the volume at each step: here it is the one of init (warned)"},
+        {"topology", "link", "", "accepted (the node's topology is used)"},
+        {"mechanical", "link", "", "accepted (the nearest MechanicalObject is used)"},
+        {"volume", "real", "", "output: the volume"}}},
       {"PlaneROI", "engine",
        "Selects the points inside slabs over parallelograms, bounds included, and the edges, triangles and "
        "tetrahedra with all their points in one slab; outputs indices, pointsInROI, edgeIndices, edgesInROI, "

@@ -121,6 +121,9 @@ class SceneData {
   Numbers rest_positions_around(Component& c);
   // Data `name` of BoxROI or PlaneROI c (its defaults and outputs: regions_of_interest.cpp).
   Numbers region_of_interest(Component& c, const std::string& name);
+  // SOFA's VolumeFromVolumetricElements (also VolumeFromTetrahedrons) and VolumeFromTriangles:
+  // their `volume` at init (volume_engines.cpp).
+  double engine_volume(Component& c);
   // A topology's tetrahedra (4 indices each, checked).
   std::vector<Tetrahedron> tetrahedra_of(Component& topology);
   // Translation, rotation or scale3d of c, or their short forms (dx dy dz, rx ry rz, scale or sx sy

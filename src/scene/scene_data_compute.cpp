@@ -527,6 +527,9 @@ Numbers SceneData::compute(Component& c, const std::string& name) {
     }
     return out;
   }
+  if ((type == "VolumeFromVolumetricElements" || type == "VolumeFromTetrahedrons" || type == "VolumeFromTriangles") && name == "volume") {
+    return {engine_volume(c)};
+  }
   if (type == "MeshTetraStuffing") return mesh_tetra_stuffing(*this, c, name);
   if (type == "MeshSplittingEngine") return mesh_splitting_engine(*this, c, name);
   if (type == "TransformEngine") return transform_engine(*this, c, name);

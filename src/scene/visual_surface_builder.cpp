@@ -81,6 +81,13 @@ class VisualSurfaceBuilder {
                         " is not mapped (its mapping is none fastcorot draws): not drawn");
         continue;
       }
+      Component* grid = first_topology(node);
+      if (mapping->type() == "BarycentricMapping" && !object.mesh && !(grid && grid->type() == "RegularGridTopology")) {
+        // SOFA maps onto a surface's triangles too (its MeshMapper): not made here for drawing.
+        data_.warn(model->where() + ": " + std::string(model->type()) + " is not drawn: its BarycentricMapping " + mapping->where() +
+                   " maps onto an object without tetrahedra (a surface), which fastcorot does not follow");
+        continue;
+      }
       try {
         object.visual_surfaces.push_back(build_surface(node, *model, *mapping, object));
       } catch (const Error& error) {
