@@ -142,6 +142,8 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       "does not have yet; the direct actuators (CableConstraint, SurfacePressureConstraint) are simulated";
   static constexpr std::string_view kArticulated =
       "articulated systems (ArticulatedSystemPlugin: Vec1 joint angles driving rigid bodies) are not simulated";
+  static constexpr std::string_view kBeams =
+      "the BeamAdapter plugin's beams are not simulated (tetrahedra and hexahedra only)";
   static constexpr std::pair<std::string_view, std::string_view> kRefused[] = {
       {"UnilateralLagrangianConstraint", "a UnilateralLagrangianConstraint written in a scene is not simulated yet (those a FrictionContactConstraint response makes are)"},
       {"AugmentedLagrangianConstraint", "AugmentedLagrangianConstraint is not simulated yet"},
@@ -173,6 +175,16 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       {"ArticulatedHierarchyContainer", kArticulated},
       {"ArticulationCenter", kArticulated},
       {"Articulation", kArticulated},
+      {"AnimationEditor", "SoftRobots' AnimationEditor (key frames edited in runSofa's window) is not supported: drive the scene from a Python controller"},
+      {"DataVariationLimiter", "SoftRobots' DataVariationLimiter is not simulated yet: limit the command's change per step in a Python controller (or with CableConstraint's maxDispVariation)"},
+      {"CommunicationController", "SoftRobots' CommunicationController (ZeroMQ messages between simulations) is not supported"},
+      {"SerialPortBridgeGeneric", "SoftRobots' SerialPortBridgeGeneric (a serial link to the robot's hardware) is not supported"},
+      {"BeamInterpolation", kBeams},
+      {"AdaptiveBeamForceFieldAndMass", kBeams},
+      {"AdaptiveBeamMapping", kBeams},
+      {"WireRestShape", kBeams},
+      {"WireBeamInterpolation", kBeams},
+      {"InterventionalRadiologyController", kBeams},
       {"JointConstraint", "SoftRobots' JointConstraint is not simulated yet (CableConstraint, PositionConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
       {"PartialRigidificationConstraint", "SoftRobots' PartialRigidificationConstraint is not simulated yet (CableConstraint, PositionConstraint, SurfacePressureConstraint and UnilateralPlaneConstraint are)"},
   };
