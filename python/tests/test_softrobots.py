@@ -119,14 +119,19 @@ def test_a_cavity_inflated_from_a_script():
         pressure.volumeGrowth = 1.0
 
 
-def test_the_pneumatic_finger_example_inflates_as_commanded():
+def _example(name):
     import importlib.util
     import pathlib
 
-    path = pathlib.Path(__file__).resolve().parents[2] / "examples/softrobots/pneumatic_finger.py"
-    spec = importlib.util.spec_from_file_location("pneumatic_finger", path)
+    path = pathlib.Path(__file__).resolve().parents[2] / f"examples/softrobots/{name}.py"
+    spec = importlib.util.spec_from_file_location(name, path)
     example = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(example)
+    return example
+
+
+def test_the_pneumatic_finger_example_inflates_as_commanded():
+    example = _example("pneumatic_finger")
     root = example.createScene(Sofa.Core.Node("root"))
     Sofa.Simulation.init(root)
     pressure = root.finger.cavity.pressure
@@ -137,3 +142,22 @@ def test_the_pneumatic_finger_example_inflates_as_commanded():
     assert pressure.volumeGrowth.value == pytest.approx(29e-7, abs=2e-8)
     assert pressure.pressure.value > 0
     assert root.finger.dofs.position.value[16][1] < tip[1] - 1e-3  # the top lengthens: the tip goes down
+
+
+def test_the_pneumatic_gripper_example_lifts_the_ball_it_grips():
+    example = _example("pneumatic_gripper")
+    root = example.createScene(Sofa.Core.Node("root"))
+    Sofa.Simulation.init(root)
+    start = root.ball.dofs.position.value[0][1]
+    grip = example.INFLATE_STEPS + example.HOLD_STEPS
+    for _ in range(grip):
+        Sofa.Simulation.animate(root, root.dt.value)
+    # Inflated: the fingers curl in and stop on the ball, still on the floor.
+    assert root.ball.dofs.position.value[0][1] == pytest.approx(start, abs=1e-4)
+    for finger in (root.finger0, root.finger1, root.finger2):
+        assert finger.cavity.pressure.pressure.value == pytest.approx(example.PRESSURE * root.dt.value)
+    for _ in range(example.LIFT_STEPS + 20):
+        Sofa.Simulation.animate(root, root.dt.value)
+    # The fingers' bases went up by 40 mm; the ball went with them, held by friction (a few mm of slip).
+    lifted = root.ball.dofs.position.value[0][1] - start
+    assert 0.03 < lifted < 0.041
