@@ -10,10 +10,14 @@ an unknown component is a ValueError naming it and the script line.
 
 import difflib
 import os
+import warnings
+
+import numpy as np
 
 import fastcorot
 from fastcorot import _core
 from fastcorot import scene as _scene
+from fastcorot._values import TUPLE_SIZES as _TUPLE_SIZES
 from fastcorot._values import to_text
 
 from ._components import Controller, ForceField, _PythonComponent
@@ -28,6 +32,31 @@ _OUTPUTS = frozenset({
     "indices", "pointIndices", "pointsInROI", "edgesInROI", "trianglesInROI", "quadsInROI", "tetrahedraInROI", "hexahedraInROI",
     "edgeIndices", "triangleIndices", "quadIndices", "tetrahedronIndices", "hexahedronIndices", "nbIndices",
     "indicesOut", "volume", "output_position", "outputPoints", "outputTetrahedra", "outputTriangles"})
+
+# How outputs and linked data read as numpy values: (int or float, row width; 0 for one number,
+# None for a flat array).
+_OUTPUT_SHAPES = {
+    "position": (float, 3), "positions": (float, 3), "normals": (float, 3), "pointsInROI": (float, 3),
+    "pointsOutROI": (float, 3), "output_position": (float, 3), "outputPoints": (float, 3),
+    "edges": (int, 2), "triangles": (int, 3), "quads": (int, 4), "tetrahedra": (int, 4), "tetras": (int, 4),
+    "hexahedra": (int, 8), "hexas": (int, 8), "edgesInROI": (int, 2), "trianglesInROI": (int, 3), "quadsInROI": (int, 4),
+    "tetrahedraInROI": (int, 4), "hexahedraInROI": (int, 8), "outputTetrahedra": (int, 4), "outputTriangles": (int, 3),
+    "indices": (int, None), "pointIndices": (int, None), "indicesOut": (int, None), "edgeIndices": (int, None),
+    "triangleIndices": (int, None), "quadIndices": (int, None), "tetrahedronIndices": (int, None),
+    "hexahedronIndices": (int, None), "nbIndices": (int, 0), "volume": (float, 0)}
+_KIND_SHAPES = {"vec3s": (float, 3), "vec6s": (float, 6), "reals": (float, None), "real": (float, 0), "int": (int, 0),
+                "vec3": (float, None), "int3": (int, None)}
+
+
+def _shape_of(kind, name):
+    """(int or float, width) of a datum read as numbers, None for text."""
+    if kind == "indices":
+        size = _TUPLE_SIZES.get(name) or _OUTPUT_SHAPES.get(name, (int, None))[1]
+        return (int, size) if size else (int, None)
+    if kind in _KIND_SHAPES:
+        return _KIND_SHAPES[kind]
+    return _OUTPUT_SHAPES.get(name) if kind is None else None
+
 
 # A node's own data (SOFA's Node and its context); only dt and gravity change the mechanics.
 _NODE_DATA = ("name", "dt", "gravity", "time", "bbox", "animate", "activated", "multiThreadSimulation")
@@ -229,9 +258,33 @@ class BaseObject:
     # the owner protocol of Data
     def _data_value(self, name):
         if self._is_output(name) and name not in self._object.data_names():
-            raise AttributeError(f"{self.getPathName()}.{name} is computed as the scene is built: give it to another "
-                                 f"component as a link ({self.getLinkPath()}.{name}, its getLinkPath())")
-        return self._object._read(name)
+            return self._evaluated(name)  # a loader's or engine's output: computed now, as SofaPython3 has it
+        value = self._object._read(name)
+        if isinstance(value, str) and value.startswith("@") and _shape_of(self._object._kind(name), name) is not None:
+            return self._evaluated(name)  # a link: the value it brings, as SofaPython3 reads it
+        return value
+
+    def _evaluated(self, name):
+        """Data `name` as the scene builder reads it from the tree as it is now (links followed, files
+        loaded, engines computed). What cannot be read yet (a missing file, a link to an object not
+        added yet) is warned and read as empty, as SOFA logs it and leaves the data empty."""
+        root = self._object._node._lineage()[0]
+        objects = []
+        tree = root._tree(objects)
+        index = next(i for i, o in enumerate(objects) if o is self._object)
+        shape = _shape_of(self._object._kind(name), name) or (float, None)
+        try:
+            numbers = _core.scene_data_value(tree, index, name)
+        except ValueError as error:
+            warnings.warn(f"{self.getPathName()}.{name}: {error}", _scene.SceneWarning, stacklevel=4)
+            numbers = []
+        kind, width = shape
+        if kind is float and width == 0:
+            return float(numbers[0]) if numbers else 0.0
+        if kind is int and width == 0:
+            return int(numbers[0]) if numbers else 0
+        array = np.asarray(numbers, dtype=np.int64 if kind is int else np.float64)
+        return array.reshape(-1, width) if width else array
 
     def _set_data_value(self, name, value):
         self._object._write(name, _value_for_scene(value))

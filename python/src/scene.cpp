@@ -7,6 +7,7 @@
 
 #include "fastcorot/core/error.h"
 #include "fastcorot/scene/component_table.h"
+#include "fastcorot/scene/scene_builder.h"
 #include "fastcorot/scene/scene_graph.h"
 #include "fastcorot/sim/simulation.h"
 
@@ -120,6 +121,19 @@ void bind_scene(py::module_& m) {
         }
       },
       py::arg("path"), "Parses a .scn file (includes expanded) into a scene tree.");
+  m.def(
+      "scene_data_value",
+      [](py::handle tree, std::size_t object_index, const std::string& name) {
+        const SceneNode root = scene_node_from_tree(tree);
+        try {
+          return scene_data_value(root, object_index, name);
+        } catch (const Error& error) {
+          throw py::value_error(error.what());
+        }
+      },
+      py::arg("tree"), py::arg("object_index"), py::arg("name"),
+      "The numbers of data `name` of the tree's object `object_index` (document order), as the scene builder "
+      "reads them (links followed, loaders read, engines computed); ValueError naming what fails.");
   const Simulation<double> defaults;
   m.attr("DEFAULT_DT") = defaults.dt;
   m.attr("DEFAULT_GRAVITY") = py::make_tuple(defaults.gravity.x(), defaults.gravity.y(), defaults.gravity.z());

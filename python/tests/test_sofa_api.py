@@ -458,8 +458,13 @@ def test_what_stlib_and_softrobots_scenes_write():
     loader = body.addObject("MeshGmshLoader", name="loader", filename=str(REPOSITORY / "examples/meshes/cylinder.msh"))
     # A loader's outputs, given as links before the scene is built (STLIB's ElasticMaterialObject).
     body.addObject("TetrahedronSetTopologyContainer", position=loader.position.getLinkPath(), tetras=loader.tetras.linkpath)
-    with pytest.raises(AttributeError, match="computed as the scene is built"):
-        loader.position.value
+    # Read before init, as SofaPython3 gives them once the objects are added (STLIB's Rigidify reads
+    # the container's positions to place its frames): the loader's output, and the container's
+    # position through its link.
+    points = loader.position.value
+    assert points.shape[1] == 3 and len(points) > 4
+    np.testing.assert_array_equal(body.TetrahedronSetTopologyContainer.position.value, points)
+    assert body.TetrahedronSetTopologyContainer.tetras.value.shape[1] == 4
     body.addObject("MechanicalObject", name="dofs")
     body.addObject("UniformMass", totalMass=1)
     roi = body.addObject("BoxROI", name="roi", box=[-1, -1, -1, 1, 1, 0.1])
@@ -607,3 +612,17 @@ def test_rest_positions_written_by_a_script_move_the_springs_anchors():
                                atol=1e-7)
     with pytest.raises(ValueError, match="rest_position"):
         root.goal.dofs.rest_position.value = [[0, 0, 0]]
+
+
+def test_outputs_read_before_init_are_computed_or_warned_empty():
+    root = Sofa.Core.Node("root")
+    body = root.addChild("body")
+    body.addObject("RegularGridTopology", name="grid", n=[3, 2, 2], min=[0, 0, 0], max=[2, 1, 1])
+    body.addObject("MechanicalObject", name="dofs")
+    roi = body.addObject("BoxROI", name="roi", box=[-0.1, -0.1, -0.1, 0.1, 1.1, 1.1])
+    assert roi.indices.value.tolist() == [0, 3, 6, 9]  # the x = 0 face, x fastest
+    assert roi.nbIndices.value == 4
+    missing = body.addObject("MeshOBJLoader", name="missing", filename="no/such/file.obj")
+    with pytest.warns(SceneWarning, match=r"missing.position: .*no/such/file.obj"):
+        points = missing.position.value
+    assert points.shape == (0, 3)

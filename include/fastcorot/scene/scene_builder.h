@@ -51,6 +51,13 @@ struct LoadedScene {
 };
 
 LoadedScene build_scene(const SceneNode& root, const SceneOptions& options = {});
+
+// The numbers of data `name` of object `object_index` of the scene (counted in document order: a
+// node's objects, then its children's), as the scene builder reads them: links followed, files
+// loaded, engines' and loaders' outputs computed. SofaPython3 gives such values as soon as the
+// objects are added; this is how fastcorot's Sofa package reads them before init. Throws
+// fastcorot::Error naming what fails.
+std::vector<double> scene_data_value(const SceneNode& root, std::size_t object_index, const std::string& name);
 LoadedScene load_scene_file(const std::filesystem::path& path, const SceneOptions& options = {});
 
 }  // namespace fastcorot
