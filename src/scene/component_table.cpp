@@ -27,13 +27,13 @@ const std::vector<ComponentSpec>& table() {
   return components;
 }
 
-constexpr std::array<std::string_view, 65> kIgnored = {
+constexpr std::array<std::string_view, 66> kIgnored = {
     "RequiredPlugin", "AddPluginRepository", "AddDataRepository", "AddResourceRepository", "VisualStyle", "DefaultAnimationLoop", "DefaultVisualManagerLoop",
     "CollisionPipeline", "DefaultPipeline", "BruteForceBroadPhase", "BVHNarrowPhase",
     "BruteForceDetection", "MinProximityIntersection", "LocalMinDistance", "NewProximityIntersection",
     "DiscreteIntersection", "CollisionResponse", "DefaultContactManager", "TriangleCollisionModel",
     "LineCollisionModel", "PointCollisionModel", "SphereCollisionModel",
-    "VisualGrid", "LineAxis", "OglSceneFrame", "TetrahedronSetTopologyModifier",
+    "VisualGrid", "OglGrid", "LineAxis", "OglSceneFrame", "TetrahedronSetTopologyModifier",
     "TetrahedronSetGeometryAlgorithms", "TriangleSetTopologyModifier",
     "TriangleSetGeometryAlgorithms", "InteractiveCamera", "LightManager", "DirectionalLight", "SpotLight",
     "PositionalLight", "BackgroundSetting", "Camera", "OglLabel", "ConstraintAttachButtonSetting",
@@ -149,6 +149,7 @@ std::span<const std::pair<std::string_view, std::string_view>> refused_component
       {"AugmentedLagrangianConstraint", "AugmentedLagrangianConstraint is not simulated yet"},
       {"SparseGridTopology", "sparse grids (hexahedral FEM) are not simulated"},
       {"TriangularFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
+      {"TriangleFEMForceField", "triangular FEM is not simulated (tetrahedra only)"},
       {"TetrahedronHyperelasticityFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
       {"StandardTetrahedralFEMForceField", "hyperelastic FEM is not simulated (linear corotational only)"},
       // SoftRobots.Inverse's solver and the actuators, effectors and sensors it alone resolves.

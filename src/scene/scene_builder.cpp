@@ -542,7 +542,10 @@ class Builder {
       for (Component* c : node->of_category("state")) states.push_back(c);
     }
     if (states.empty()) {
-      throw make_error(integrator.where(), ": no MechanicalObject in node ", solver_node.path, " or below");
+      // SOFA's solver then has nothing to integrate and does nothing (STLIB's Scene makes its
+      // Simulation node so before a model is added).
+      data_.warn(integrator.where() + ": no MechanicalObject in node " + solver_node.path + " or below: it integrates nothing");
+      return;
     }
     if (states.size() == 1 && data_.data(*states.front(), "position").empty()) {
       // SOFA steps an empty state without effect.

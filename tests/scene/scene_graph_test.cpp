@@ -112,7 +112,17 @@ TEST_F(SceneFiles, IncludeAttributesReplaceThoseOfTheIncludedObjectsAsInSofa) {
 
 TEST(SceneGraph, BoxAndPlaneConstraintAreSofasObjectFilesBuiltIn) {
   // Read away from SOFA's folders: the nodes of SOFA's examples/Objects/BoxConstraint.xml and
-  // PlaneConstraint.xml, with the element's attributes where the files' objects have them.
+  // PlaneConstraint.xml, with the element's attributes where the files' objects have them. (With
+  // SOFA's examples on FASTCOROT_DATA_PATH the files themselves are read, their lines named.)
+  const char* given = std::getenv("FASTCOROT_DATA_PATH");
+  const std::string kept = given ? given : "";
+  ::unsetenv("FASTCOROT_DATA_PATH");
+  struct Restore {
+    const char* value;
+    ~Restore() {
+      if (value) ::setenv("FASTCOROT_DATA_PATH", value, 1);
+    }
+  } restore{given ? kept.c_str() : nullptr};
   const SceneNode root = parse_scene_text(R"(<Node name="root">
   <BoxConstraint box="-1 -1 -1 1 1 1" fixAll="0"/>
   <BoxConstraint name="second" box="2 2 2 3 3 3" drawBoxes="1"/>
