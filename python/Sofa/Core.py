@@ -113,19 +113,19 @@ def _graft_links(top):
                 return False
         return True
 
-    def moved(value):
-        if not isinstance(value, str) or "@/" not in value:
-            return value
-        words = value.split(" ")
-        return " ".join("@" + prefix + w[1:] if w.startswith("@/") and inside(w[1:]) else w for w in words)
+    _rewrite_links(top, lambda w: "@" + prefix + w[1:] if inside(w[1:]) else w)
 
+
+def _rewrite_links(top, moved):
+    """Each absolute link word ("@/a/b.data") in the data of `top`'s tree replaced by moved(word)."""
     stack = [top]
     while stack:
         node = stack.pop()
         stack.extend(node._children)
         for obj in node._objects:
             for key, value in list(obj._data.items()):
-                obj._data[key] = moved(value)
+                if isinstance(value, str) and "@/" in value:
+                    obj._data[key] = " ".join(moved(w) if w.startswith("@/") else w for w in value.split(" "))
 
 
 def _add_parent(child, parent):
@@ -158,14 +158,7 @@ def _add_parent(child, parent):
         return word
 
     for root in {id(old_root): old_root, id(child._lineage()[0]): child._lineage()[0]}.values():
-        stack = [root]
-        while stack:
-            node = stack.pop()
-            stack.extend(node._children)
-            for obj in node._objects:
-                for key, value in list(obj._data.items()):
-                    if isinstance(value, str) and "@/" in value:
-                        obj._data[key] = " ".join(moved(w) for w in value.split(" "))
+        _rewrite_links(root, moved)
 
 
 class _NamedList(list):

@@ -122,6 +122,21 @@ std::vector<std::size_t> rigids_in(SimulationCore& core, std::size_t k, std::siz
   return out;
 }
 
+// The rigid coordinates a script gives for the `picked` rigids (7 numbers each), checked;
+// `what` names the data in errors.
+std::vector<RigidCoord<double>> rigid_rows_given(const std::vector<std::size_t>& picked, py::handle value, const std::string& what) {
+  const auto numbers = number_list(value, what);
+  if (numbers.size() != 7 * picked.size()) {
+    throw py::value_error(what + ": " + std::to_string(numbers.size()) + " numbers for " + std::to_string(picked.size()) +
+                          " rigids (7 each: x y z qx qy qz qw)");
+  }
+  try {
+    return parse_rigid_coords<double>(numbers, what);
+  } catch (const Error& error) {
+    throw py::value_error(error.what());
+  }
+}
+
 // (n, 7) rows x y z qx qy qz qw of those rigids, at the positions or the rest positions.
 py::array_t<double> rigid_rows(SimulationCore& core, std::size_t k, std::size_t start, std::size_t stop, bool rest) {
   core.state(k);  // checks k
@@ -331,19 +346,9 @@ void bind_simulation(py::module_& m) {
       .def(
           "set_rigid_position",
           [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
-            c.state(k);
+            c.state(k);  // checks k
             const auto picked = rigids_in(c, k, start, stop);
-            const auto numbers = number_list(value, "position");
-            if (numbers.size() != 7 * picked.size()) {
-              throw py::value_error("position: " + std::to_string(numbers.size()) + " numbers for " + std::to_string(picked.size()) +
-                                    " rigids (7 each: x y z qx qy qz qw)");
-            }
-            std::vector<RigidCoord<double>> coords;
-            try {
-              coords = parse_rigid_coords<double>(numbers, "position");
-            } catch (const Error& error) {
-              throw py::value_error(error.what());
-            }
+            const auto coords = rigid_rows_given(picked, value, "position");
             std::lock_guard lock(c.stepping);
             auto& system = c.simulation().objects[k].system;
             for (std::size_t i = 0; i < picked.size(); ++i) {
@@ -368,19 +373,9 @@ void bind_simulation(py::module_& m) {
       .def(
           "set_rigid_rest_position",
           [](SimulationCore& c, std::size_t k, py::handle value, std::size_t start, std::size_t stop) {
-            c.state(k);
+            c.state(k);  // checks k
             const auto picked = rigids_in(c, k, start, stop);
-            const auto numbers = number_list(value, "rest_position");
-            if (numbers.size() != 7 * picked.size()) {
-              throw py::value_error("rest_position: " + std::to_string(numbers.size()) + " numbers for " +
-                                    std::to_string(picked.size()) + " rigids (7 each: x y z qx qy qz qw)");
-            }
-            std::vector<RigidCoord<double>> coords;
-            try {
-              coords = parse_rigid_coords<double>(numbers, "rest_position");
-            } catch (const Error& error) {
-              throw py::value_error(error.what());
-            }
+            const auto coords = rigid_rows_given(picked, value, "rest_position");
             std::lock_guard lock(c.stepping);
             auto& system = c.simulation().objects[k].system;
             auto& rigids = *system.rigids;

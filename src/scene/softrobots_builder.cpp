@@ -139,6 +139,17 @@ bool second_option(SceneData& data, Component& c, const char* first, const char*
   return false;
 }
 
+// valueType displacement or force and the bounds CableConstraint and PositionConstraint share.
+template <class Parameters>
+void read_displacement_or_force(SceneData& data, Component& c, Parameters& p) {
+  using ValueType = decltype(p.value_type);
+  p.value_type = second_option(data, c, "displacement", "force") ? ValueType::force : ValueType::displacement;
+  p.max_force = optional_real(data, c, "maxForce");
+  p.min_force = optional_real(data, c, "minForce");
+  p.max_positive_displacement = optional_real(data, c, "maxPositiveDisp");
+  p.max_negative_displacement = optional_real(data, c, "maxNegativeDisp");
+}
+
 std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Component& c, ConstraintPoints<double> points,
                                                           std::span<const Vec3<double>> initial_positions) {
   const std::string method = data.text(c, "method", "point");
@@ -152,12 +163,7 @@ std::unique_ptr<LagrangianConstraint<double>> build_cable(SceneData& data, Compo
   p.has_pull_point = data.boolean(c, "hasPullPoint", true);
   p.initial_length = optional_real(data, c, "cableInitialLength");
   read_command(data, c, p.value, p.value_index);
-  p.value_type = second_option(data, c, "displacement", "force") ? CableConstraint<double>::ValueType::force
-                                                                : CableConstraint<double>::ValueType::displacement;
-  p.max_force = optional_real(data, c, "maxForce");
-  p.min_force = optional_real(data, c, "minForce");
-  p.max_positive_displacement = optional_real(data, c, "maxPositiveDisp");
-  p.max_negative_displacement = optional_real(data, c, "maxNegativeDisp");
+  read_displacement_or_force(data, c, p);
   p.max_displacement_variation = optional_real(data, c, "maxDispVariation");
   return std::make_unique<CableConstraint<double>>(c.where(), std::move(points), initial_positions, std::move(p));
 }
@@ -214,12 +220,7 @@ std::unique_ptr<LagrangianConstraint<double>> build_position(SceneData& data, Co
     for (std::size_t j = 0; j < 3; ++j) p.weight[j] = weight.size() == 3 ? weight[j] : weight[0];  // SoftRobots' resize rule
   }
   read_command(data, c, p.value, p.value_index);
-  p.value_type = second_option(data, c, "displacement", "force") ? PositionConstraint<double>::ValueType::force
-                                                                : PositionConstraint<double>::ValueType::displacement;
-  p.max_force = optional_real(data, c, "maxForce");
-  p.min_force = optional_real(data, c, "minForce");
-  p.max_positive_displacement = optional_real(data, c, "maxPositiveDisp");
-  p.max_negative_displacement = optional_real(data, c, "maxNegativeDisp");
+  read_displacement_or_force(data, c, p);
   return std::make_unique<PositionConstraint<double>>(c.where(), std::move(points), initial_positions, std::move(p));
 }
 
