@@ -76,3 +76,49 @@ def test_a_beam_carried_by_a_fixed_rigid_at_one_end_moves_as_the_beam_fixed_ther
         results.append(np.array(dofs.position.value))
         assert np.abs(results[-1] - start).max() > 0.01  # it sags
     np.testing.assert_allclose(results[1], results[0], rtol=0, atol=1e-10)
+
+
+def free_rigidified_beam(mass_on_joined):
+    """The rigidified beam with its rigid free (no FixedProjectiveConstraint) and masses of 0.1 on
+    every beam point: on the joined state (STLIB's Rigidify keeps the ElasticMaterialObject's
+    UniformMass there), or on the input states (the carried points under their RigidMapping)."""
+    points, tetrahedra = beam()
+    root = Sofa.Core.Node("root")
+    root.dt = 0.01
+    solvers(root)
+    frame = root.addChild("frame")
+    frame.addObject("MechanicalObject", name="dofs", template="Rigid3", position=[0.2, 0.1, 0, 0, 0, 0, 1])
+    frame.addObject("UniformMass", vertexMass=[0.5, 1, [0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01]])
+    carried = frame.addChild("carried")
+    carried.addObject("MechanicalObject", name="dofs", position=points[:4])
+    carried.addObject("RigidMapping", globalToLocalCoords=True)
+    free = root.addChild("free")
+    free.addObject("MechanicalObject", name="dofs", position=points[4:])
+    if not mass_on_joined:
+        carried.addObject("UniformMass", vertexMass=0.1)
+        free.addObject("UniformMass", vertexMass=0.1)
+    joined = free.addChild("joined")
+    joined.addObject("MeshTopology", position=points, tetrahedra=tetrahedra)
+    joined.addObject("MechanicalObject", name="dofs")
+    pairs = [[0, i] for i in range(4)] + [[1, i] for i in range(len(points) - 4)]
+    joined.addObject("SubsetMultiMapping", input=[carried.dofs.getLinkPath(), free.dofs.getLinkPath()],
+                     output=joined.dofs.getLinkPath(), indexPairs=pairs)
+    if mass_on_joined:
+        joined.addObject("UniformMass", vertexMass=0.1)
+    joined.addObject("TetrahedronFEMForceField", youngModulus=2000, poissonRatio=0.3)
+    # Pin one free point, so that the body swings rather than falls.
+    free.addObject("FixedProjectiveConstraint", indices=[len(points) - 5])
+    return root, joined.dofs
+
+
+def test_a_mass_on_the_joined_state_is_the_masses_on_its_inputs():
+    results = []
+    for mass_on_joined in (False, True):
+        root, dofs = free_rigidified_beam(mass_on_joined)
+        Sofa.Simulation.init(root)
+        start = np.array(dofs.position.value)
+        for _ in range(30):
+            Sofa.Simulation.animate(root, root.dt.value)
+        results.append(np.array(dofs.position.value))
+        assert np.abs(results[-1][:4] - start[:4]).max() > 0.01  # the rigid end moves
+    np.testing.assert_allclose(results[1], results[0], rtol=0, atol=1e-10)

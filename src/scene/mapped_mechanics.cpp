@@ -3,6 +3,7 @@
 #include "fastcorot/core/error.h"
 #include "fastcorot/fem/constant_force_field.h"
 #include "fastcorot/mapping/mapped_force_field.h"
+#include "fastcorot/sim/rigid_mapped_mass.h"
 
 #include <algorithm>
 #include <functional>
@@ -190,14 +191,92 @@ void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<
   parent.boxes.insert(parent.boxes.end(), child.boxes.begin(), child.boxes.end());
 }
 
+void fold_multi_mapped_mass(const SimulatedObject<double>& child, const SubsetMultiMappingInputs& inputs,
+                            SimulatedObject<double>& parent, const std::string& where) {
+  const auto& mass = child.system.mass;
+  if (mass.size() == 0) return;
+  if (!mass.is_lumped()) {
+    throw make_error(where, ": a mass matrix (MeshMatrixMass without lumping) on a SubsetMultiMapping that joins points "
+                     "carried by rigid bodies and other points is not supported: lump it or use UniformMass or DiagonalMass");
+  }
+  // Jᵀ M J of a lumped mass splits by point: each output point is one input's point, on the
+  // parent's points (a linear input) or carried by a rigid (RigidMappedMass, as under a RigidMapping).
+  auto& to = parent.system;
+  const auto masses = mass.vertex_masses();
+  const auto weights = mass.gravity_masses();
+  PointMapping<double> linear;
+  std::vector<double> linear_masses, linear_weights;
+  std::vector<RigidMappedMass<double>::Carried> carried(inputs.inputs.size());
+  for (std::size_t i = 0; i < inputs.pairs.size(); ++i) {
+    const auto& [k, j] = inputs.pairs[i];
+    const auto& input = inputs.inputs[k];
+    const auto at = static_cast<std::size_t>(j);
+    if (input.rigid) {
+      auto& c = carried[k];
+      if (!c.points.frames) c.points.frames = input.rigid->frames;
+      c.points.local.push_back(input.rigid->local[at]);
+      c.points.rigid.push_back(input.rigid->rigid[at]);
+      c.masses.push_back(masses[i]);
+      c.weights.push_back(weights[i]);
+    } else {
+      linear.vertices.push_back(input.map.vertices[at]);
+      linear.weights.push_back(input.map.weights[at]);
+      linear_masses.push_back(masses[i]);
+      linear_weights.push_back(weights[i]);
+    }
+  }
+  // The parent's own mass (what its rigids carry aside) as 3×3 blocks, with the linear inputs'
+  // points added where they lie: a SubsetMultiMapping's linear inputs are the parent's points
+  // themselves (one weight of 1); other weights would couple points, which a block mass cannot hold.
+  const Mass<double> base = to.rigid_mapped_mass ? to.rigid_mapped_mass->own : to.mass;
+  const auto n = static_cast<std::size_t>(to.size());
+  std::vector<Mat3<double>> blocks(n, Mat3<double>::Zero());
+  std::vector<double> gravity(n, 0.0);
+  if (base.size() != 0) {
+    if ((!base.is_lumped() && !base.is_block_diagonal()) || !base.couplings().empty() || base.size() != to.size()) {
+      throw make_error(where, ": a mass on a SubsetMultiMapping over objects with a mass matrix (not lumped) is not supported");
+    }
+    const auto masses_of = base.vertex_masses();
+    const auto blocks_of = base.blocks();
+    const auto weights_of = base.gravity_masses();
+    for (std::size_t i = 0; i < n; ++i) {
+      blocks[i] = base.is_block_diagonal() ? blocks_of[i] : Mat3<double>(masses_of[i] * Mat3<double>::Identity());
+      gravity[i] = weights_of[i];
+    }
+  }
+  for (std::size_t i = 0; i < linear.size(); ++i) {
+    const auto& w = linear.weights[i];
+    std::size_t slot = 0, used = 0;
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      if (w[k] != 0) {
+        slot = k;
+        ++used;
+      }
+    }
+    if (used != 1 || w[slot] != 1) {
+      throw make_error(where, ": a mass on a SubsetMultiMapping whose input is itself mapped (a point spread over several) is "
+                       "not supported: put the mass on that input's state");
+    }
+    const auto v = static_cast<std::size_t>(linear.vertices[i][slot]);
+    blocks[v].diagonal().array() += linear_masses[i];
+    gravity[v] += linear_weights[i];
+  }
+  Mass<double> own = Mass<double>::block_diagonal(std::move(blocks));
+  own.set_gravity_masses(std::move(gravity));
+  auto mapped = std::make_shared<RigidMappedMass<double>>();
+  if (to.rigid_mapped_mass) *mapped = *to.rigid_mapped_mass;
+  mapped->own = std::move(own);
+  for (auto& c : carried) {
+    if (!c.points.local.empty()) mapped->carried.push_back(std::move(c));
+  }
+  to.rigid_mapped_mass = std::move(mapped);
+  to.update_mass();
+}
+
 void fold_multi_mapped_object(SimulatedObject<double>& child, const std::function<std::unique_ptr<MechanicalMapping<double>>()>& make,
                               SimulatedObject<double>& parent, const std::string& where) {
   std::shared_ptr<const MechanicalMapping<double>> through = make();
   check_foldable(child, through->size(), "SubsetMultiMapping", where);
-  if (child.system.mass.size() != 0) {
-    throw make_error(where, ": a mass on a SubsetMultiMapping that joins points carried by rigid bodies and other points is ",
-                     "not supported: put the masses on its input states");
-  }
   add_fields_through(child, make, parent);
   for (auto& surface : child.visual_surfaces) {
     if (surface.rigid || surface.through) continue;

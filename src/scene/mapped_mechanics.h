@@ -7,6 +7,7 @@
 #include "fastcorot/mapping/point_mapping.h"
 #include "fastcorot/mapping/rigid_points.h"
 #include "fastcorot/sim/simulation.h"
+#include "subset_multi_mapping_builder.h"
 
 #include <functional>
 #include <memory>
@@ -40,9 +41,15 @@ void fold_rigid_mapped_object(SimulatedObject<double>& child, const RigidPoints<
 // The same for the child of a SubsetMultiMapping whose points mix points carried by rigid bodies and
 // other points (`make` gives its mapping onto the parent's blocks, one per field): force fields and
 // constant loads act through that mapping's Jᵀ; visual models and mapped states below it read its
-// points (`through`). Throws fastcorot::Error for a mass on it, projective constraints, scripted
-// changes.
+// points (`through`). Throws fastcorot::Error for projective constraints and scripted changes on it.
+// Its mass first goes up through fold_multi_mapped_mass.
 void fold_multi_mapped_object(SimulatedObject<double>& child, const std::function<std::unique_ptr<MechanicalMapping<double>>()>& make,
                               SimulatedObject<double>& parent, const std::string& where);
+
+// The lumped mass of such a child, point by point: Jᵀ M J onto the parent's points for the points of
+// linear inputs, carried by the rigids (RigidMappedMass) for the others; the child keeps it (clear
+// it before folding the rest). Throws fastcorot::Error for a mass matrix that is not lumped.
+void fold_multi_mapped_mass(const SimulatedObject<double>& child, const SubsetMultiMappingInputs& inputs,
+                            SimulatedObject<double>& parent, const std::string& where);
 
 }  // namespace fastcorot::scene_detail

@@ -328,6 +328,8 @@ class Builder {
       shown.map = PointMapping<double>::identity(mapping->size());
       shown.through = inputs.mapping();
       object.mapped_states.push_back(std::move(shown));
+      scene_detail::fold_multi_mapped_mass(child, inputs, object, where);
+      child.system.mass = Mass<double>();
       scene_detail::fold_multi_mapped_object(child, [&] { return inputs.mapping(); }, object, where);
     }
     try {
@@ -584,6 +586,15 @@ class Builder {
             throw make_error(c->where(), ": it is in node ", node->path, ", above the objects of the solver of node ",
                              solver_node.path, ": which object it acts on is not defined");
           }
+        }
+      }
+      // A mass on a SubsetMultiMapping's node (STLIB's Rigidify keeps the body's UniformMass there)
+      // gives its inputs their mass once folded: until then they weigh nothing.
+      bool mass_below = false;
+      for (GraphNode* node : multi_mapped_) mass_below = mass_below || !node->of_category("mass").empty();
+      for (auto& part : parts) {
+        if (mass_below && part.system.mass.size() == 0) {
+          part.system.mass = Mass<double>::lumped(std::vector<double>(static_cast<std::size_t>(part.system.size()), 0.0));
         }
       }
       try {
