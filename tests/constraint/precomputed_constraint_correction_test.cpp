@@ -20,6 +20,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
+#include <string>
 
 namespace fastcorot {
 namespace {
@@ -193,7 +195,7 @@ TEST(PrecomputedConstraintCorrection, CacheFileIsSofasRawRowMajorDoubles) {
   for (int i = 0; i < 6; ++i) {
     for (int j = 0; j < 6; ++j) c(i, j) = 1.0 / (1 + i) + 0.001 * j * j - 0.37 * i * j;
   }
-  const auto file = std::filesystem::temp_directory_path() / "fastcorot_precomputed_round_trip.comp";
+  const auto file = std::filesystem::temp_directory_path() / ("fastcorot_precomputed_round_trip_" + std::to_string(::getpid()) + ".comp");
   write_compliance_file(file, c);
   ASSERT_EQ(std::filesystem::file_size(file), 36 * sizeof(double));
   std::ifstream in(file, std::ios::binary);

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 
 namespace fastcorot {
 namespace {
@@ -74,7 +75,7 @@ Simulation<double> build(const SceneText& s = {}) {
 }
 
 fs::path folder() {
-  const fs::path dir = fs::temp_directory_path() / "fastcorot_checkpoint_test";
+  const fs::path dir = fs::temp_directory_path() / ("fastcorot_checkpoint_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <string>
+#include <unistd.h>
 
 namespace fastcorot {
 namespace {
@@ -413,7 +414,7 @@ TEST(LagrangianScene, CheckpointsAreRefusedWithTheReason) {
       "<FreeMotionAnimationLoop/>" + beam("beam", 0, kLeftEnd + "<FixedLagrangianConstraint indices=\"@box.indices\"/><LinearSolverConstraintCorrection/>"),
       kRoot);
   scene.simulation.step();
-  const auto path = std::filesystem::temp_directory_path() / "fastcorot_lagrangian_checkpoint.bin";
+  const auto path = std::filesystem::temp_directory_path() / ("fastcorot_lagrangian_checkpoint_" + std::to_string(::getpid()) + ".bin");
   try {
     write_checkpoint(path, scene.simulation, "test.scn");
     FAIL() << "written";

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <string>
 #include <utility>
+#include <unistd.h>
 
 namespace fastcorot {
 namespace {
@@ -118,7 +119,7 @@ TEST(TopologicalChangeProcessor, ContactsOnTheChangingBodyAreNotSimulatedYetAndS
 }
 
 TEST(TopologicalChangeProcessor, FileOfTimedRemovalsAndAdditions) {
-  const fs::path dir = fs::temp_directory_path() / "fastcorot_topology_change_test";
+  const fs::path dir = fs::temp_directory_path() / ("fastcorot_topology_change_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / "changes.txt";
   // Tetrahedra 0 and 1 of the grid go at t = 0.02, tetrahedron 5 at 0.04, and the first two come
@@ -192,7 +193,7 @@ TEST(TopologicalChangeProcessor, TimesAreComparedWithSofasAccumulatedClock) {
 TEST(TopologicalChangeProcessor, ResumingAfterACutEqualsTheUninterruptedRun) {
   const std::string scene_text = beam(R"(<TopologicalChangeProcessor useDataInputs="true" timeToRemove="0.05" tetrahedraToRemove="@cut.tetrahedronIndices"/>)");
   LoadedScene straight = build(scene_text);
-  const fs::path dir = fs::temp_directory_path() / "fastcorot_topology_resume_test";
+  const fs::path dir = fs::temp_directory_path() / ("fastcorot_topology_resume_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path checkpoint = dir / "cut.ckpt";
   for (int s = 0; s < 10; ++s) straight.simulation.step();
@@ -223,7 +224,7 @@ TEST(TopologicalChangeProcessor, ErrorsNameWhatIsWrong) {
   expect_load_error(R"(<TopologicalChangeProcessor/>)", "filename");
   expect_load_error(R"(<TopologicalChangeProcessor filename="/nonexistent/changes.txt"/>)", "/nonexistent/changes.txt");
   expect_load_error(R"(<TopologicalChangeProcessor useDataInputs="true" interval="-1" tetrahedraToRemove="0"/>)", "interval");
-  const fs::path dir = fs::temp_directory_path() / "fastcorot_topology_error_test";
+  const fs::path dir = fs::temp_directory_path() / ("fastcorot_topology_error_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / "bad.txt";
   std::ofstream(file) << "T= 0.1\nREMOVE= 1\n0\nINCISE= 2\n";
