@@ -51,9 +51,41 @@ class Data:
     @property
     def value(self):
         """The value: a number, text, or a read-only numpy array (a view of the state for a simulated
-        MechanicalObject's position, velocity and rest_position)."""
+        MechanicalObject's position, velocity and rest_position). A datum given a parent
+        (setParent) reads its parent's value."""
+        parent = self.getParent()
+        if parent is not None:
+            return parent.value
         value = self._owner._data_value(self._name)
         return _read_only(value) if isinstance(value, np.ndarray) else value
+
+    # SofaPython3's links between data: the datum follows its parent's value.
+    def _parents(self):
+        return vars(self._owner).setdefault("_data_parents", {}) if hasattr(self._owner, "__dict__") else {}
+
+    def setParent(self, parent):
+        """Links this datum to `parent` (a Data, or a link path "@/node/object.datum"): reading it
+        then gives the parent's value, as in SofaPython3. For a component's datum the link is also
+        written into the scene (the parent's link path, or, for a datum a script made, its value),
+        so that the simulation built next reads it."""
+        if isinstance(parent, str):
+            if not self._python_owned():
+                self._owner._set_data_value(self._name, parent)
+            return
+        if not isinstance(parent, Data):
+            raise TypeError(f"{self._where()}: setParent takes a Data or a link path, got {type(parent).__name__}")
+        if parent is self or (parent._owner is self._owner and parent._name == self._name):
+            raise ValueError(f"{self._where()}: setParent: a datum cannot be its own parent")
+        self._parents()[self._name] = parent
+        if not self._python_owned():
+            self._owner._set_data_value(self._name, parent.value if parent._python_owned() else parent.getLinkPath())
+
+    def getParent(self):
+        """The Data given by setParent, or None."""
+        return self._parents().get(self._name)
+
+    def hasParent(self):
+        return self.getParent() is not None
 
     @value.setter
     def value(self, value):

@@ -626,3 +626,28 @@ def test_outputs_read_before_init_are_computed_or_warned_empty():
     with pytest.warns(SceneWarning, match=r"missing.position: .*no/such/file.obj"):
         points = missing.position.value
     assert points.shape == (0, 3)
+
+
+def test_data_set_parent_follows_the_parent():
+    """SofaPython3's Data.setParent, as STLIB's servomotor prefabs link their angles."""
+
+    class Holder(Sofa.Core.Controller):
+        def __init__(self, *args, **kwargs):
+            Sofa.Core.Controller.__init__(self, *args, **kwargs)
+            self.addData(name="angle", type="float", value=0.0, help="an angle", group="")
+
+    root = Sofa.Core.Node("root")
+    source = root.addObject(Holder(name="source"))
+    follower = root.addObject(Holder(name="follower"))
+    assert not follower.angle.hasParent()
+    follower.angle.setParent(source.angle)
+    assert follower.angle.hasParent() and follower.angle.getParent().getLinkPath() == source.angle.getLinkPath()
+    source.angle.value = 1.5
+    assert follower.angle.value == 1.5
+    # A component's datum: the link goes into the scene (its value for a datum a script made).
+    state = root.addObject("MechanicalObject", name="dofs", position=[[0, 0, 0]])
+    mass = root.addObject("UniformMass", name="mass", totalMass=1)
+    mass.totalMass.setParent(source.angle)
+    assert mass.totalMass.value == 1.5
+    with pytest.raises(ValueError, match="its own parent"):
+        state.position.setParent(state.position)
