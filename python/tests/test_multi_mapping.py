@@ -40,6 +40,17 @@ def whole_beam():
     return root, root.dofs
 
 
+def join(carried, free, points, tetrahedra):
+    """The beam's state joined from its first four points (carried) and the rest (free), below free."""
+    joined = free.addChild("joined")
+    joined.addObject("MeshTopology", position=points, tetrahedra=tetrahedra)
+    joined.addObject("MechanicalObject", name="dofs")
+    pairs = [[0, i] for i in range(4)] + [[1, i] for i in range(len(points) - 4)]
+    joined.addObject("SubsetMultiMapping", input=[carried.dofs.getLinkPath(), free.dofs.getLinkPath()],
+                     output=joined.dofs.getLinkPath(), indexPairs=pairs)
+    return joined
+
+
 def rigidified_beam():
     points, tetrahedra = beam()
     root = Sofa.Core.Node("root")
@@ -55,12 +66,7 @@ def rigidified_beam():
     free = root.addChild("free")
     free.addObject("MechanicalObject", name="dofs", position=points[4:])
     free.addObject("UniformMass", vertexMass=0.1)
-    joined = free.addChild("joined")
-    joined.addObject("MeshTopology", position=points, tetrahedra=tetrahedra)
-    joined.addObject("MechanicalObject", name="dofs")
-    pairs = [[0, i] for i in range(4)] + [[1, i] for i in range(len(points) - 4)]
-    joined.addObject("SubsetMultiMapping", input=[carried.dofs.getLinkPath(), free.dofs.getLinkPath()],
-                     output=joined.dofs.getLinkPath(), indexPairs=pairs)
+    joined = join(carried, free, points, tetrahedra)
     joined.addObject("TetrahedronFEMForceField", youngModulus=2000, poissonRatio=0.3)
     return root, joined.dofs
 
@@ -97,12 +103,7 @@ def free_rigidified_beam(mass_on_joined):
     if not mass_on_joined:
         carried.addObject("UniformMass", vertexMass=0.1)
         free.addObject("UniformMass", vertexMass=0.1)
-    joined = free.addChild("joined")
-    joined.addObject("MeshTopology", position=points, tetrahedra=tetrahedra)
-    joined.addObject("MechanicalObject", name="dofs")
-    pairs = [[0, i] for i in range(4)] + [[1, i] for i in range(len(points) - 4)]
-    joined.addObject("SubsetMultiMapping", input=[carried.dofs.getLinkPath(), free.dofs.getLinkPath()],
-                     output=joined.dofs.getLinkPath(), indexPairs=pairs)
+    joined = join(carried, free, points, tetrahedra)
     if mass_on_joined:
         joined.addObject("UniformMass", vertexMass=0.1)
     joined.addObject("TetrahedronFEMForceField", youngModulus=2000, poissonRatio=0.3)
