@@ -175,22 +175,43 @@ std::optional<ProximityOutput<Real>> new_proximity_line_line(const Vec3<Real>& a
   return output(p, q, norm2, d.contact, false);
 }
 
+namespace {
+
+// What the triangle rule computes from the triangle alone, made once for the points tested against it.
 template <class Real>
-std::optional<ProximityOutput<Real>> new_proximity_triangle_point(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c,
-                                                                  const Vec3<Real>& q, int flags, const ProximityDistances<Real>& d,
-                                                                  bool swap_elements) {
-  const Vec3<Real> ab = b - a, ac = c - a, aq = q - a;
-  const Real a00 = ab.dot(ab), a11 = ac.dot(ac), a01 = ab.dot(ac);
-  const Real b0 = aq.dot(ab), b1 = aq.dot(ac);
-  const Real det = a00 * a11 - a01 * a01;
+struct TriangleSetup {
+  Vec3<Real> a, ab, ac, normal, low, high;
+  Real a00, a11, a01, det, normal2;
+  explicit TriangleSetup(const Vec3<Real>& pa, const Vec3<Real>& b, const Vec3<Real>& c)
+      : a(pa), ab(b - pa), ac(c - pa), normal(ab.cross(ac)), low(pa.cwiseMin(b).cwiseMin(c)), high(pa.cwiseMax(b).cwiseMax(c)) {
+    a00 = ab.dot(ab);
+    a11 = ac.dot(ac);
+    a01 = ab.dot(ac);
+    det = a00 * a11 - a01 * a01;
+    normal2 = normal.squaredNorm();
+  }
+};
+
+template <class Real>
+std::optional<ProximityOutput<Real>> triangle_point(const TriangleSetup<Real>& t, const Vec3<Real>& q, int flags,
+                                                    const ProximityDistances<Real>& d, bool swap_elements) {
+  const Vec3<Real>&a = t.a, &ab = t.ab, &ac = t.ac;
+  const Real a00 = t.a00, a11 = t.a11, a01 = t.a01, det = t.det;
   if (!(det > 0)) return std::nullopt;  // beyond SOFA: no plane, no output
-  // For speed only (the same outputs): q's distance to the triangle's plane, |aq · n| / |n|, bounds
-  // its distance to every point of the triangle from below, so a point farther than the alarm
-  // distance from the plane (by more than rounding: the 1e-6 margin) is no output. Most pairs the
-  // tree hands over end here.
-  const Vec3<Real> normal = ab.cross(ac);
-  const Real height = aq.dot(normal);
-  if (height * height > d.alarm * d.alarm * normal.squaredNorm() * Real(1 + 1e-6)) return std::nullopt;
+  // For speed only (the same outputs), two lower bounds of q's distance to the triangle: its gap to
+  // the triangle's box along each axis, then its distance to the triangle's plane, |aq · n| / |n|.
+  // A point farther than the alarm distance by either (by more than rounding: the margins) is no
+  // output. Most pairs the tree hands over end here.
+  const Real reach = d.alarm * Real(1 + 1e-6);
+  for (int axis = 0; axis < 3; ++axis) {
+    const Real slack =
+        8 * std::numeric_limits<Real>::epsilon() * (std::abs(q[axis]) + std::abs(t.low[axis]) + std::abs(t.high[axis]));
+    if (t.low[axis] - q[axis] > reach + slack || q[axis] - t.high[axis] > reach + slack) return std::nullopt;
+  }
+  const Vec3<Real> aq = q - a;
+  const Real height = aq.dot(t.normal);
+  if (height * height > d.alarm * d.alarm * t.normal2 * Real(1 + 1e-6)) return std::nullopt;
+  const Real b0 = aq.dot(ab), b1 = aq.dot(ac);
   Real alpha = (b0 * a11 - b1 * a01) / det;
   Real beta = (b1 * a00 - b0 * a01) / det;
   const Real eps = std::numeric_limits<Real>::epsilon();
@@ -230,6 +251,15 @@ std::optional<ProximityOutput<Real>> new_proximity_triangle_point(const Vec3<Rea
   const Real norm2 = (q - p).squaredNorm();
   if (!(norm2 < d.alarm * d.alarm)) return std::nullopt;
   return output(p, q, norm2, d.contact, swap_elements);
+}
+
+}  // namespace
+
+template <class Real>
+std::optional<ProximityOutput<Real>> new_proximity_triangle_point(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c,
+                                                                  const Vec3<Real>& q, int flags, const ProximityDistances<Real>& d,
+                                                                  bool swap_elements) {
+  return triangle_point(TriangleSetup<Real>(a, b, c), q, flags, d, swap_elements);
 }
 
 template <class Real>
@@ -395,12 +425,16 @@ int new_proximity_intersection(const TriangleElement<Real>& e1, const TriangleEl
   int n = 0;
   // Triangle 1's vertices against triangle 2, swapped so that they stay point[0]; SOFA tests the
   // first one whatever its flag.
+  const TriangleSetup<Real> t2(*q[0], *q[1], *q[2]);
   for (int k = 0; k < 3; ++k)
     if (k == 0 || (f1 & (TriangleFlag::P1 << k)))
-      n += append(new_proximity_triangle_point(*q[0], *q[1], *q[2], *p[k], f2, d, true), id1 + k, outputs);
-  for (int k = 0; k < 3; ++k)
-    if (f2 & (TriangleFlag::P1 << k))
-      n += append(new_proximity_triangle_point(*p[0], *p[1], *p[2], *q[k], f1, d), id2 + k, outputs);
+      n += append(triangle_point(t2, *p[k], f2, d, true), id1 + k, outputs);
+  if (f2 & (TriangleFlag::P1 | TriangleFlag::P2 | TriangleFlag::P3)) {
+    const TriangleSetup<Real> t1(*p[0], *p[1], *p[2]);
+    for (int k = 0; k < 3; ++k)
+      if (f2 & (TriangleFlag::P1 << k))
+        n += append(triangle_point(t1, *q[k], f1, d, false), id2 + k, outputs);
+  }
   if (pair.use_line_line) {
     // Edges in SOFA's order 1-2, 2-3, 3-1: edge m runs from vertex m to vertex m+1.
     constexpr int edge_flag[3] = {TriangleFlag::E12, TriangleFlag::E23, TriangleFlag::E31};

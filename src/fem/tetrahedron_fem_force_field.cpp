@@ -248,7 +248,8 @@ void TetrahedronFEMForceField<Real>::schedule() {
   row_begin_.assign(static_cast<std::size_t>(n) + 1, 0);
   row_neighbour_.clear();
   // Entry of each edge in the rows of its first and its second point.
-  std::vector<std::array<Index, 2>> entry_of_edge(static_cast<std::size_t>(mesh_->num_edges()));
+  std::vector<std::array<Index, 2>>& entry_of_edge = edge_entries_;
+  entry_of_edge.assign(static_cast<std::size_t>(mesh_->num_edges()), {0, 0});
   for (Index v = 0; v < n; ++v) {
     for (Index e : mesh_->edges_around_vertex(v)) {
       const Edge& edge = mesh_->edges()[static_cast<std::size_t>(e)];
@@ -260,15 +261,12 @@ void TetrahedronFEMForceField<Real>::schedule() {
   }
   row_blocks_.assign(row_neighbour_.size(), Mat3<Real>::Zero());
   element_entries_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
+  element_edge_along_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
   for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
     const auto& edges = mesh_->edges_of_tetrahedron(t);
-    auto& entries = element_entries_[static_cast<std::size_t>(t)];
-    for (int e = 0; e < 6; ++e) {
-      // Local edge (k, l) runs along its mesh edge or against it.
-      const auto& at = entry_of_edge[static_cast<std::size_t>(edges[static_cast<std::size_t>(e)])];
-      const bool along = mesh_->edge_follows_mesh_edge(t, e);
-      entries[static_cast<std::size_t>(2 * e)] = at[along ? 0 : 1];
-      entries[static_cast<std::size_t>(2 * e + 1)] = at[along ? 1 : 0];
+    for (std::size_t e = 0; e < 6; ++e) {
+      element_entries_[static_cast<std::size_t>(t)][e] = entry_of_edge[static_cast<std::size_t>(edges[e])][0];
+      element_edge_along_[static_cast<std::size_t>(t)][e] = mesh_->edge_follows_mesh_edge(t, static_cast<int>(e)) ? 1 : -1;
     }
   }
 }
@@ -454,10 +452,12 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
   const Real k1 = element.material[1], k2 = element.material[2];
   std::array<Vec3<Real>, 4> w;
   for (std::size_t i = 0; i < 4; ++i) w[i] = element.rotation * element.gradient[i];
-  // Column c of block (k, l) is k1 w_k w_l[c] + k2 w_l w_k[c], plus the diagonal term in lane c; column
-  // c of its transpose is row c, k1 w_l w_k[c] + k2 w_k w_l[c] with each product's factors swapped (the
-  // same bits as entry by entry). The three columns are added to the block's nine stored values
-  // (column-major) as two packets and one value, so that no store is read back narrower than written.
+  // Column c of block (k, l) is k1 w_k w_l[c] + k2 w_l w_k[c], plus the diagonal term in lane c. Each
+  // edge's block is accumulated in the orientation of its mesh edge (u, v): for a local edge running
+  // against it, column c of the transpose, k1 w_l w_k[c] + k2 w_k w_l[c] with each product's factors
+  // swapped (the same bits as the transpose entry by entry). The three columns are added to the
+  // block's nine stored values (column-major) as two packets and one value, so that no store is
+  // read back narrower than written.
   using P = Packed<Real>;
   const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
   const auto add_columns = [](const P& c0, const P& c1, const P& c2, Real* to) {
@@ -465,44 +465,58 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
     store_packed(to + 4, load_packed(to + 4) + __builtin_shufflevector(c1, c2, 1, 2, 4, 5));
     to[8] += c2[2];
   };
-  const auto add_block = [&](std::size_t k, std::size_t l, Real* to, Real* transposed_to) {
+  const auto add_block = [&](std::size_t k, std::size_t l, bool transposed, Real* to) {
     const Vec3<Real>& a = w[k];
     const Vec3<Real>& b = w[l];
-    const P ka = lanes(k1 * a), kb = lanes(k2 * b);
     const Real diagonal = k2 * a.dot(b);
     P column[3];
-    for (int c = 0; c < 3; ++c) {
-      column[c] = ka * b[c] + kb * a[c];
-      column[c][c] += diagonal;
+    if (!transposed) {
+      const P ka = lanes(k1 * a), kb = lanes(k2 * b);
+      for (int c = 0; c < 3; ++c) {
+        column[c] = ka * b[c] + kb * a[c];
+        column[c][c] += diagonal;
+      }
+    } else {
+      const P pb = lanes(b), pa = lanes(a);
+      const Real kac[3] = {k1 * a[0], k1 * a[1], k1 * a[2]};
+      const Real kbc[3] = {k2 * b[0], k2 * b[1], k2 * b[2]};
+      for (int c = 0; c < 3; ++c) {
+        column[c] = pb * kac[c] + pa * kbc[c];
+        column[c][c] += diagonal;
+      }
     }
     add_columns(column[0], column[1], column[2], to);
-    if (transposed_to == nullptr) return;
-    const P pb = lanes(b), pa = lanes(a);
-    const Real kac[3] = {k1 * a[0], k1 * a[1], k1 * a[2]};
-    const Real kbc[3] = {k2 * b[0], k2 * b[1], k2 * b[2]};
-    for (int c = 0; c < 3; ++c) {
-      column[c] = pb * kac[c] + pa * kbc[c];
-      column[c][c] += diagonal;
-    }
-    add_columns(column[0], column[1], column[2], transposed_to);
   };
   const Tetrahedron& tet = mesh_->tetrahedron(t);
-  for (std::size_t k = 0; k < 4; ++k) add_block(k, k, point_blocks_[static_cast<std::size_t>(tet[k])].data(), nullptr);
+  for (std::size_t k = 0; k < 4; ++k) add_block(k, k, false, point_blocks_[static_cast<std::size_t>(tet[k])].data());
   const auto& entries = element_entries_[static_cast<std::size_t>(t)];
+  const auto& along = element_edge_along_[static_cast<std::size_t>(t)];
   for (std::size_t e = 0; e < 6; ++e) {
     add_block(static_cast<std::size_t>(kTetrahedronEdges[e][0]), static_cast<std::size_t>(kTetrahedronEdges[e][1]),
-              row_blocks_[static_cast<std::size_t>(entries[2 * e])].data(),
-              row_blocks_[static_cast<std::size_t>(entries[2 * e + 1])].data());
+              along[e] < 0, row_blocks_[static_cast<std::size_t>(entries[e])].data());
+  }
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::clear_blocks() {
+  std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
+  for (const auto& entries : edge_entries_) row_blocks_[static_cast<std::size_t>(entries[0])].setZero();
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::mirror_edge_blocks() {
+  for (const auto& entries : edge_entries_) {
+    row_blocks_[static_cast<std::size_t>(entries[1])] = row_blocks_[static_cast<std::size_t>(entries[0])].transpose();
   }
 }
 
 template <class Real>
 void TetrahedronFEMForceField<Real>::refresh_blocks() {
-  std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
-  std::fill(row_blocks_.begin(), row_blocks_.end(), Mat3<Real>::Zero());
+  clear_blocks();
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i) add_element_blocks(schedule_.order[static_cast<std::size_t>(i)]);
   });
+  mirror_edge_blocks();
   stale_ = false;
 }
 
@@ -523,14 +537,14 @@ void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
   PhaseTimer timer(times_ ? &times_->add_force : nullptr);
   // Forces and the element's blocks in one pass over the schedule: each block still receives its
   // contributions in the schedule's order, as refresh_blocks adds them.
-  std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
-  std::fill(row_blocks_.begin(), row_blocks_.end(), Mat3<Real>::Zero());
+  clear_blocks();
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
     for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
       accumulate_element<true>(t, p, frame, f);
       add_element_blocks(t);
     });
   });
+  mirror_edge_blocks();
   last_positions_.assign(x.begin(), x.end());
   stale_ = false;
 }
@@ -687,7 +701,8 @@ std::vector<double> TetrahedronFEMForceField<Real>::model_values() const {
 template <class Real>
 std::size_t TetrahedronFEMForceField<Real>::memory_bytes() const {
   return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + row_blocks_.capacity()) * sizeof(Mat3<Real>) +
-         element_entries_.capacity() * sizeof(std::array<Index, 12>) +
+         element_entries_.capacity() * (sizeof(std::array<Index, 6>) + sizeof(std::array<signed char, 6>)) +
+         edge_entries_.capacity() * sizeof(std::array<Index, 2>) +
          last_positions_.capacity() * sizeof(Vec3<Real>) + schedule_.order.capacity() * sizeof(Index) +
          (von_mises_element_.capacity() + von_mises_node_.capacity()) * sizeof(Real) +
          shape_derivatives_.capacity() * sizeof(Eigen::Matrix<Real, 3, 4>) +

@@ -160,8 +160,14 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   // Forces of element t at its points p, in its frame, into f; with kLinearise also its rotation.
   template <bool kLinearise>
   void accumulate_element(Index t, const TetPoints<Real>& p, const Mat3<Real>& frame, std::span<Vec3<Real>> f);
-  // Adds element t's blocks R J K J^T R^T into the point and edge blocks.
+  // Adds element t's blocks R J K J^T R^T into the point blocks and, for each edge, into the block
+  // in the row of the mesh edge's first point; `mirror_edge_blocks` then writes each edge's other block.
   void add_element_blocks(Index t);
+  // Zeroes the point blocks and the edge blocks that add_element_blocks accumulates into.
+  void clear_blocks();
+  // Block (v, u) of each mesh edge (u, v) as the transpose of block (u, v): the same bits as adding
+  // each element's transposed contribution in the same order.
+  void mirror_edge_blocks();
   void refresh_blocks();
   void ensure_linearisation() const;
 
@@ -181,8 +187,12 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
     Real value[4];
   };
   mutable std::vector<PaddedPoint> padded_dx_;
-  // Per tetrahedron and local edge (k, l): the entries of block (k, l) in row k and (l, k) in row l.
-  std::vector<std::array<Index, 12>> element_entries_;
+  // Per tetrahedron and local edge: the entry of its mesh edge's block (u, v) in row u, and its sign:
+  // +1 when the local edge (k, l) runs along (u, v), -1 against it.
+  std::vector<std::array<Index, 6>> element_entries_;
+  std::vector<std::array<signed char, 6>> element_edge_along_;
+  // Per mesh edge (u, v): the entries of block (u, v) in row u and of block (v, u) in row v.
+  std::vector<std::array<Index, 2>> edge_entries_;
   std::vector<Vec3<Real>> last_positions_;
   bool stale_ = false;  // a topological change came after the last add_force
   std::vector<Real> von_mises_element_, von_mises_node_;
