@@ -14,6 +14,14 @@ constexpr Index kScannedLeaf = 8;
 // SOFA's CollisionPipeline depth (its default, 6): the levels of cells below the root.
 constexpr int kMaxDepth = 6;
 
+// Aabb::overlaps as one expression of bitwise ands (the same result), which compiles without
+// branches: for tests whose outcome a branch predictor cannot guess.
+template <class Real>
+bool overlaps_without_branches(const Aabb<Real>& a, const Aabb<Real>& b, Real margin) {
+  return (a.min.x() <= b.max.x() + margin) & (a.min.y() <= b.max.y() + margin) & (a.min.z() <= b.max.z() + margin) &
+         (b.min.x() <= a.max.x() + margin) & (b.min.y() <= a.max.y() + margin) & (b.min.z() <= a.max.z() + margin);
+}
+
 }  // namespace
 
 template <class Real>
@@ -28,7 +36,8 @@ void AabbTree<Real>::check(std::span<const Aabb<Real>> boxes) {
 template <class Real>
 void AabbTree<Real>::build(std::span<const Aabb<Real>> boxes) {
   check(boxes);
-  boxes_.assign(boxes.begin(), boxes.end());
+  building_ = boxes;
+  boxes_.assign(boxes.begin(), boxes.end());  // order_ starts as the identity
   order_.resize(boxes_.size());
   for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = static_cast<Index>(i);
   nodes_.clear();
@@ -36,7 +45,10 @@ void AabbTree<Real>::build(std::span<const Aabb<Real>> boxes) {
   nodes_.emplace_back();
   nodes_.front().count = static_cast<Index>(order_.size());
   fit(0);
-  if (order_.empty()) return;
+  if (order_.empty()) {
+    building_ = {};
+    return;
+  }
   // SOFA's CubeCollisionModel::computeBoundingTree: level by level from the root, each cell of the
   // level holding more than a leaf's worth split in two cells of the next level (made one after
   // the other, so siblings are adjacent); cells of the last level (kMaxDepth) are not split.
@@ -49,6 +61,7 @@ void AabbTree<Real>::build(std::span<const Aabb<Real>> boxes) {
     level_begin = level_end;
     level_end = nodes_.size();
   }
+  building_ = {};
   index_leaves();
 }
 
@@ -61,11 +74,11 @@ void AabbTree<Real>::index_leaves() {
     if (node.left >= 0 || node.count <= kScannedLeaf) continue;
     const auto begin = by_x_.begin() + node.first, end = begin + node.count;
     for (Index p = node.first; p < node.first + node.count; ++p) by_x_[static_cast<std::size_t>(p)] = p;
-    const auto min_x = [&](Index p) { return boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])].min.x(); };
+    const auto min_x = [&](Index p) { return boxes_[static_cast<std::size_t>(p)].min.x(); };
     std::sort(begin, end, [&](Index a, Index b) { return min_x(a) < min_x(b) || (min_x(a) == min_x(b) && a < b); });
     Real width = 0;
     for (Index p = node.first; p < node.first + node.count; ++p) {
-      const auto& b = boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])];
+      const auto& b = boxes_[static_cast<std::size_t>(p)];
       width = std::max(width, b.max.x() - b.min.x());
     }
     leaf_width_[n] = width;
@@ -76,7 +89,7 @@ template <class Real>
 void AabbTree<Real>::leaf_overlaps(const Node& node, const Aabb<Real>& box, Real margin, std::vector<Index>& out) const {
   if (node.count <= kScannedLeaf) {
     for (Index p = node.first; p < node.first + node.count; ++p) {
-      if (boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])].overlaps(box, margin)) out.push_back(p);
+      if (boxes_[static_cast<std::size_t>(p)].overlaps(box, margin)) out.push_back(p);
     }
     return;
   }
@@ -85,10 +98,10 @@ void AabbTree<Real>::leaf_overlaps(const Node& node, const Aabb<Real>& box, Real
   const auto n = static_cast<std::size_t>(&node - nodes_.data());
   // Boxes whose min x lies in [box.min.x − margin − widest, box.max.x + margin] may overlap.
   const Real low = box.min.x() - margin - leaf_width_[n], high = box.max.x() + margin;
-  const auto min_x = [&](Index p) { return boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])].min.x(); };
+  const auto min_x = [&](Index p) { return boxes_[static_cast<std::size_t>(p)].min.x(); };
   auto it = std::lower_bound(first, last, low, [&](Index p, Real value) { return min_x(p) < value; });
   for (; it != last && min_x(*it) <= high; ++it) {
-    if (boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(*it)])].overlaps(box, margin)) out.push_back(*it);
+    if (boxes_[static_cast<std::size_t>(*it)].overlaps(box, margin)) out.push_back(*it);
   }
   std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.end());
 }
@@ -102,12 +115,15 @@ void AabbTree<Real>::split(Index n) {
   const Vec3<Real> l = nodes_[node].box.max - nodes_[node].box.min;
   const int axis = l[0] > l[1] ? (l[0] > l[2] ? 0 : 2) : (l[1] > l[2] ? 1 : 2);
   const auto centre = [&](Index e) {
-    const auto& b = boxes_[static_cast<std::size_t>(e)];
+    const auto& b = building_[static_cast<std::size_t>(e)];
     return b.min[axis] + b.max[axis];
   };
   const Index first = nodes_[node].first, count = nodes_[node].count;
   std::stable_sort(order_.begin() + first, order_.begin() + first + count,
                    [&](Index a, Index b) { return centre(a) < centre(b); });
+  for (Index k = first; k < first + count; ++k) {
+    boxes_[static_cast<std::size_t>(k)] = building_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])];
+  }
   const Index half = (count + 1) / 2;
   const auto left = static_cast<Index>(nodes_.size());
   nodes_.emplace_back();
@@ -129,7 +145,7 @@ void AabbTree<Real>::refit(std::span<const Aabb<Real>> boxes) {
     return;
   }
   check(boxes);
-  boxes_.assign(boxes.begin(), boxes.end());
+  for (std::size_t k = 0; k < order_.size(); ++k) boxes_[k] = boxes[static_cast<std::size_t>(order_[k])];
   // Children come after their parent in nodes_: bottom-up is the reverse order.
   for (std::size_t n = nodes_.size(); n-- > 0;) fit(static_cast<Index>(n));
   index_leaves();
@@ -140,7 +156,7 @@ void AabbTree<Real>::fit(Index n) {
   Node& node = nodes_[static_cast<std::size_t>(n)];
   Aabb<Real> box;
   if (node.left < 0) {
-    for (Index k = node.first; k < node.first + node.count; ++k) box.extend(boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(k)])]);
+    for (Index k = node.first; k < node.first + node.count; ++k) box.extend(boxes_[static_cast<std::size_t>(k)]);
   } else {
     box.extend(nodes_[static_cast<std::size_t>(node.left)].box);
     box.extend(nodes_[static_cast<std::size_t>(node.right)].box);
@@ -170,7 +186,7 @@ void AabbTree<Real>::pairs(const AabbTree& a, const AabbTree& b, Real margin, st
   };
   const auto box = [](const AabbTree& t, const Range& r, Index k) -> const Aabb<Real>& {
     const auto i = static_cast<std::size_t>(r.first + k);
-    return r.cells ? t.nodes_[i].box : t.boxes_[static_cast<std::size_t>(t.order_[i])];
+    return r.cells ? t.nodes_[i].box : t.boxes_[i];
   };
   std::vector<std::pair<Range, Range>> stack{{children(a, 0), children(b, 0)}};
   std::vector<Index> found;
@@ -184,8 +200,26 @@ void AabbTree<Real>::pairs(const AabbTree& a, const AabbTree& b, Real margin, st
       for (Index i = 0; i < ra.count; ++i) {
         const Index ea = a.order_[static_cast<std::size_t>(ra.first + i)];
         found.clear();
-        b.leaf_overlaps(leaf, a.boxes_[static_cast<std::size_t>(ea)], margin, found);
+        b.leaf_overlaps(leaf, a.boxes_[static_cast<std::size_t>(ra.first + i)], margin, found);
         for (const Index p : found) out.emplace_back(ea, b.order_[static_cast<std::size_t>(p)]);
+      }
+      continue;
+    }
+    if (!ra.cells && !rb.cells) {
+      // Two element ranges (small leaves, or one element against a leaf): every pair tested
+      // without a branch on the outcome, about as often true as false; each pair is written
+      // and kept when its boxes overlap.
+      const Aabb<Real>* boxes_b = b.boxes_.data() + rb.first;
+      for (Index i = 0; i < ra.count; ++i) {
+        const Aabb<Real>& box_a = a.boxes_[static_cast<std::size_t>(ra.first + i)];
+        const Index ea = a.order_[static_cast<std::size_t>(ra.first + i)];
+        std::size_t kept = out.size();
+        out.resize(kept + static_cast<std::size_t>(rb.count));
+        for (Index j = 0; j < rb.count; ++j) {
+          out[kept] = {ea, b.order_[static_cast<std::size_t>(rb.first + j)]};
+          kept += overlaps_without_branches(box_a, boxes_b[j], margin) ? 1 : 0;
+        }
+        out.resize(kept);
       }
       continue;
     }
@@ -220,7 +254,7 @@ void AabbTree<Real>::self_pairs(Real margin, std::vector<Pair>& out) const {
       if (n1.left < 0) {
         for (Index p = n1.first; p < n1.first + n1.count; ++p) {
           found.clear();
-          leaf_overlaps(n1, boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])], margin, found);
+          leaf_overlaps(n1, boxes_[static_cast<std::size_t>(p)], margin, found);
           for (const Index q : found) {
             if (q > p) add(order_[static_cast<std::size_t>(p)], order_[static_cast<std::size_t>(q)]);
           }
@@ -237,7 +271,7 @@ void AabbTree<Real>::self_pairs(Real margin, std::vector<Pair>& out) const {
     if (leaf1 && leaf2) {
       for (Index p = n1.first; p < n1.first + n1.count; ++p) {
         found.clear();
-        leaf_overlaps(n2, boxes_[static_cast<std::size_t>(order_[static_cast<std::size_t>(p)])], margin, found);
+        leaf_overlaps(n2, boxes_[static_cast<std::size_t>(p)], margin, found);
         for (const Index q : found) add(order_[static_cast<std::size_t>(p)], order_[static_cast<std::size_t>(q)]);
       }
     } else if (leaf2 || (!leaf1 && n1.count >= n2.count)) {

@@ -4,6 +4,10 @@
 
 #include <Eigen/Eigenvalues>
 
+#if defined(__SSE__)
+#include <immintrin.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -173,11 +177,24 @@ Packed<Real> packed_inf_norm(const FourMatrices<Real>& m) {
   return norm;
 }
 
+// Lane by lane std::sqrt (correctly rounded, so the vector instruction gives the same bits).
 template <class Real>
 Packed<Real> packed_sqrt(const Packed<Real>& v) {
+#if defined(__AVX__)
+  if constexpr (std::is_same_v<Real, double>) return Packed<Real>(_mm256_sqrt_pd(__m256d(v)));
+#endif
+#if defined(__SSE__)
+  if constexpr (std::is_same_v<Real, float>) return Packed<Real>(_mm_sqrt_ps(__m128(v)));
+#endif
   Packed<Real> r;
   for (int l = 0; l < 4; ++l) r[l] = std::sqrt(v[l]);
   return r;
+}
+
+// Lanes whose value is finite (x - x is 0 but for an infinity or NaN), as a lane mask.
+template <class Real>
+auto packed_finite(const Packed<Real>& v) {
+  return (v - v) == Real(0);
 }
 
 // polar_factor's iteration on four matrices at once, each lane doing exactly the scalar code's
@@ -193,7 +210,7 @@ void polar_factor_lanes(const Mat3<Real>* m, Mat3<Real>* out, Real tolerance, bo
     }
   }
   P mk_one = packed_one_norm<Real>(mk), mk_inf = packed_inf_norm<Real>(mk);
-  bool active[4] = {true, true, true, true};
+  auto active = P{} == P{};  // every lane
   const P half = broadcast(Real(0.5));
   for (int iteration = 0; iteration < 100; ++iteration) {
     FourMatrices<Real> cofactor;
@@ -219,26 +236,22 @@ void polar_factor_lanes(const Mat3<Real>* m, Mat3<Real>* out, Real tolerance, bo
     }
     const P change_one = packed_one_norm<Real>(change);
     const P next_one = packed_one_norm<Real>(next), next_inf = packed_inf_norm<Real>(next);
-    bool any = false;
-    for (int l = 0; l < 4; ++l) {
-      if (!active[l]) continue;
-      bool finite = true;
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(next.a[r][c][l]);
-      }
-      if (det[l] == Real(0) || !(std::isfinite(g1[l]) && g1[l] > 0 && std::isfinite(g2[l]) && g2[l] != Real(0) && finite)) {
-        alone[l] = true;  // the scalar code's rescaling or stop: that lane again, alone
-        active[l] = false;
-        continue;
-      }
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) mk.a[r][c][l] = next.a[r][c][l];
-      }
-      mk_one[l] = next_one[l];
-      mk_inf[l] = next_inf[l];
-      active[l] = change_one[l] > next_one[l] * tolerance;
-      any = any || active[l];
+    // Per lane, as lane masks: an iterate the scalar code would take (else the scalar code's
+    // rescaling or stop: that lane again, alone), the active lanes taking it, those going on.
+    auto fine = (det != Real(0)) & packed_finite<Real>(g1) & (g1 > Real(0)) & packed_finite<Real>(g2) & (g2 != Real(0));
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) fine &= packed_finite<Real>(next.a[r][c]);
     }
+    const auto take = active & fine;
+    for (int l = 0; l < 4; ++l) alone[l] = alone[l] || (active[l] && !fine[l]);
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) mk.a[r][c] = take ? next.a[r][c] : mk.a[r][c];
+    }
+    mk_one = take ? next_one : mk_one;
+    mk_inf = take ? next_inf : mk_inf;
+    active = take & (change_one > next_one * tolerance);
+    bool any = false;
+    for (int l = 0; l < 4; ++l) any = any || active[l];
     if (!any) break;
   }
   for (int l = 0; l < 4; ++l) {
@@ -270,7 +283,7 @@ void qr_frames(const Vec3<Real>* a, const Vec3<Real>* b, Mat3<Real>* out, int co
   using P = Packed<Real>;
   int first = 0;
   for (; first + 4 <= count; first += 4) {
-    P x[3], e[3];
+    P x[3]{}, e[3]{};
     for (int c = 0; c < 3; ++c) {
       for (int l = 0; l < 4; ++l) {
         x[c][l] = a[first + l][c];

@@ -7,6 +7,7 @@
 #include "fastcorot/core/rotation.h"
 #include "fastcorot/fem/tetrahedron_element.h"
 #include "material_checks.h"
+#include "tetrahedron_fem_kernels.h"
 
 #include <cmath>
 
@@ -260,6 +261,18 @@ void TetrahedronFEMForceField<Real>::schedule() {
     row_begin_[static_cast<std::size_t>(v) + 1] = static_cast<Index>(row_neighbour_.size());
   }
   row_blocks_.assign(row_neighbour_.size(), Mat3<Real>::Zero());
+  batched_constants_.resize(schedule_.order.size());
+  for (std::size_t p = 0; p < schedule_.order.size(); ++p) {
+    const Element& element = elements_[static_cast<std::size_t>(schedule_.order[p])];
+    BatchedConstants& c = batched_constants_[p];
+    for (std::size_t i = 0; i < 4; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        c.rest[i][k] = element.rotated_rest[i][k];
+        c.gradient[i][k] = element.gradient[i][k];
+      }
+    }
+    for (int k = 0; k < 3; ++k) c.material[k] = element.material[k];
+  }
   element_entries_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
   element_edge_along_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
   for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
@@ -369,6 +382,15 @@ template <class Real>
 template <class Body>
 void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, std::span<const Vec3<Real>> x,
                                                       const Body& body) const {
+  for_each_batch(begin, end, x, [&](Index first, Index count, const TetPoints<Real>* points, const Mat3<Real>* frames) {
+    for (Index j = 0; j < count; ++j) body(schedule_.order[static_cast<std::size_t>(first + j)], points[j], frames[j]);
+  });
+}
+
+template <class Real>
+template <class Body>
+void TetrahedronFEMForceField<Real>::for_each_batch(Index begin, Index end, std::span<const Vec3<Real>> x,
+                                                    const Body& body) const {
   // The frames of eight elements first, then the rest of each. A frame is a chain of square roots
   // and divisions (or the polar iteration): the QR frames (large) and the polar factors (polar, and
   // svd's elements that are not inverted) go four at a time through qr_frames and polar_factors,
@@ -409,9 +431,60 @@ void TetrahedronFEMForceField<Real>::for_each_element(Index begin, Index end, st
     if (method == TetrahedronFEMMethod::large) qr_frames(edge_ab.data(), edge_ac.data(), frames.data(), static_cast<int>(count));
     polar_factors(edges.data(), factors.data(), lanes);
     for (int k = 0; k < lanes; ++k) frames[lane_of[static_cast<std::size_t>(k)]] = factors[static_cast<std::size_t>(k)];
-    for (Index j = 0; j < count; ++j) {
-      body(schedule_.order[static_cast<std::size_t>(first + j)], points[static_cast<std::size_t>(j)],
-           frames[static_cast<std::size_t>(j)]);
+    body(first, count, points.data(), frames.data());
+  }
+}
+
+template <class Real>
+bool TetrahedronFEMForceField<Real>::batched() const {
+  return parameters_.method != TetrahedronFEMMethod::small && !(parameters_.plastic_max_threshold > 0) &&
+         !parameters_.update_stiffness_matrix;
+}
+
+template <class Real>
+template <bool kLinearise>
+void TetrahedronFEMForceField<Real>::accumulate_batch(Index first, Index count, const TetPoints<Real>* points,
+                                                      const Mat3<Real>* frames, std::span<Vec3<Real>> f) {
+  namespace kernels = tetrahedron_fem_kernels;
+  constexpr int W = kernels::kLanes<Real>;
+  static_assert(W >= 8, "for_each_batch's batches must fit the kernels' lanes");
+  kernels::Batch<Real> b;
+  for (int l = 0; l < W; ++l) {
+    if (l >= count) {  // spare lanes: an element at rest with no stiffness (their results are unused)
+      for (int i = 0; i < 4; ++i) {
+        for (int c = 0; c < 3; ++c) b.p[i][c][l] = b.rest[i][c][l] = b.g[i][c][l] = 0;
+      }
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) b.frame[r][c][l] = r == c ? 1 : 0;
+        b.k[r][l] = 0;
+      }
+      continue;
+    }
+    const BatchedConstants& constants = batched_constants_[static_cast<std::size_t>(first + l)];
+    for (std::size_t i = 0; i < 4; ++i) {
+      for (int c = 0; c < 3; ++c) {
+        b.p[i][c][l] = points[l][i][c];
+        b.rest[i][c][l] = constants.rest[i][c];
+        b.g[i][c][l] = constants.gradient[i][c];
+      }
+    }
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) b.frame[r][c][l] = frames[l](r, c);
+      b.k[r][l] = constants.material[r];
+    }
+  }
+  kernels::forces(b, parameters_.method == TetrahedronFEMMethod::large);
+  for (Index l = 0; l < count; ++l) {
+    const Index t = schedule_.order[static_cast<std::size_t>(first + l)];
+    const Tetrahedron& tet = mesh_->tetrahedron(t);
+    for (std::size_t i = 0; i < 4; ++i) {
+      f[static_cast<std::size_t>(tet[i])] += Vec3<Real>(b.force[i][0][l], b.force[i][1][l], b.force[i][2][l]);
+    }
+    if constexpr (kLinearise) {
+      elements_[static_cast<std::size_t>(t)].rotation = frames[l].transpose();
+      std::array<Vec3<Real>, 4> w;
+      for (std::size_t i = 0; i < 4; ++i) w[i] = Vec3<Real>(b.w[i][0][l], b.w[i][1][l], b.w[i][2][l]);
+      add_element_blocks(t, w, b.k[1][l], b.k[2][l]);
     }
   }
 }
@@ -449,9 +522,17 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
   // (Their diagonal also carries (k0 - k1 - 2 k2) w_k∘w_l in the frame, zero for isotropic K up to
   // rounding; it is left out.)
   const Element& element = elements_[static_cast<std::size_t>(t)];
-  const Real k1 = element.material[1], k2 = element.material[2];
   std::array<Vec3<Real>, 4> w;
-  for (std::size_t i = 0; i < 4; ++i) w[i] = element.rotation * element.gradient[i];
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Vec3<Real>& g = element.gradient[i];
+    const Mat3<Real>& r = element.rotation;
+    for (int c = 0; c < 3; ++c) w[i][c] = r(c, 0) * g[0] + r(c, 1) * g[1] + r(c, 2) * g[2];  // as the kernels
+  }
+  add_element_blocks(t, w, element.material[1], element.material[2]);
+}
+
+template <class Real>
+void TetrahedronFEMForceField<Real>::add_element_blocks(Index t, const std::array<Vec3<Real>, 4>& w, Real k1, Real k2) {
   // Column c of block (k, l) is k1 w_k w_l[c] + k2 w_l w_k[c], plus the diagonal term in lane c. Each
   // edge's block is accumulated in the orientation of its mesh edge (u, v): for a local edge running
   // against it, column c of the transpose, k1 w_l w_k[c] + k2 w_k w_l[c] with each product's factors
@@ -539,6 +620,12 @@ void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
   // contributions in the schedule's order, as refresh_blocks adds them.
   clear_blocks();
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
+    if (batched()) {
+      for_each_batch(begin, end, x, [&](Index first, Index count, const TetPoints<Real>* p, const Mat3<Real>* frames) {
+        accumulate_batch<true>(first, count, p, frames, f);
+      });
+      return;
+    }
     for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
       accumulate_element<true>(t, p, frame, f);
       add_element_blocks(t);
@@ -554,6 +641,12 @@ void TetrahedronFEMForceField<Real>::add_force_only(std::span<const Vec3<Real>> 
   check_size(x, "x");
   check_size(f, "f");
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
+    if (batched()) {
+      for_each_batch(begin, end, x, [&](Index first, Index count, const TetPoints<Real>* p, const Mat3<Real>* frames) {
+        accumulate_batch<false>(first, count, p, frames, f);
+      });
+      return;
+    }
     for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
       accumulate_element<false>(t, p, frame, f);
     });
@@ -702,7 +795,7 @@ template <class Real>
 std::size_t TetrahedronFEMForceField<Real>::memory_bytes() const {
   return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + row_blocks_.capacity()) * sizeof(Mat3<Real>) +
          element_entries_.capacity() * (sizeof(std::array<Index, 6>) + sizeof(std::array<signed char, 6>)) +
-         edge_entries_.capacity() * sizeof(std::array<Index, 2>) +
+         edge_entries_.capacity() * sizeof(std::array<Index, 2>) + batched_constants_.capacity() * sizeof(BatchedConstants) +
          last_positions_.capacity() * sizeof(Vec3<Real>) + schedule_.order.capacity() * sizeof(Index) +
          (von_mises_element_.capacity() + von_mises_node_.capacity()) * sizeof(Real) +
          shape_derivatives_.capacity() * sizeof(Eigen::Matrix<Real, 3, 4>) +

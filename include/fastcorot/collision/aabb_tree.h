@@ -78,7 +78,8 @@ class AabbTree {
 
   std::vector<Node> nodes_;
   std::vector<Index> order_;
-  std::vector<Aabb<Real>> boxes_;
+  std::vector<Aabb<Real>> boxes_;  // by position: boxes_[k] is element order_[k]'s, so that leaves read consecutive boxes
+  std::span<const Aabb<Real>> building_;  // during build only: the boxes by element
   std::vector<Index> by_x_;      // per leaf segment [first, first + count): positions sorted by min x
   std::vector<Real> leaf_width_;  // per node: its leaf's widest box along x (0 for inner nodes)
 };

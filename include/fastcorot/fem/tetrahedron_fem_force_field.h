@@ -154,15 +154,29 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   // The same, computing the frame into `frame`.
   static std::array<Vec3<Real>, 4> displacement(const Element& element, const TetPoints<Real>& p,
                                                 TetrahedronFEMMethod method, Mat3<Real>& frame);
+  // body(first, count, points, frames) for the elements at positions [begin, end) of the schedule,
+  // in batches of consecutive positions [first, first + count), with their points and frames.
+  template <class Body>
+  void for_each_batch(Index begin, Index end, std::span<const Vec3<Real>> x, const Body& body) const;
   // body(t, points, frame) for the elements at positions [begin, end) of the schedule, in order.
   template <class Body>
   void for_each_element(Index begin, Index end, std::span<const Vec3<Real>> x, const Body& body) const;
+  // Whether forces go through the batched kernels (tetrahedron_fem_kernels.h): large, polar and svd
+  // without plasticity or updateStiffnessMatrix.
+  bool batched() const;
+  // The forces of a batch (schedule positions first .. first + count - 1) into f; with kLinearise
+  // also each element's rotation and stiffness blocks.
+  template <bool kLinearise>
+  void accumulate_batch(Index first, Index count, const TetPoints<Real>* points, const Mat3<Real>* frames,
+                        std::span<Vec3<Real>> f);
   // Forces of element t at its points p, in its frame, into f; with kLinearise also its rotation.
   template <bool kLinearise>
   void accumulate_element(Index t, const TetPoints<Real>& p, const Mat3<Real>& frame, std::span<Vec3<Real>> f);
   // Adds element t's blocks R J K J^T R^T into the point blocks and, for each edge, into the block
   // in the row of the mesh edge's first point; `mirror_edge_blocks` then writes each edge's other block.
   void add_element_blocks(Index t);
+  // The same with the gradients in the world w = R g and K's values k1, k2 given.
+  void add_element_blocks(Index t, const std::array<Vec3<Real>, 4>& w, Real k1, Real k2);
   // Zeroes the point blocks and the edge blocks that add_element_blocks accumulates into.
   void clear_blocks();
   // Block (v, u) of each mesh edge (u, v) as the transpose of block (u, v): the same bits as adding
@@ -177,6 +191,14 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   bool young_per_tetrahedron_ = false, poisson_per_tetrahedron_ = false;
   std::vector<Element> elements_;
   ScatterSchedule schedule_;
+  // What the batched kernels read of each element, in schedule order (positions of schedule_.order),
+  // so that a batch reads consecutive memory: rest positions in the rest frame, J's and K's values.
+  struct BatchedConstants {
+    Real rest[4][3];
+    Real gradient[4][3];
+    Real material[3];
+  };
+  std::vector<BatchedConstants> batched_constants_;
   std::vector<Mat3<Real>> point_blocks_;  // block (v, v)
   // Row v of the assembled blocks: entries [row_begin_[v], row_begin_[v + 1]) of row_neighbour_
   // (the other point of each mesh edge around v) and row_blocks_ (block (v, neighbour)). Both
