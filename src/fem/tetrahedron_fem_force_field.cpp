@@ -546,25 +546,22 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t, const std::arra
     store_packed(to + 4, load_packed(to + 4) + __builtin_shufflevector(c1, c2, 1, 2, 4, 5));
     to[8] += c2[2];
   };
+  // The diagonal term is added to lane c of column c as a packet that is zero in the other lanes
+  // (adding a zero changes no sum that follows: each block starts from +0), not lane by lane.
+  const P unit[3] = {P{1, 0, 0, 0}, P{0, 1, 0, 0}, P{0, 0, 1, 0}};
   const auto add_block = [&](std::size_t k, std::size_t l, bool transposed, Real* to) {
     const Vec3<Real>& a = w[k];
     const Vec3<Real>& b = w[l];
-    const Real diagonal = k2 * a.dot(b);
+    const P diagonal = broadcast(k2 * a.dot(b));
     P column[3];
     if (!transposed) {
       const P ka = lanes(k1 * a), kb = lanes(k2 * b);
-      for (int c = 0; c < 3; ++c) {
-        column[c] = ka * b[c] + kb * a[c];
-        column[c][c] += diagonal;
-      }
+      for (int c = 0; c < 3; ++c) column[c] = (ka * b[c] + kb * a[c]) + diagonal * unit[c];
     } else {
       const P pb = lanes(b), pa = lanes(a);
       const Real kac[3] = {k1 * a[0], k1 * a[1], k1 * a[2]};
       const Real kbc[3] = {k2 * b[0], k2 * b[1], k2 * b[2]};
-      for (int c = 0; c < 3; ++c) {
-        column[c] = pb * kac[c] + pa * kbc[c];
-        column[c][c] += diagonal;
-      }
+      for (int c = 0; c < 3; ++c) column[c] = (pb * kac[c] + pa * kbc[c]) + diagonal * unit[c];
     }
     add_columns(column[0], column[1], column[2], to);
   };
