@@ -27,11 +27,37 @@ def solvers(node):
     node.addObject("SparseLDLSolver")
 
 
-def whole_beam():
-    points, tetrahedra = beam()
+def beam_root():
     root = Sofa.Core.Node("root")
     root.dt = 0.01
     solvers(root)
+    return root
+
+
+def carried_by_rigid(root, points, **frame_mass):
+    """A Rigid3 frame under root with a UniformMass of frame_mass, carrying the beam's first four
+    points (its child "carried", RigidMapping in local coordinates)."""
+    frame = root.addChild("frame")
+    frame.addObject("MechanicalObject", name="dofs", template="Rigid3", position=[0.2, 0.1, 0, 0, 0, 0, 1])
+    frame.addObject("UniformMass", **frame_mass)
+    carried = frame.addChild("carried")
+    carried.addObject("MechanicalObject", name="dofs", position=points[:4])
+    carried.addObject("RigidMapping", globalToLocalCoords=True)
+    return frame, carried
+
+
+def moved(root, dofs, steps=30):
+    """The state's positions at init and after `steps` steps."""
+    Sofa.Simulation.init(root)
+    start = np.array(dofs.position.value)
+    for _ in range(steps):
+        Sofa.Simulation.animate(root, root.dt.value)
+    return start, np.array(dofs.position.value)
+
+
+def whole_beam():
+    points, tetrahedra = beam()
+    root = beam_root()
     root.addObject("MeshTopology", name="mesh", position=points, tetrahedra=tetrahedra)
     root.addObject("MechanicalObject", name="dofs", position=points)
     root.addObject("UniformMass", vertexMass=0.1)
@@ -53,16 +79,9 @@ def join(carried, free, points, tetrahedra):
 
 def rigidified_beam():
     points, tetrahedra = beam()
-    root = Sofa.Core.Node("root")
-    root.dt = 0.01
-    solvers(root)
-    frame = root.addChild("frame")
-    frame.addObject("MechanicalObject", name="dofs", template="Rigid3", position=[0.2, 0.1, 0, 0, 0, 0, 1])
-    frame.addObject("UniformMass", totalMass=1)
+    root = beam_root()
+    frame, carried = carried_by_rigid(root, points, totalMass=1)
     frame.addObject("FixedProjectiveConstraint", indices=[0])
-    carried = frame.addChild("carried")
-    carried.addObject("MechanicalObject", name="dofs", position=points[:4])
-    carried.addObject("RigidMapping", globalToLocalCoords=True)
     free = root.addChild("free")
     free.addObject("MechanicalObject", name="dofs", position=points[4:])
     free.addObject("UniformMass", vertexMass=0.1)
@@ -74,13 +93,9 @@ def rigidified_beam():
 def test_a_beam_carried_by_a_fixed_rigid_at_one_end_moves_as_the_beam_fixed_there():
     results = []
     for build in (whole_beam, rigidified_beam):
-        root, dofs = build()
-        Sofa.Simulation.init(root)
-        start = np.array(dofs.position.value)
-        for _ in range(30):
-            Sofa.Simulation.animate(root, root.dt.value)
-        results.append(np.array(dofs.position.value))
-        assert np.abs(results[-1] - start).max() > 0.01  # it sags
+        start, end = moved(*build())
+        results.append(end)
+        assert np.abs(end - start).max() > 0.01  # it sags
     np.testing.assert_allclose(results[1], results[0], rtol=0, atol=1e-10)
 
 
@@ -89,15 +104,8 @@ def free_rigidified_beam(mass_on_joined):
     every beam point: on the joined state (STLIB's Rigidify keeps the ElasticMaterialObject's
     UniformMass there), or on the input states (the carried points under their RigidMapping)."""
     points, tetrahedra = beam()
-    root = Sofa.Core.Node("root")
-    root.dt = 0.01
-    solvers(root)
-    frame = root.addChild("frame")
-    frame.addObject("MechanicalObject", name="dofs", template="Rigid3", position=[0.2, 0.1, 0, 0, 0, 0, 1])
-    frame.addObject("UniformMass", vertexMass=[0.5, 1, [0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01]])
-    carried = frame.addChild("carried")
-    carried.addObject("MechanicalObject", name="dofs", position=points[:4])
-    carried.addObject("RigidMapping", globalToLocalCoords=True)
+    root = beam_root()
+    _, carried = carried_by_rigid(root, points, vertexMass=[0.5, 1, [0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01]])
     free = root.addChild("free")
     free.addObject("MechanicalObject", name="dofs", position=points[4:])
     if not mass_on_joined:
@@ -115,11 +123,7 @@ def free_rigidified_beam(mass_on_joined):
 def test_a_mass_on_the_joined_state_is_the_masses_on_its_inputs():
     results = []
     for mass_on_joined in (False, True):
-        root, dofs = free_rigidified_beam(mass_on_joined)
-        Sofa.Simulation.init(root)
-        start = np.array(dofs.position.value)
-        for _ in range(30):
-            Sofa.Simulation.animate(root, root.dt.value)
-        results.append(np.array(dofs.position.value))
-        assert np.abs(results[-1][:4] - start[:4]).max() > 0.01  # the rigid end moves
+        start, end = moved(*free_rigidified_beam(mass_on_joined))
+        results.append(end)
+        assert np.abs(end[:4] - start[:4]).max() > 0.01  # the rigid end moves
     np.testing.assert_allclose(results[1], results[0], rtol=0, atol=1e-10)
