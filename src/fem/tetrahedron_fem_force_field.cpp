@@ -616,18 +616,7 @@ void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
   // Forces and the element's blocks in one pass over the schedule: each block still receives its
   // contributions in the schedule's order, as refresh_blocks adds them.
   clear_blocks();
-  run_schedule(schedule_, threads_, [&](Index begin, Index end) {
-    if (batched()) {
-      for_each_batch(begin, end, x, [&](Index first, Index count, const TetPoints<Real>* p, const Mat3<Real>* frames) {
-        accumulate_batch<true>(first, count, p, frames, f);
-      });
-      return;
-    }
-    for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
-      accumulate_element<true>(t, p, frame, f);
-      add_element_blocks(t);
-    });
-  });
+  accumulate<true>(x, f);
   mirror_edge_blocks();
   last_positions_.assign(x.begin(), x.end());
   stale_ = false;
@@ -637,15 +626,22 @@ template <class Real>
 void TetrahedronFEMForceField<Real>::add_force_only(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
   check_size(x, "x");
   check_size(f, "f");
+  accumulate<false>(x, f);
+}
+
+template <class Real>
+template <bool kLinearise>
+void TetrahedronFEMForceField<Real>::accumulate(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f) {
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
     if (batched()) {
       for_each_batch(begin, end, x, [&](Index first, Index count, const TetPoints<Real>* p, const Mat3<Real>* frames) {
-        accumulate_batch<false>(first, count, p, frames, f);
+        accumulate_batch<kLinearise>(first, count, p, frames, f);
       });
       return;
     }
     for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
-      accumulate_element<false>(t, p, frame, f);
+      accumulate_element<kLinearise>(t, p, frame, f);
+      if constexpr (kLinearise) add_element_blocks(t);
     });
   });
 }

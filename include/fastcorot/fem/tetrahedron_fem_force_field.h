@@ -161,6 +161,10 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   // body(t, points, frame) for the elements at positions [begin, end) of the schedule, in order.
   template <class Body>
   void for_each_element(Index begin, Index end, std::span<const Vec3<Real>> x, const Body& body) const;
+  // Every element's forces into f (batched or element by element); with kLinearise also their
+  // rotations and stiffness blocks.
+  template <bool kLinearise>
+  void accumulate(std::span<const Vec3<Real>> x, std::span<Vec3<Real>> f);
   // Whether forces go through the batched kernels (tetrahedron_fem_kernels.h): large, polar and svd
   // without plasticity or updateStiffnessMatrix.
   bool batched() const;
