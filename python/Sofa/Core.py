@@ -347,8 +347,9 @@ class Node:
         return self._node
 
     # --- the tree ---------------------------------------------------------------------------------
-    def addChild(self, child):
-        """A new child node of that name (or `child`, a Node made apart)."""
+    def addChild(self, child, **data):
+        """A new child node of that name, its data (dt, gravity, activated, ...) from the keywords
+        as SofaPython3's; or `child`, a Node made apart."""
         if isinstance(child, Node):
             if child._node._parent is self._node:
                 return child
@@ -368,7 +369,15 @@ class Node:
         object.__setattr__(node, "_location", _scene._caller_location())
         object.__setattr__(node, "_parent", self._node)
         self._node._children.append(node)
-        return Node._of(node)
+        added = Node._of(node)
+        for name, value in data.items():  # SofaPython3 fills the node's data from the keywords
+            if name in _NODE_DATA and name != "time":
+                added._set_data_value(name, value.value if isinstance(value, Data) else value)
+            else:
+                warnings.warn(f"{added.getPathName()}: addChild: data '{name}' not used (a node's data are "
+                              f"{', '.join(d for d in _NODE_DATA if d != 'time')}){_closest(name, _NODE_DATA)}",
+                              _scene.SceneWarning, stacklevel=2)
+        return added
 
     createChild = addChild
 
@@ -550,6 +559,8 @@ class Node:
             return self._node.name
         if name in ("dt", "gravity"):
             return getattr(self.getRoot()._node if self._node._parent is not None and name == "dt" else self._node, name)
+        if name == "activated":
+            return self._node.activated
         if name == "time":
             root = self.getRoot()
             if root._simulation is None:
@@ -562,6 +573,11 @@ class Node:
             self._node.name = value
         elif name in ("dt", "gravity"):
             setattr(self._node, name, value)
+        elif name == "activated":  # while the scene runs, it is built again without (or with) the subtree
+            if self._node.activated and not _scene.canonical("bool", name, value, self.getPathName()):
+                self._freeze_states()
+            self._node.activated = value
+            self._changed_while_running()
         elif name == "time":
             raise AttributeError(f"{self.getPathName()}: time is read-only (it advances with the steps)")
         else:
@@ -569,6 +585,16 @@ class Node:
 
     def _live_array(self, name):
         return None
+
+    def _freeze_states(self):
+        """The subtree is being deactivated while the scene runs: SOFA leaves its states where they
+        are, so each simulated MechanicalObject below keeps its current rest, position and velocity
+        as its data (what it reads afterwards, and starts from when activated again)."""
+        for node in _scene.walk(self._node):
+            for obj in node._objects:
+                if obj.type == "MechanicalObject" and obj._binding is not None:
+                    for name in ("rest_position", "position", "velocity"):
+                        obj._data[name] = np.array(obj._read(name))
 
     # --- attribute access: children, objects, controllers, then data ------------------------------
     def __getattr__(self, name):

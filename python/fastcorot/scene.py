@@ -431,7 +431,7 @@ class Node:
         return "/".join(n._name for n in self._lineage())
 
     def add_child(self, name, **data):
-        """A new child node (``data``: dt, gravity)."""
+        """A new child node (``data``: dt, gravity, activated)."""
         child = Node(name, **data)
         object.__setattr__(child, "_location", _caller_location())
         object.__setattr__(child, "_parent", self)
@@ -493,6 +493,16 @@ class Node:
         self._data["gravity"] = value
 
     @property
+    def activated(self):
+        """Whether SOFA's visitors enter the node (default True). A deactivated node's subtree is
+        not simulated, collided or drawn; links into it still read its objects' data."""
+        return self._node_data("activated", "bool", True)
+
+    @activated.setter
+    def activated(self, value):
+        self._data["activated"] = canonical("bool", "activated", value, f"Node '{self._name}'")
+
+    @property
     def attributes(self):
         """The node's attributes as a scene file writes them (name included)."""
         return {"name": self._name, **{key: to_text(value) for key, value in self._data.items()}}
@@ -524,8 +534,8 @@ class Node:
         if name.startswith("_") or isinstance(getattr(type(self), name, None), property):
             object.__setattr__(self, name, value)
         else:
-            raise AttributeError(f"Node '{self._name}' has no data '{name}' (a node's data are name, dt and "
-                                 "gravity; add objects with add_object and children with add_child)")
+            raise AttributeError(f"Node '{self._name}' has no data '{name}' (a node's data are name, dt, "
+                                 "gravity and activated; add objects with add_object and children with add_child)")
 
     def __getitem__(self, path):
         found = self

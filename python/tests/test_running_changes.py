@@ -8,6 +8,7 @@ import pytest
 
 import Sofa
 import Sofa.Simulation
+from fastcorot.scene import SceneWarning
 from test_sofa import PYTHON_EXAMPLES, load_script, tetrahedron_scene
 
 G = 9.81
@@ -121,3 +122,35 @@ def test_liver_scriptcontroller_drops_a_rigid_sphere_that_the_liver_throws_back(
     assert 20 < touched < 60, "falls from y = 10 onto the liver"
     assert max(heights[touched:]) > heights[touched] + 2, "thrown back up"
     assert not np.array_equal(root.Liver.dofs.position.array(), liver)
+
+
+def test_a_deactivated_node_is_not_simulated_and_freezes_while_running_as_in_sofa():
+    root = Sofa.Core.Node("root")
+    root.gravity = [0, -G, 0]
+    _, moving = add_particle(root, "moving", 5.0)
+    off_node, off = add_particle(root, "off", 3.0)
+    off_node.activated = False
+    kept_node = root.addChild("kept", activated=False)  # SofaPython3's keyword form
+    kept_node.addObject("MechanicalObject", name="point", position=[[1, 1, 1]])
+    with pytest.warns(SceneWarning, match="data 'activatd' not used.*did you mean 'activated'"):
+        root.addChild("typo", activatd=False)
+    Sofa.Simulation.init(root)
+    assert off_node.activated.value is False and moving.getContext().activated.value is True
+    assert len(Sofa.Simulation.simulation_of(root).objects) == 1
+    steps(root, 5)
+    h = 0.01
+    assert moving.position.value[0][1] == pytest.approx(5 - h * h * G * 15, abs=1e-12)
+    assert off.position.value.tolist() == [[5, 3, 5]]  # never initialised, never moved
+    # Deactivated while running: the state stays where it was and resumes from there when activated
+    # again, as SOFA's visitors skip the node and leave its MechanicalObject alone.
+    off_node.activated = True
+    steps(root, 5)
+    root.moving.activated = False
+    steps(root, 3)
+    assert moving.position.value[0][1] == pytest.approx(5 - h * h * G * 55, abs=1e-12)
+    assert off.position.value[0][1] == pytest.approx(3 - h * h * G * 36, abs=1e-12)  # from rest at activation
+    root.moving.activated = True
+    steps(root, 5)
+    # Ten steps in all for `moving`: the three while deactivated did not count.
+    assert moving.position.value[0][1] == pytest.approx(5 - h * h * G * 55 - h * h * G * (11 + 12 + 13 + 14 + 15),
+                                                        abs=1e-12)

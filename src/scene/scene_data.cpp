@@ -67,35 +67,89 @@ std::vector<Vec3<double>> transformed(std::vector<Vec3<double>> points, const Ve
   return points;
 }
 
+std::optional<bool> read_sofa_bool(const std::string& v) {
+  if (!v.empty() && (v[0] == 't' || v[0] == 'T')) return true;
+  if (!v.empty() && (v[0] == 'f' || v[0] == 'F')) return false;
+  if (!v.empty() && (std::isdigit(static_cast<unsigned char>(v[0])) || v[0] == '-')) {
+    char* end = nullptr;
+    const long number = std::strtol(v.c_str(), &end, 10);
+    if (end != v.c_str()) return number != 0;
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+// A node's `activated` (SOFA's Context data, true by default).
+bool is_activated(const SceneNode& node) {
+  const auto it = node.attributes.find("activated");
+  if (it == node.attributes.end()) return true;
+  if (const auto value = read_sofa_bool(it->second)) return *value;
+  throw make_error(node.location.to_string(), ": Node '", node.name, "': activated = \"", it->second,
+                   "\": expected true/false or 1/0");
+}
+
+}  // namespace
+
 SceneData::SceneData(const SceneNode& root, std::vector<std::string>& info, std::vector<std::string>* warnings)
     : warnings_(warnings) {
-  root_ = build_node(root, nullptr, info);
+  if (!is_activated(root)) {
+    throw make_error(root.location.to_string(), ": the root node is deactivated (activated=\"",
+                     root.attributes.at("activated"), "\"): SOFA runs nothing in it");
+  }
+  root_ = build_node(root, nullptr, info, true);
 }
 
 std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNode* parent,
-                                                 std::vector<std::string>& info) {
+                                                 std::vector<std::string>& info, bool active) {
   auto node = std::make_unique<GraphNode>();
   node->scene = &scene;
   node->parent = parent;
   node->path = parent ? parent->path + "/" + scene.name : scene.name;
+  // What a deactivated subtree's components would warn about is only information: SOFA never
+  // initialises them (a deactivated node often holds components of a plugin not loaded).
+  std::vector<std::string> deactivated_warnings;
+  std::vector<std::string>* const warnings = active ? warnings_ : &deactivated_warnings;
   for (const auto& object : scene.objects) {
     auto component = std::make_unique<Component>();
     component->object = &object;
     component->node = node.get();
-    component->spec = check_scene_object(object, warnings_);
+    if (active) {
+      component->spec = check_scene_object(object, warnings);
+    } else {
+      try {  // a component fastcorot lacks is no obstacle where SOFA never initialises it
+        component->spec = check_scene_object(object, warnings);
+      } catch (const Error& error) {
+        deactivated_warnings.push_back(error.what());
+      }
+    }
     if (!component->spec && is_collision_component(object.type)) {
       const std::string line = object.location.to_string() + ": " + object.type +
                                " ignored: collisions and contacts are not simulated by fastcorot";
-      if (!warnings_) throw make_error(line);
-      warnings_->push_back(line);
+      if (!warnings) throw make_error(line);
+      warnings->push_back(line);
     } else if (!component->spec && (object.type == "AddDataRepository" || object.type == "AddResourceRepository")) {
       info.push_back(object.location.to_string() + ": " + object.type + ": files are also looked for in its path");
-    } else if (!component->spec) {
+    } else if (!component->spec && active) {
       info.push_back(object.location.to_string() + ": " + object.type + " ignored (no effect on the mechanics)");
     }
     node->components.push_back(std::move(component));
   }
-  for (const auto& child : scene.children) node->children.push_back(build_node(child, node.get(), info));
+  for (const auto& line : deactivated_warnings) info.push_back(line + " (in a deactivated node)");
+  for (const auto& child : scene.children) {
+    const bool child_active = active && is_activated(child);
+    auto built = build_node(child, node.get(), info, child_active);
+    if (child_active) {
+      node->children.push_back(std::move(built));
+    } else {
+      if (active) {
+        info.push_back(child.location.to_string() + ": node " + built->path +
+                       " is deactivated (activated=\"" + child.attributes.at("activated") +
+                       "\"): not simulated, collided or drawn, as in SOFA");
+      }
+      node->deactivated.push_back(std::move(built));
+    }
+  }
   return node;
 }
 
@@ -227,6 +281,9 @@ Component& SceneData::resolve(const GraphNode& from, const std::string& link, co
       }
       for (const auto& child : scope->children) {
         if (child->scene->name == part) next = child.get();
+      }
+      for (const auto& child : scope->deactivated) {
+        if (!next && child->scene->name == part) next = child.get();
       }
       if (next && last && node_means_state) {
         const auto states = next->of_category("state");
@@ -435,18 +492,9 @@ int SceneData::whole_number(Component& c, const std::string& name, int fallback)
 bool SceneData::boolean(Component& c, const std::string& name, bool fallback) {
   const auto it = c.object->attributes.find(name);
   if (it == c.object->attributes.end()) return fallback;
-  // As SOFA's Data<bool> reads it: by the first character, t or T true, f or F false, and a
-  // number (strtol: what follows it is ignored) true unless 0. SOFA warns on anything else and
-  // keeps the default; fastcorot stops there.
-  const std::string& v = it->second;
-  if (!v.empty() && (v[0] == 't' || v[0] == 'T')) return true;
-  if (!v.empty() && (v[0] == 'f' || v[0] == 'F')) return false;
-  if (!v.empty() && (std::isdigit(static_cast<unsigned char>(v[0])) || v[0] == '-')) {
-    char* end = nullptr;
-    const long number = std::strtol(v.c_str(), &end, 10);
-    if (end != v.c_str()) return number != 0;
-  }
-  throw make_error(c.where(), ": ", name, " = \"", v, "\": expected true/false or 1/0");
+  // SOFA warns on a value it cannot read and keeps the default; fastcorot stops there.
+  if (const auto value = read_sofa_bool(it->second)) return *value;
+  throw make_error(c.where(), ": ", name, " = \"", it->second, "\": expected true/false or 1/0");
 }
 
 std::string SceneData::text(Component& c, const std::string& name, const std::string& fallback) {

@@ -50,7 +50,12 @@ struct GraphNode {
   GraphNode* parent = nullptr;
   std::string path;  // names from the root joined by '/'
   std::vector<std::unique_ptr<Component>> components;
+  // The active child nodes: the ones every pass of the builder walks (a node with activated="0"
+  // is pruned from SOFA's visitors: not initialised, simulated, collided or drawn).
   std::vector<std::unique_ptr<GraphNode>> children;
+  // The deactivated child nodes, kept only so that links into them resolve (SOFA still creates
+  // their components and reads their data on demand).
+  std::vector<std::unique_ptr<GraphNode>> deactivated;
 
   // Components of the given category, in scene order.
   std::vector<Component*> of_category(std::string_view category) const;
@@ -59,6 +64,10 @@ struct GraphNode {
   // nothing acting on them, so they stay where the mapping put them.
   bool is_unloaded_point_set() const;
 };
+
+// A text as SOFA's Data<bool> reads it: by the first character, t or T true, f or F false, a
+// number (strtol: what follows it is ignored) true unless 0; nullopt for anything else.
+std::optional<bool> read_sofa_bool(const std::string& text);
 
 // Applies scale, then rotation (Euler angles in degrees, R = Rz Ry Rx), then translation, as SOFA's
 // MechanicalObject, loaders and visual models place their points.
@@ -150,7 +159,8 @@ class SceneData {
   Numbers parse_numbers(const Component& c, const std::string& name, const std::string& text) const;
   const MeshData& mesh_file(Component& loader);
   std::vector<std::string>* warnings_ = nullptr;
-  std::unique_ptr<GraphNode> build_node(const SceneNode& scene, GraphNode* parent, std::vector<std::string>& info);
+  std::unique_ptr<GraphNode> build_node(const SceneNode& scene, GraphNode* parent, std::vector<std::string>& info,
+                                        bool active);
 
   std::unique_ptr<GraphNode> root_;
   std::map<const Component*, MeshData> mesh_files_;

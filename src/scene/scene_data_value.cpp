@@ -4,16 +4,25 @@
 #include "fastcorot/scene/scene_builder.h"
 #include "scene_data.h"
 
+#include <algorithm>
+
 namespace fastcorot {
 
 namespace {
 
+// The object of rank `remaining` in document order (the children, active and deactivated, in the
+// order the scene gives them).
 scene_detail::Component* nth_component(scene_detail::GraphNode& node, std::size_t& remaining) {
   for (auto& component : node.components) {
     if (remaining == 0) return component.get();
     --remaining;
   }
-  for (auto& child : node.children) {
+  std::vector<scene_detail::GraphNode*> children;
+  for (auto* list : {&node.children, &node.deactivated}) {
+    for (auto& child : *list) children.push_back(child.get());
+  }
+  std::sort(children.begin(), children.end(), [](const auto* a, const auto* b) { return a->scene < b->scene; });
+  for (auto* child : children) {
     if (auto* found = nth_component(*child, remaining)) return found;
   }
   return nullptr;

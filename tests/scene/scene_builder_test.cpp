@@ -289,6 +289,51 @@ TEST(SceneBuilder, BadScenesNameTheProblemAndTheLine) {
          {"degenerate"});
 }
 
+// SOFA prunes a node whose `activated` is false from every visitor (Node::executeVisitor): its
+// subtree is not initialised, simulated, collided or drawn, yet its components exist, so that a
+// link into it still reads their data (TorusFall.scn deactivates five of its ten tori).
+TEST(SceneBuilder, DeactivatedNodesAreLeftOutAsSofaPrunesThem) {
+  std::string off = kSmallBeam, off_too = kSmallBeam;
+  off.replace(off.find("name=\"beam\""), 11, "name=\"off\" activated=\"0\"");
+  off.insert(off.find("</Node>"), "<CudaTetrahedronFEMForceField/><UniformMass totalMas=\"1\"/>");
+  off_too.replace(off_too.find("name=\"beam\""), 11, "name=\"off_too\" activated=\"false\"");
+  const std::string reader = R"(
+  <Node name="reader">
+    <EulerImplicitSolver/>
+    <CGLinearSolver/>
+    <MechanicalObject position="@../off/grid.position"/>
+    <UniformMass totalMass="1"/>
+  </Node>)";
+  const std::string body = off + kSmallBeam + off_too + reader;
+  for (const bool strict : {false, true}) {
+    const LoadedScene scene = build_scene(parse_scene_text("<Node name=\"root\">" + body + "</Node>", "test.scn"),
+                                          SceneOptions{strict});
+    ASSERT_EQ(scene.simulation.objects.size(), 2u);
+    EXPECT_EQ(scene.simulation.objects[0].path, "root/beam");
+    EXPECT_EQ(scene.simulation.objects[1].path, "root/reader");
+    // The link reads the deactivated node's grid: 3×2×2 points.
+    EXPECT_EQ(scene.simulation.objects[1].system.state.position.size(), 12u);
+    // Ranks count every object of the file, the deactivated ones included (as the Python layer
+    // and the dumps number them): twelve in the deactivated node, then the beam's fourth.
+    EXPECT_EQ(scene.state_objects.front(), 15u);
+    EXPECT_TRUE(scene.warnings.empty());
+    int deactivated = 0, lacking = 0;
+    for (const auto& line : scene.info) {
+      deactivated += line.find("node root/off is deactivated") != std::string::npos ||
+                     line.find("node root/off_too is deactivated") != std::string::npos;
+      lacking += line.find("CudaTetrahedronFEMForceField") != std::string::npos &&
+                 line.find("(in a deactivated node)") != std::string::npos;
+    }
+    EXPECT_EQ(deactivated, 2);
+    EXPECT_EQ(lacking, 1);
+  }
+  const std::string message = error_of(kSmallBeam + "<Node name=\"odd\" activated=\"maybe\"/>");
+  EXPECT_NE(message.find("test.scn:"), std::string::npos) << message;
+  EXPECT_NE(message.find("activated = \"maybe\""), std::string::npos) << message;
+  EXPECT_THROW(build_scene(parse_scene_text("<Node name=\"root\" activated=\"0\">" + kSmallBeam + "</Node>", "t.scn")),
+               Error);
+}
+
 }  // namespace
 }  // namespace fastcorot
 
