@@ -565,8 +565,6 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t, const std::arra
     }
     add_columns(column[0], column[1], column[2], to);
   };
-  const Tetrahedron& tet = mesh_->tetrahedron(t);
-  for (std::size_t k = 0; k < 4; ++k) add_block(k, k, false, point_blocks_[static_cast<std::size_t>(tet[k])].data());
   const auto& entries = element_entries_[static_cast<std::size_t>(t)];
   const auto& along = element_edge_along_[static_cast<std::size_t>(t)];
   for (std::size_t e = 0; e < 6; ++e) {
@@ -577,14 +575,20 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t, const std::arra
 
 template <class Real>
 void TetrahedronFEMForceField<Real>::clear_blocks() {
-  std::fill(point_blocks_.begin(), point_blocks_.end(), Mat3<Real>::Zero());
   for (const auto& entries : edge_entries_) row_blocks_[static_cast<std::size_t>(entries[0])].setZero();
 }
 
 template <class Real>
-void TetrahedronFEMForceField<Real>::mirror_edge_blocks() {
+void TetrahedronFEMForceField<Real>::complete_blocks() {
   for (const auto& entries : edge_entries_) {
     row_blocks_[static_cast<std::size_t>(entries[1])] = row_blocks_[static_cast<std::size_t>(entries[0])].transpose();
+  }
+  for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
+    Mat3<Real> sum = Mat3<Real>::Zero();
+    for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < static_cast<std::size_t>(row_begin_[v + 1]); ++entry) {
+      sum -= row_blocks_[entry];
+    }
+    point_blocks_[v] = sum;
   }
 }
 
@@ -594,7 +598,7 @@ void TetrahedronFEMForceField<Real>::refresh_blocks() {
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
     for (Index i = begin; i < end; ++i) add_element_blocks(schedule_.order[static_cast<std::size_t>(i)]);
   });
-  mirror_edge_blocks();
+  complete_blocks();
   stale_ = false;
 }
 
@@ -617,7 +621,7 @@ void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
   // contributions in the schedule's order, as refresh_blocks adds them.
   clear_blocks();
   accumulate<true>(x, f);
-  mirror_edge_blocks();
+  complete_blocks();
   last_positions_.assign(x.begin(), x.end());
   stale_ = false;
 }

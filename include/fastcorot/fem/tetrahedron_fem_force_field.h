@@ -176,16 +176,18 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   // Forces of element t at its points p, in its frame, into f; with kLinearise also its rotation.
   template <bool kLinearise>
   void accumulate_element(Index t, const TetPoints<Real>& p, const Mat3<Real>& frame, std::span<Vec3<Real>> f);
-  // Adds element t's blocks R J K J^T R^T into the point blocks and, for each edge, into the block
-  // in the row of the mesh edge's first point; `mirror_edge_blocks` then writes each edge's other block.
+  // Adds element t's off-diagonal blocks of R J K J^T R^T, each edge's into the block in the row of
+  // the mesh edge's first point; `complete_blocks` then makes the others.
   void add_element_blocks(Index t);
   // The same with the gradients in the world w = R g and K's values k1, k2 given.
   void add_element_blocks(Index t, const std::array<Vec3<Real>, 4>& w, Real k1, Real k2);
-  // Zeroes the point blocks and the edge blocks that add_element_blocks accumulates into.
+  // Zeroes the edge blocks that add_element_blocks accumulates into.
   void clear_blocks();
-  // Block (v, u) of each mesh edge (u, v) as the transpose of block (u, v): the same bits as adding
-  // each element's transposed contribution in the same order.
-  void mirror_edge_blocks();
+  // Block (v, u) of each mesh edge (u, v) as the transpose of block (u, v) (the same bits as adding
+  // each element's transposed contribution in the same order), then each point's block (v, v) as
+  // minus the sum of row v's other blocks: an element's gradients sum to zero, so that each of its
+  // block rows does (Σ_l K_kl = k1 w_k (Σ w_l)ᵀ + k2 (Σ w_l) w_kᵀ + k2 (w_k · Σ w_l) I = 0).
+  void complete_blocks();
   void refresh_blocks();
   void ensure_linearisation() const;
 
