@@ -42,13 +42,19 @@ Real ContactPipeline<Real>::contact_distance(const ModelPair& pair, const Output
 
 template <class Real>
 std::vector<std::size_t> ContactPipeline<Real>::kept_by_id(const std::vector<Output>& outputs) {
-  std::map<std::int64_t, std::size_t> kept;
-  for (std::size_t i = 0; i < outputs.size(); ++i) {
-    const auto [it, inserted] = kept.emplace(outputs[i].id, i);
-    if (!inserted && outputs[i].proximity.value < outputs[it->second].proximity.value) it->second = i;
-  }
+  // Per id, the output of the smallest value, the first of equal ones; kept in output order.
+  std::vector<std::pair<std::int64_t, std::size_t>> by_id(outputs.size());
+  for (std::size_t i = 0; i < outputs.size(); ++i) by_id[i] = {outputs[i].id, i};
+  std::sort(by_id.begin(), by_id.end());
   std::vector<std::size_t> order;
-  for (const auto& [id, i] : kept) order.push_back(i);
+  for (std::size_t g = 0; g < by_id.size();) {
+    std::size_t best = by_id[g].second, end = g + 1;
+    for (; end < by_id.size() && by_id[end].first == by_id[g].first; ++end) {
+      if (outputs[by_id[end].second].proximity.value < outputs[best].proximity.value) best = by_id[end].second;
+    }
+    order.push_back(best);
+    g = end;
+  }
   std::sort(order.begin(), order.end());
   return order;
 }
