@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fastcorot {
 
@@ -27,18 +28,17 @@ bool overlaps_without_branches(const Aabb<Real>& a, const Aabb<Real>& b, Real ma
 
 template <class Real>
 void AabbTree<Real>::check(std::span<const Aabb<Real>> boxes) {
-  // First in one pass without branches: each extent max − min is finite and not negative exactly
-  // when the box is finite and not inverted (an infinity or NaN in either makes it so), and a sum of
-  // finite non-negative values is finite.
-  Real sum = 0, least = 0;
+  // First in one pass without branches or a chain of additions: each extent max − min lies in
+  // [0, largest finite] when the box is finite and not inverted (an infinity or NaN in either puts
+  // it outside; so does an extent that overflows, which the second pass then clears).
+  bool fine = true;
   for (const auto& box : boxes) {
     for (int axis = 0; axis < 3; ++axis) {
       const Real extent = box.max[axis] - box.min[axis];
-      sum += extent;
-      least = std::min(least, extent);
+      fine &= (extent >= 0) & (extent <= std::numeric_limits<Real>::max());
     }
   }
-  if (std::isfinite(sum) && least >= 0) return;
+  if (fine) return;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     if (!boxes[i].min.allFinite() || !boxes[i].max.allFinite() || (boxes[i].min.array() > boxes[i].max.array()).any()) {
       throw make_error("AabbTree: the box of element ", i, " is not finite or is inverted");

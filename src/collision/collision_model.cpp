@@ -46,11 +46,14 @@ template <class Real>
 void CollisionPoints<Real>::update(std::span<const SimulatedObject<Real>> objects) {
   if (still_) return;
   const auto& x = objects[object_].system.state.position;
-  const Index extent = mapping_ ? mapping_->parent_extent()
-                                : (blocks_.empty() ? 0 : *std::max_element(blocks_.begin(), blocks_.end()) + (rigid_ ? 2 : 1));
-  if (extent > static_cast<Index>(x.size())) {
-    throw make_error(objects[object_].path, " lost points that a collision model reads (cut while running): contacts on a changing ",
-                     "topology are not simulated yet");
+  if (x.size() != checked_size_) {  // the first step, or the object's points changed (cut while running)
+    const Index extent = mapping_ ? mapping_->parent_extent()
+                                  : (blocks_.empty() ? 0 : *std::max_element(blocks_.begin(), blocks_.end()) + (rigid_ ? 2 : 1));
+    if (extent > static_cast<Index>(x.size())) {
+      throw make_error(objects[object_].path, " lost points that a collision model reads (cut while running): contacts on a changing ",
+                       "topology are not simulated yet");
+    }
+    checked_size_ = x.size();
   }
   if (mapping_) {
     mapping_->apply(x, x_);
@@ -97,25 +100,31 @@ int CollisionModel<Real>::update_tree() {
   boxes_.resize(n);
   degenerate_.assign(n, 0);
   const auto at = [&](Index p) -> const Vec3<Real>& { return x[static_cast<std::size_t>(p)]; };
-  for (std::size_t e = 0; e < n; ++e) {
-    Aabb<Real> box;
-    switch (kind) {
-      case CollisionElements::points: box.extend(x[e]); break;
-      case CollisionElements::lines:
-        box.extend(at(edges[e][0]));
-        box.extend(at(edges[e][1]));
-        degenerate_[e] = at(edges[e][0]) == at(edges[e][1]);
-        break;
-      case CollisionElements::triangles:
-        for (Index p : triangles[e]) box.extend(at(p));
-        degenerate_[e] = degenerate_triangle(at(triangles[e][0]), at(triangles[e][1]), at(triangles[e][2]));
-        break;
-      case CollisionElements::spheres: box.extend(x[e]); break;
-    }
-    const Real grow = kind == CollisionElements::spheres ? radii[e] + contact_distance : contact_distance;
-    box.min.array() -= grow;
-    box.max.array() += grow;
-    boxes_[e] = box;
+  const auto set = [&](std::size_t e, const Vec3<Real>& low, const Vec3<Real>& high, Real grow) {
+    boxes_[e].min = low.array() - grow;
+    boxes_[e].max = high.array() + grow;
+  };
+  switch (kind) {  // one loop per kind, each element's box grown by the contact distance (a sphere's by its radius too)
+    case CollisionElements::points:
+      for (std::size_t e = 0; e < n; ++e) set(e, x[e], x[e], contact_distance);
+      break;
+    case CollisionElements::spheres:
+      for (std::size_t e = 0; e < n; ++e) set(e, x[e], x[e], radii[e] + contact_distance);
+      break;
+    case CollisionElements::lines:
+      for (std::size_t e = 0; e < n; ++e) {
+        const Vec3<Real>&a = at(edges[e][0]), &b = at(edges[e][1]);
+        set(e, a.cwiseMin(b), a.cwiseMax(b), contact_distance);
+        degenerate_[e] = a == b;
+      }
+      break;
+    case CollisionElements::triangles:
+      for (std::size_t e = 0; e < n; ++e) {
+        const Vec3<Real>&a = at(triangles[e][0]), &b = at(triangles[e][1]), &c = at(triangles[e][2]);
+        set(e, a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), contact_distance);
+        degenerate_[e] = degenerate_triangle(a, b, c);
+      }
+      break;
   }
   if (built_ && tree_.size() == n) {
     tree_.refit(boxes_);

@@ -53,6 +53,7 @@ class CollisionPoints {
   std::shared_ptr<MechanicalMapping<Real>> mapping_;
   std::vector<Vec3<Real>> x_;
   mutable std::vector<std::pair<Index, Mat3<Real>>> scratch_;
+  std::size_t checked_size_ = std::size_t(-1);  // the object's point count update last checked the reach against
 };
 
 // SOFA's PointCollisionModel, LineCollisionModel, TriangleCollisionModel, SphereCollisionModel
