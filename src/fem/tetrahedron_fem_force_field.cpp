@@ -244,7 +244,7 @@ void TetrahedronFEMForceField<Real>::initialise_element(Index t) {
 template <class Real>
 void TetrahedronFEMForceField<Real>::schedule() {
   schedule_ = make_scatter_schedule<4>(mesh_->num_points(), mesh_->tetrahedra());
-  point_blocks_.assign(static_cast<std::size_t>(mesh_->num_points()), Mat3<Real>::Zero());
+  point_blocks_.assign(static_cast<std::size_t>(mesh_->num_points()), PaddedBlock{});
   const Index n = mesh_->num_points();
   row_begin_.assign(static_cast<std::size_t>(n) + 1, 0);
   row_neighbour_.clear();
@@ -260,7 +260,7 @@ void TetrahedronFEMForceField<Real>::schedule() {
     }
     row_begin_[static_cast<std::size_t>(v) + 1] = static_cast<Index>(row_neighbour_.size());
   }
-  row_blocks_.assign(row_neighbour_.size(), Mat3<Real>::Zero());
+  row_blocks_.assign(row_neighbour_.size(), PaddedBlock{});
   batched_constants_.resize(schedule_.order.size());
   for (std::size_t p = 0; p < schedule_.order.size(); ++p) {
     const Element& element = elements_[static_cast<std::size_t>(schedule_.order[p])];
@@ -537,31 +537,36 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t, const std::arra
   // edge's block is accumulated in the orientation of its mesh edge (u, v): for a local edge running
   // against it, column c of the transpose, k1 w_l w_k[c] + k2 w_k w_l[c] with each product's factors
   // swapped (the same bits as the transpose entry by entry). The three columns are added to the
-  // block's nine stored values (column-major) as two packets and one value, so that no store is
-  // read back narrower than written.
+  // block's three padded columns, a packet each (their spare lanes stay zero).
   using P = Packed<Real>;
   const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
   const auto add_columns = [](const P& c0, const P& c1, const P& c2, Real* to) {
-    store_packed(to, load_packed(to) + __builtin_shufflevector(c0, c1, 0, 1, 2, 4));
-    store_packed(to + 4, load_packed(to + 4) + __builtin_shufflevector(c1, c2, 1, 2, 4, 5));
-    to[8] += c2[2];
+    store_packed(to, load_packed(to) + c0);
+    store_packed(to + 4, load_packed(to + 4) + c1);
+    store_packed(to + 8, load_packed(to + 8) + c2);
   };
   // The diagonal term is added to lane c of column c as a packet that is zero in the other lanes
   // (adding a zero changes no sum that follows: each block starts from +0), not lane by lane.
   const P unit[3] = {P{1, 0, 0, 0}, P{0, 1, 0, 0}, P{0, 0, 1, 0}};
+  // Each point's w as a packet, times k1 and times k2, and its k1 w, k2 w as numbers: made once for
+  // the six blocks (the same products as made per block).
+  P packed[4], packed_k1[4], packed_k2[4];
+  Real k1w[4][3], k2w[4][3];
+  for (std::size_t i = 0; i < 4; ++i) {
+    packed[i] = lanes(w[i]);
+    packed_k1[i] = lanes(k1 * w[i]);
+    packed_k2[i] = lanes(k2 * w[i]);
+    for (int c = 0; c < 3; ++c) k1w[i][c] = k1 * w[i][c], k2w[i][c] = k2 * w[i][c];
+  }
   const auto add_block = [&](std::size_t k, std::size_t l, bool transposed, Real* to) {
     const Vec3<Real>& a = w[k];
     const Vec3<Real>& b = w[l];
     const P diagonal = broadcast(k2 * a.dot(b));
     P column[3];
     if (!transposed) {
-      const P ka = lanes(k1 * a), kb = lanes(k2 * b);
-      for (int c = 0; c < 3; ++c) column[c] = (ka * b[c] + kb * a[c]) + diagonal * unit[c];
+      for (int c = 0; c < 3; ++c) column[c] = (packed_k1[k] * b[c] + packed_k2[l] * a[c]) + diagonal * unit[c];
     } else {
-      const P pb = lanes(b), pa = lanes(a);
-      const Real kac[3] = {k1 * a[0], k1 * a[1], k1 * a[2]};
-      const Real kbc[3] = {k2 * b[0], k2 * b[1], k2 * b[2]};
-      for (int c = 0; c < 3; ++c) column[c] = (pb * kac[c] + pa * kbc[c]) + diagonal * unit[c];
+      for (int c = 0; c < 3; ++c) column[c] = (packed[l] * k1w[k][c] + packed[k] * k2w[l][c]) + diagonal * unit[c];
     }
     add_columns(column[0], column[1], column[2], to);
   };
@@ -569,26 +574,40 @@ void TetrahedronFEMForceField<Real>::add_element_blocks(Index t, const std::arra
   const auto& along = element_edge_along_[static_cast<std::size_t>(t)];
   for (std::size_t e = 0; e < 6; ++e) {
     add_block(static_cast<std::size_t>(kTetrahedronEdges[e][0]), static_cast<std::size_t>(kTetrahedronEdges[e][1]),
-              along[e] < 0, row_blocks_[static_cast<std::size_t>(entries[e])].data());
+              along[e] < 0, row_blocks_[static_cast<std::size_t>(entries[e])].value);
   }
 }
 
 template <class Real>
+Mat3<Real> TetrahedronFEMForceField<Real>::PaddedBlock::matrix() const {
+  Mat3<Real> m;
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) m(r, c) = value[4 * c + r];
+  }
+  return m;
+}
+
+template <class Real>
 void TetrahedronFEMForceField<Real>::clear_blocks() {
-  for (const auto& entries : edge_entries_) row_blocks_[static_cast<std::size_t>(entries[0])].setZero();
+  for (const auto& entries : edge_entries_) row_blocks_[static_cast<std::size_t>(entries[0])] = PaddedBlock{};
 }
 
 template <class Real>
 void TetrahedronFEMForceField<Real>::complete_blocks() {
   for (const auto& entries : edge_entries_) {
-    row_blocks_[static_cast<std::size_t>(entries[1])] = row_blocks_[static_cast<std::size_t>(entries[0])].transpose();
-  }
-  for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
-    Mat3<Real> sum = Mat3<Real>::Zero();
-    for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < static_cast<std::size_t>(row_begin_[v + 1]); ++entry) {
-      sum -= row_blocks_[entry];
+    const Real* from = row_blocks_[static_cast<std::size_t>(entries[0])].value;
+    Real* to = row_blocks_[static_cast<std::size_t>(entries[1])].value;
+    for (int c = 0; c < 3; ++c) {
+      for (int r = 0; r < 3; ++r) to[4 * c + r] = from[4 * r + c];
     }
-    point_blocks_[v] = sum;
+  }
+  using P = Packed<Real>;
+  for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
+    P sum[3] = {P{}, P{}, P{}};
+    for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < static_cast<std::size_t>(row_begin_[v + 1]); ++entry) {
+      for (int c = 0; c < 3; ++c) sum[c] -= load_packed(row_blocks_[entry].value + 4 * c);
+    }
+    for (int c = 0; c < 3; ++c) store_packed(point_blocks_[v].value + 4 * c, sum[c]);
   }
 }
 
@@ -663,12 +682,10 @@ void TetrahedronFEMForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, 
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
   padded_dx_.resize(dx.size());
   for (std::size_t v = 0; v < dx.size(); ++v) padded_dx_[v] = PaddedPoint{{dx[v][0], dx[v][1], dx[v][2], Real(0)}};
-  const auto times = [](const Mat3<Real>& block, const P& x) {
-    const Real* m = block.data();
-    // The third column read from entry 5 on and shifted down a lane, so as not to read past the block.
-    const P c2 = permute<1, 2, 3, 3>(load_packed(m + 5));
-    return load_packed(m) * permute<0, 0, 0, 0>(x) + load_packed(m + 3) * permute<1, 1, 1, 1>(x) +
-           c2 * permute<2, 2, 2, 2>(x);
+  const auto times = [](const PaddedBlock& block, const P& x) {
+    const Real* m = block.value;
+    return load_packed(m) * permute<0, 0, 0, 0>(x) + load_packed(m + 4) * permute<1, 1, 1, 1>(x) +
+           load_packed(m + 8) * permute<2, 2, 2, 2>(x);
   };
   parallel_ranges(threads_, point_blocks_.size(), [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
@@ -689,13 +706,13 @@ void TetrahedronFEMForceField<Real>::add_stiffness(MatrixSink<Real>& sink, Real 
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
   for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
     const Index row = offset + 3 * static_cast<Index>(v);
-    sink.add_block(row, row, -k * point_blocks_[v]);
+    sink.add_block(row, row, -k * point_blocks_[v].matrix());
   }
   for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
     const Index row = offset + 3 * static_cast<Index>(v);
     for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < static_cast<std::size_t>(row_begin_[v + 1]);
          ++entry) {
-      sink.add_block(row, offset + 3 * row_neighbour_[entry], -k * row_blocks_[entry]);
+      sink.add_block(row, offset + 3 * row_neighbour_[entry], -k * row_blocks_[entry].matrix());
     }
   }
 }
@@ -709,7 +726,7 @@ void TetrahedronFEMForceField<Real>::add_diagonal_blocks(std::span<Mat3<Real>> d
   }
   ensure_linearisation();
   const Real k = k_factor + b_factor * parameters_.rayleigh_stiffness;
-  for (std::size_t v = 0; v < diagonal.size(); ++v) diagonal[v] -= k * point_blocks_[v];
+  for (std::size_t v = 0; v < diagonal.size(); ++v) diagonal[v] -= k * point_blocks_[v].matrix();
 }
 
 template <class Real>
@@ -790,7 +807,7 @@ std::vector<double> TetrahedronFEMForceField<Real>::model_values() const {
 
 template <class Real>
 std::size_t TetrahedronFEMForceField<Real>::memory_bytes() const {
-  return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + row_blocks_.capacity()) * sizeof(Mat3<Real>) +
+  return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + row_blocks_.capacity()) * sizeof(PaddedBlock) +
          element_entries_.capacity() * (sizeof(std::array<Index, 6>) + sizeof(std::array<signed char, 6>)) +
          edge_entries_.capacity() * sizeof(std::array<Index, 2>) + batched_constants_.capacity() * sizeof(BatchedConstants) +
          last_positions_.capacity() * sizeof(Vec3<Real>) + schedule_.order.capacity() * sizeof(Index) +

@@ -205,12 +205,18 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
     Real material[3];
   };
   std::vector<BatchedConstants> batched_constants_;
-  std::vector<Mat3<Real>> point_blocks_;  // block (v, v)
+  // A 3×3 block as three columns of four values (the fourth zero), aligned: each column one
+  // packet, read and added to without shuffles or loads across cache lines.
+  struct alignas(4 * sizeof(Real)) PaddedBlock {
+    Real value[12];
+    Mat3<Real> matrix() const;
+  };
+  std::vector<PaddedBlock> point_blocks_;  // block (v, v)
   // Row v of the assembled blocks: entries [row_begin_[v], row_begin_[v + 1]) of row_neighbour_
   // (the other point of each mesh edge around v) and row_blocks_ (block (v, neighbour)). Both
   // blocks of an edge are kept, so that the product reads each row straight through.
   std::vector<Index> row_begin_, row_neighbour_;
-  std::vector<Mat3<Real>> row_blocks_;
+  std::vector<PaddedBlock> row_blocks_;
   struct alignas(4 * sizeof(Real)) PaddedPoint {  // add_dforce's dx, four values per point
     Real value[4];
   };
