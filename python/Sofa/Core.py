@@ -574,9 +574,10 @@ class Node:
         elif name in ("dt", "gravity"):
             setattr(self._node, name, value)
         elif name == "activated":  # while the scene runs, it is built again without (or with) the subtree
-            if self._node.activated and not _scene.canonical("bool", name, value, self.getPathName()):
-                self._freeze_states()
+            was = self._node.activated
             self._node.activated = value
+            if was and not self._node.activated:
+                self._freeze_states()
             self._changed_while_running()
         elif name == "time":
             raise AttributeError(f"{self.getPathName()}: time is read-only (it advances with the steps)")

@@ -114,14 +114,11 @@ std::unique_ptr<GraphNode> SceneData::build_node(const SceneNode& scene, GraphNo
     auto component = std::make_unique<Component>();
     component->object = &object;
     component->node = node.get();
-    if (active) {
+    try {
       component->spec = check_scene_object(object, warnings);
-    } else {
-      try {  // a component fastcorot lacks is no obstacle where SOFA never initialises it
-        component->spec = check_scene_object(object, warnings);
-      } catch (const Error& error) {
-        deactivated_warnings.push_back(error.what());
-      }
+    } catch (const Error& error) {
+      if (active) throw;
+      deactivated_warnings.push_back(error.what());  // a component fastcorot lacks, where SOFA never initialises it
     }
     if (!component->spec && is_collision_component(object.type)) {
       const std::string line = object.location.to_string() + ": " + object.type +
