@@ -23,6 +23,20 @@ void PenaltyContactForceField<Real>::set_contacts(std::vector<PenaltyContact<Rea
     }
   }
   contacts_ = std::move(contacts);
+  normal_begin_.assign(1, 0);
+  normal_block_.clear();
+  normal_row_.clear();
+  for (const auto& contact : contacts_) {
+    for (const auto& [block, j] : contact.side1) {
+      normal_block_.push_back(block);
+      normal_row_.push_back(-(j.transpose() * contact.normal));
+    }
+    for (const auto& [block, j] : contact.side2) {
+      normal_block_.push_back(block);
+      normal_row_.push_back(j.transpose() * contact.normal);
+    }
+    normal_begin_.push_back(static_cast<Index>(normal_block_.size()));
+  }
   x_t_.assign(x.begin(), x.end());
   active_.assign(contacts_.size(), 0);
   forces_.assign(contacts_.size(), Vec3<Real>::Zero());
@@ -49,13 +63,14 @@ void PenaltyContactForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
 
 template <class Real>
 void PenaltyContactForceField<Real>::add_dforce(std::span<const Vec3<Real>> dx, std::span<Vec3<Real>> df, Real k_factor, Real) const {
+  // df₂ = −k_factor k n (n · (J₂ dx − J₁ dx)) on side 2 through J₂ᵀ, its opposite on side 1.
   for (std::size_t c = 0; c < contacts_.size(); ++c) {
     if (!active_[c]) continue;
-    const auto& contact = contacts_[c];
-    const Vec3<Real> gap = contact_apply_j<Real>(contact.side2, dx) - contact_apply_j<Real>(contact.side1, dx);
-    const Vec3<Real> change = contact.normal * (-k_factor * contact.stiffness * contact.normal.dot(gap));
-    contact_add_jt<Real>(contact.side1, -change, df);
-    contact_add_jt<Real>(contact.side2, change, df);
+    const auto begin = static_cast<std::size_t>(normal_begin_[c]), end = static_cast<std::size_t>(normal_begin_[c + 1]);
+    Real along = 0;
+    for (std::size_t e = begin; e < end; ++e) along += normal_row_[e].dot(dx[static_cast<std::size_t>(normal_block_[e])]);
+    const Real change = -k_factor * contacts_[c].stiffness * along;
+    for (std::size_t e = begin; e < end; ++e) df[static_cast<std::size_t>(normal_block_[e])] += normal_row_[e] * change;
   }
 }
 
@@ -92,7 +107,7 @@ Real PenaltyContactForceField<Real>::potential_energy(std::span<const Vec3<Real>
 
 template <class Real>
 std::size_t PenaltyContactForceField<Real>::memory_bytes() const {
-  std::size_t bytes = x_t_.size() * sizeof(Vec3<Real>);
+  std::size_t bytes = (x_t_.size() + normal_row_.size()) * sizeof(Vec3<Real>) + (normal_begin_.size() + normal_block_.size()) * sizeof(Index);
   for (const auto& c : contacts_) bytes += sizeof(c) + (c.side1.size() + c.side2.size()) * sizeof(std::pair<Index, Mat3<Real>>);
   return bytes;
 }

@@ -63,18 +63,31 @@ TEST(PenaltyContactForceField, StiffnessIsTheForcesDerivative) {
   c.normal = V(0.3, 0.9, -0.1).normalized();
   c.distance = (c.y2 - c.y1).dot(c.normal) + 0.4;  // pushing by 0.4
   c.stiffness = 7;
+  // A second contact whose side 2 has full 3×3 blocks (a point carried by a rigid body's rotation)
+  // against an obstacle, and shares block 3 with the first.
+  PenaltyContact<double> full;
+  Mat3<double> j1, j2;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) j1(r, k) = u(rng), j2(r, k) = u(rng);
+  full.side2 = {{3, j1}, {1, j2}};
+  full.y1 = V(0.1, -0.2, 0.3);
+  full.y2 = V(0.2, 0.1, 0.2);
+  full.normal = V(-0.5, 0.2, 0.8).normalized();
+  full.distance = (full.y2 - full.y1).dot(full.normal) + 0.3;
+  full.stiffness = 3;
   PenaltyContactForceField<double> field(points(5));
-  field.set_contacts({c}, x);
+  field.set_contacts({c, full}, x);
   std::vector<V> f(5, V::Zero());
   field.add_force(x, f);
   EXPECT_NEAR(field.forces()[0].norm(), 7 * 0.4, 1e-12);
+  EXPECT_NEAR(field.forces()[1].norm(), 3 * 0.3, 1e-12);
   std::vector<V> dx(5);
   for (auto& p : dx) p = V(u(rng), u(rng), u(rng));
   PenaltyContactForceField<double> probe(points(5));
-  probe.set_contacts({c}, x);
+  probe.set_contacts({c, full}, x);
   testing::expect_linearisation_is_the_forces_derivative(field, probe, x, dx);
   // The energy's derivative is minus the force.
-  EXPECT_NEAR(field.potential_energy(x), 0.5 * 7 * 0.4 * 0.4, 1e-12);
+  EXPECT_NEAR(field.potential_energy(x), 0.5 * 7 * 0.4 * 0.4 + 0.5 * 3 * 0.3 * 0.3, 1e-12);
 }
 
 TEST(PenaltyContactForceField, AnObstacleSideAndInactiveContactsAndBadInput) {

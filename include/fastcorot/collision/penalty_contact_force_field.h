@@ -61,6 +61,11 @@ class PenaltyContactForceField final : public ContactForceField<Real> {
   Vec3<Real> point(const ContactBlocks<Real>& side, const Vec3<Real>& y_t, std::span<const Vec3<Real>> x) const;
 
   std::vector<PenaltyContact<Real>> contacts_;
+  // The products' form of each contact's Jacobians: a contact acts along its normal n only, so
+  // J dx enters as n · (J₂ dx − J₁ dx) = Σ_b g_b · dx_b with g_b = ±J_bᵀ n (− on side 1), and
+  // comes back as g_b times a number. Contact c's entries are [normal_begin_[c], normal_begin_[c + 1]).
+  std::vector<Index> normal_begin_, normal_block_;
+  std::vector<Vec3<Real>> normal_row_;
   std::vector<Vec3<Real>> x_t_;
   std::vector<char> active_;
   std::vector<Vec3<Real>> forces_;
