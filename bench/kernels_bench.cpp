@@ -2,7 +2,9 @@
 // stiffness refresh), add_force_only (forces alone: the refresh costs the difference), add_dforce,
 // for every method, float and double, 1 and 2 threads. Counters: ns per tetrahedron (add_force) or
 // per edge (add_dforce). TetrahedronFEMForceField's add_force and add_force_only on the same bent
-// beams, for each of its methods ("tetrahedron_fem_add_force/40x10x10/polar/double/threads:1").
+// beams, for each of its methods ("tetrahedron_fem_add_force/40x10x10/polar/double/threads:1"), and
+// its add_dforce (the assembled product, the same for every method) on them and on the 5×5×5-point
+// cube of SOFA's TriangleModel.scn ("tetrahedron_fem_add_dforce/5x5x5/double/threads:1").
 //   build-release/bench/fastcorot_bench_kernels --benchmark_filter='qr/double/.*threads:1'
 #include "beams.h"
 
@@ -46,17 +48,20 @@ void run_tetrahedron_fem(benchmark::State& state, const Beam& beam, TetrahedronF
   TetrahedronFEMForceField<Real> field(b.mesh, b.rest, parameters);
   field.set_threads(threads);
   std::vector<Vec3<Real>> out = b.out;
+  if (kernel == Kernel::add_dforce) field.add_force(b.x, out);
   for (auto _ : state) {
-    if (kernel == Kernel::add_force) {
-      field.add_force(b.x, out);
-    } else {
-      field.add_force_only(b.x, out);
+    switch (kernel) {
+      case Kernel::add_force: field.add_force(b.x, out); break;
+      case Kernel::add_force_only: field.add_force_only(b.x, out); break;
+      case Kernel::add_dforce: field.add_dforce(b.dx, out, Real(-0.01)); break;
     }
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
-  state.counters["per_tet"] = benchmark::Counter(static_cast<double>(b.mesh->num_tetrahedra()),
-                                                 benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  const bool per_edge = kernel == Kernel::add_dforce;
+  state.counters[per_edge ? "per_edge" : "per_tet"] =
+      benchmark::Counter(static_cast<double>(per_edge ? b.mesh->num_edges() : b.mesh->num_tetrahedra()),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 template <class Real>
@@ -74,6 +79,17 @@ void register_tetrahedron_fem(const char* real_name) {
           })->Unit(benchmark::kMicrosecond)->UseRealTime();
         }
       }
+    }
+  }
+  std::vector<Beam> product_beams = beams();
+  product_beams.push_back({"5x5x5", {5, 5, 5}});
+  for (const Beam& beam : product_beams) {
+    for (const int threads : {1, 2}) {
+      const std::string name =
+          "tetrahedron_fem_add_dforce/" + beam.name + "/" + real_name + "/threads:" + std::to_string(threads);
+      benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& state) {
+        run_tetrahedron_fem<Real>(state, beam, TetrahedronFEMMethod::large, threads, Kernel::add_dforce);
+      })->Unit(benchmark::kMicrosecond)->UseRealTime();
     }
   }
 }

@@ -273,15 +273,23 @@ void TetrahedronFEMForceField<Real>::schedule() {
     }
     for (int k = 0; k < 3; ++k) c.material[k] = element.material[k];
   }
-  element_entries_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
-  element_edge_along_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
-  for (Index t = 0; t < mesh_->num_tetrahedra(); ++t) {
+  // Each mesh edge's elements in schedule order, the order in which their blocks are summed.
+  const auto edge_count = static_cast<std::size_t>(mesh_->num_edges());
+  edge_incidence_begin_.assign(edge_count + 1, 0);
+  for (const Index t : schedule_.order) {
+    for (const Index e : mesh_->edges_of_tetrahedron(t)) ++edge_incidence_begin_[static_cast<std::size_t>(e) + 1];
+  }
+  for (std::size_t e = 0; e < edge_count; ++e) edge_incidence_begin_[e + 1] += edge_incidence_begin_[e];
+  edge_incidences_.resize(static_cast<std::size_t>(edge_incidence_begin_[edge_count]));
+  std::vector<Index> filled(edge_incidence_begin_.begin(), edge_incidence_begin_.end() - 1);
+  for (const Index t : schedule_.order) {
     const auto& edges = mesh_->edges_of_tetrahedron(t);
     for (std::size_t e = 0; e < 6; ++e) {
-      element_entries_[static_cast<std::size_t>(t)][e] = entry_of_edge[static_cast<std::size_t>(edges[e])][0];
-      element_edge_along_[static_cast<std::size_t>(t)][e] = mesh_->edge_follows_mesh_edge(t, static_cast<int>(e)) ? 1 : -1;
+      edge_incidences_[static_cast<std::size_t>(filled[static_cast<std::size_t>(edges[e])]++)] = {
+          t, static_cast<signed char>(e), static_cast<signed char>(mesh_->edge_follows_mesh_edge(t, static_cast<int>(e)) ? 1 : -1)};
     }
   }
+  element_stiffness_.resize(static_cast<std::size_t>(mesh_->num_tetrahedra()));
 }
 
 template <class Real>
@@ -482,9 +490,10 @@ void TetrahedronFEMForceField<Real>::accumulate_batch(Index first, Index count, 
     }
     if constexpr (kLinearise) {
       elements_[static_cast<std::size_t>(t)].rotation = frames[l].transpose();
-      std::array<Vec3<Real>, 4> w;
-      for (std::size_t i = 0; i < 4; ++i) w[i] = Vec3<Real>(b.w[i][0][l], b.w[i][1][l], b.w[i][2][l]);
-      add_element_blocks(t, w, b.k[1][l], b.k[2][l]);
+      ElementStiffness& stiffness = element_stiffness_[static_cast<std::size_t>(t)];
+      for (std::size_t i = 0; i < 4; ++i) stiffness.w[i] = Vec3<Real>(b.w[i][0][l], b.w[i][1][l], b.w[i][2][l]);
+      stiffness.k1 = b.k[1][l];
+      stiffness.k2 = b.k[2][l];
     }
   }
 }
@@ -516,66 +525,17 @@ void TetrahedronFEMForceField<Real>::accumulate_element(Index t, const TetPoints
 }
 
 template <class Real>
-void TetrahedronFEMForceField<Real>::add_element_blocks(Index t) {
-  // Block (k, l) of R J K J^T R^T is k1 w_k w_l^T + k2 w_l w_k^T + k2 (w_k . w_l) I with w = R g (the
-  // gradients in the world) and K's values k: J K J^T's blocks in the element's frame, rotated.
-  // (Their diagonal also carries (k0 - k1 - 2 k2) w_k∘w_l in the frame, zero for isotropic K up to
-  // rounding; it is left out.)
+void TetrahedronFEMForceField<Real>::store_element_stiffness(Index t) {
+  // w = R g (the gradients in the world) from the element's rotation, as the kernels make it.
   const Element& element = elements_[static_cast<std::size_t>(t)];
-  std::array<Vec3<Real>, 4> w;
+  ElementStiffness& stiffness = element_stiffness_[static_cast<std::size_t>(t)];
   for (std::size_t i = 0; i < 4; ++i) {
     const Vec3<Real>& g = element.gradient[i];
     const Mat3<Real>& r = element.rotation;
-    for (int c = 0; c < 3; ++c) w[i][c] = r(c, 0) * g[0] + r(c, 1) * g[1] + r(c, 2) * g[2];  // as the kernels
+    for (int c = 0; c < 3; ++c) stiffness.w[i][c] = r(c, 0) * g[0] + r(c, 1) * g[1] + r(c, 2) * g[2];
   }
-  add_element_blocks(t, w, element.material[1], element.material[2]);
-}
-
-template <class Real>
-void TetrahedronFEMForceField<Real>::add_element_blocks(Index t, const std::array<Vec3<Real>, 4>& w, Real k1, Real k2) {
-  // Column c of block (k, l) is k1 w_k w_l[c] + k2 w_l w_k[c], plus the diagonal term in lane c. Each
-  // edge's block is accumulated in the orientation of its mesh edge (u, v): for a local edge running
-  // against it, column c of the transpose, k1 w_l w_k[c] + k2 w_k w_l[c] with each product's factors
-  // swapped (the same bits as the transpose entry by entry). The three columns are added to the
-  // block's three padded columns, a packet each (their spare lanes stay zero).
-  using P = Packed<Real>;
-  const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
-  const auto add_columns = [](const P& c0, const P& c1, const P& c2, Real* to) {
-    store_packed(to, load_packed(to) + c0);
-    store_packed(to + 4, load_packed(to + 4) + c1);
-    store_packed(to + 8, load_packed(to + 8) + c2);
-  };
-  // The diagonal term is added to lane c of column c as a packet that is zero in the other lanes
-  // (adding a zero changes no sum that follows: each block starts from +0), not lane by lane.
-  const P unit[3] = {P{1, 0, 0, 0}, P{0, 1, 0, 0}, P{0, 0, 1, 0}};
-  // Each point's w as a packet, times k1 and times k2, and its k1 w, k2 w as numbers: made once for
-  // the six blocks (the same products as made per block).
-  P packed[4], packed_k1[4], packed_k2[4];
-  Real k1w[4][3], k2w[4][3];
-  for (std::size_t i = 0; i < 4; ++i) {
-    packed[i] = lanes(w[i]);
-    packed_k1[i] = lanes(k1 * w[i]);
-    packed_k2[i] = lanes(k2 * w[i]);
-    for (int c = 0; c < 3; ++c) k1w[i][c] = k1 * w[i][c], k2w[i][c] = k2 * w[i][c];
-  }
-  const auto add_block = [&](std::size_t k, std::size_t l, bool transposed, Real* to) {
-    const Vec3<Real>& a = w[k];
-    const Vec3<Real>& b = w[l];
-    const P diagonal = broadcast(k2 * a.dot(b));
-    P column[3];
-    if (!transposed) {
-      for (int c = 0; c < 3; ++c) column[c] = (packed_k1[k] * b[c] + packed_k2[l] * a[c]) + diagonal * unit[c];
-    } else {
-      for (int c = 0; c < 3; ++c) column[c] = (packed[l] * k1w[k][c] + packed[k] * k2w[l][c]) + diagonal * unit[c];
-    }
-    add_columns(column[0], column[1], column[2], to);
-  };
-  const auto& entries = element_entries_[static_cast<std::size_t>(t)];
-  const auto& along = element_edge_along_[static_cast<std::size_t>(t)];
-  for (std::size_t e = 0; e < 6; ++e) {
-    add_block(static_cast<std::size_t>(kTetrahedronEdges[e][0]), static_cast<std::size_t>(kTetrahedronEdges[e][1]),
-              along[e] < 0, row_blocks_[static_cast<std::size_t>(entries[e])].value);
-  }
+  stiffness.k1 = element.material[1];
+  stiffness.k2 = element.material[2];
 }
 
 template <class Real>
@@ -588,36 +548,65 @@ Mat3<Real> TetrahedronFEMForceField<Real>::PaddedBlock::matrix() const {
 }
 
 template <class Real>
-void TetrahedronFEMForceField<Real>::clear_blocks() {
-  for (const auto& entries : edge_entries_) row_blocks_[static_cast<std::size_t>(entries[0])] = PaddedBlock{};
-}
-
-template <class Real>
-void TetrahedronFEMForceField<Real>::complete_blocks() {
-  for (const auto& entries : edge_entries_) {
-    const Real* from = row_blocks_[static_cast<std::size_t>(entries[0])].value;
-    Real* to = row_blocks_[static_cast<std::size_t>(entries[1])].value;
-    for (int c = 0; c < 3; ++c) {
-      for (int r = 0; r < 3; ++r) to[4 * c + r] = from[4 * r + c];
-    }
-  }
+void TetrahedronFEMForceField<Real>::assemble_blocks() {
+  // Block (k, l) of an element, R J K J^T R^T's, is k1 w_k w_l^T + k2 w_l w_k^T + k2 (w_k . w_l) I
+  // (J K J^T's blocks in the element's frame, rotated; their diagonal also carries
+  // (k0 - k1 - 2 k2) w_k∘w_l in the frame, zero for isotropic K up to rounding, left out). Each mesh
+  // edge (u, v) sums its elements' blocks in schedule order, in registers: column c of block (u, v)
+  // is k1 w_k w_l[c] + k2 w_l w_k[c] plus the diagonal term in lane c for a local edge (k, l) along
+  // (u, v); for one against it, column c of the transpose, k1 w_l w_k[c] + k2 w_k w_l[c] with each
+  // product's factors swapped (the same bits as the transpose entry by entry). Then block (v, u) is
+  // its transpose, and each point's block (v, v) minus the sum of row v's other blocks: an
+  // element's gradients sum to zero, so that each of its block rows does (Σ_l K_kl = 0).
   using P = Packed<Real>;
-  for (std::size_t v = 0; v < point_blocks_.size(); ++v) {
-    P sum[3] = {P{}, P{}, P{}};
-    for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < static_cast<std::size_t>(row_begin_[v + 1]); ++entry) {
-      for (int c = 0; c < 3; ++c) sum[c] -= load_packed(row_blocks_[entry].value + 4 * c);
+  const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
+  // The diagonal term is added to lane c of column c as a packet that is zero in the other lanes.
+  const P unit[3] = {P{1, 0, 0, 0}, P{0, 1, 0, 0}, P{0, 0, 1, 0}};
+  parallel_ranges(threads_, edge_entries_.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t edge = begin; edge < end; ++edge) {
+      P sum[3] = {P{}, P{}, P{}};
+      const auto last = static_cast<std::size_t>(edge_incidence_begin_[edge + 1]);
+      for (auto i = static_cast<std::size_t>(edge_incidence_begin_[edge]); i < last; ++i) {
+        const EdgeIncidence& incidence = edge_incidences_[i];
+        const ElementStiffness& element = element_stiffness_[static_cast<std::size_t>(incidence.element)];
+        const Vec3<Real>& a = element.w[static_cast<std::size_t>(kTetrahedronEdges[static_cast<std::size_t>(incidence.local_edge)][0])];
+        const Vec3<Real>& b = element.w[static_cast<std::size_t>(kTetrahedronEdges[static_cast<std::size_t>(incidence.local_edge)][1])];
+        const Real k1 = element.k1, k2 = element.k2;
+        const P diagonal = broadcast(k2 * a.dot(b));
+        if (incidence.along > 0) {
+          const P k1a = lanes(k1 * a), k2b = lanes(k2 * b);
+          for (int c = 0; c < 3; ++c) sum[c] = sum[c] + ((k1a * b[c] + k2b * a[c]) + diagonal * unit[c]);
+        } else {
+          const P pa = lanes(a), pb = lanes(b);
+          for (int c = 0; c < 3; ++c) sum[c] = sum[c] + ((pb * (k1 * a[c]) + pa * (k2 * b[c])) + diagonal * unit[c]);
+        }
+      }
+      const auto& entries = edge_entries_[edge];
+      Real* block = row_blocks_[static_cast<std::size_t>(entries[0])].value;
+      for (int c = 0; c < 3; ++c) store_packed(block + 4 * c, sum[c]);
+      P rows[4];
+      lanes_to_points(sum[0], sum[1], sum[2], rows);
+      Real* mirror = row_blocks_[static_cast<std::size_t>(entries[1])].value;
+      for (int c = 0; c < 3; ++c) store_packed(mirror + 4 * c, rows[c]);
     }
-    for (int c = 0; c < 3; ++c) store_packed(point_blocks_[v].value + 4 * c, sum[c]);
-  }
+  });
+  parallel_ranges(threads_, point_blocks_.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      P sum[3] = {P{}, P{}, P{}};
+      for (auto entry = static_cast<std::size_t>(row_begin_[v]); entry < static_cast<std::size_t>(row_begin_[v + 1]); ++entry) {
+        for (int c = 0; c < 3; ++c) sum[c] -= load_packed(row_blocks_[entry].value + 4 * c);
+      }
+      for (int c = 0; c < 3; ++c) store_packed(point_blocks_[v].value + 4 * c, sum[c]);
+    }
+  });
 }
 
 template <class Real>
 void TetrahedronFEMForceField<Real>::refresh_blocks() {
-  clear_blocks();
   run_schedule(schedule_, threads_, [&](Index begin, Index end) {
-    for (Index i = begin; i < end; ++i) add_element_blocks(schedule_.order[static_cast<std::size_t>(i)]);
+    for (Index i = begin; i < end; ++i) store_element_stiffness(schedule_.order[static_cast<std::size_t>(i)]);
   });
-  complete_blocks();
+  assemble_blocks();
   stale_ = false;
 }
 
@@ -636,11 +625,9 @@ void TetrahedronFEMForceField<Real>::add_force(std::span<const Vec3<Real>> x, st
   check_size(x, "x");
   check_size(f, "f");
   PhaseTimer timer(times_ ? &times_->add_force : nullptr);
-  // Forces and the element's blocks in one pass over the schedule: each block still receives its
-  // contributions in the schedule's order, as refresh_blocks adds them.
-  clear_blocks();
+  // Forces and each element's w in one pass over the schedule, then the blocks.
   accumulate<true>(x, f);
-  complete_blocks();
+  assemble_blocks();
   last_positions_.assign(x.begin(), x.end());
   stale_ = false;
 }
@@ -664,7 +651,7 @@ void TetrahedronFEMForceField<Real>::accumulate(std::span<const Vec3<Real>> x, s
     }
     for_each_element(begin, end, x, [&](Index t, const TetPoints<Real>& p, const Mat3<Real>& frame) {
       accumulate_element<kLinearise>(t, p, frame, f);
-      if constexpr (kLinearise) add_element_blocks(t);
+      if constexpr (kLinearise) store_element_stiffness(t);
     });
   });
 }
@@ -808,7 +795,8 @@ std::vector<double> TetrahedronFEMForceField<Real>::model_values() const {
 template <class Real>
 std::size_t TetrahedronFEMForceField<Real>::memory_bytes() const {
   return elements_.capacity() * sizeof(Element) + (point_blocks_.capacity() + row_blocks_.capacity()) * sizeof(PaddedBlock) +
-         element_entries_.capacity() * (sizeof(std::array<Index, 6>) + sizeof(std::array<signed char, 6>)) +
+         edge_incidence_begin_.capacity() * sizeof(Index) + edge_incidences_.capacity() * sizeof(EdgeIncidence) +
+         element_stiffness_.capacity() * sizeof(ElementStiffness) +
          edge_entries_.capacity() * sizeof(std::array<Index, 2>) + batched_constants_.capacity() * sizeof(BatchedConstants) +
          last_positions_.capacity() * sizeof(Vec3<Real>) + schedule_.order.capacity() * sizeof(Index) +
          (von_mises_element_.capacity() + von_mises_node_.capacity()) * sizeof(Real) +

@@ -176,18 +176,10 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   // Forces of element t at its points p, in its frame, into f; with kLinearise also its rotation.
   template <bool kLinearise>
   void accumulate_element(Index t, const TetPoints<Real>& p, const Mat3<Real>& frame, std::span<Vec3<Real>> f);
-  // Adds element t's off-diagonal blocks of R J K J^T R^T, each edge's into the block in the row of
-  // the mesh edge's first point; `complete_blocks` then makes the others.
-  void add_element_blocks(Index t);
-  // The same with the gradients in the world w = R g and K's values k1, k2 given.
-  void add_element_blocks(Index t, const std::array<Vec3<Real>, 4>& w, Real k1, Real k2);
-  // Zeroes the edge blocks that add_element_blocks accumulates into.
-  void clear_blocks();
-  // Block (v, u) of each mesh edge (u, v) as the transpose of block (u, v) (the same bits as adding
-  // each element's transposed contribution in the same order), then each point's block (v, v) as
-  // minus the sum of row v's other blocks: an element's gradients sum to zero, so that each of its
-  // block rows does (Σ_l K_kl = k1 w_k (Σ w_l)ᵀ + k2 (Σ w_l) w_kᵀ + k2 (w_k · Σ w_l) I = 0).
-  void complete_blocks();
+  // Element t's w = R g (the gradients in the world) and K's values k1, k2, from its rotation.
+  void store_element_stiffness(Index t);
+  // The blocks of R J K J^T R^T from each element's w, k1, k2 (assemble_blocks in the .cpp).
+  void assemble_blocks();
   void refresh_blocks();
   void ensure_linearisation() const;
 
@@ -221,10 +213,21 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
     Real value[4];
   };
   mutable std::vector<PaddedPoint> padded_dx_;
-  // Per tetrahedron and local edge: the entry of its mesh edge's block (u, v) in row u, and its sign:
-  // +1 when the local edge (k, l) runs along (u, v), -1 against it.
-  std::vector<std::array<Index, 6>> element_entries_;
-  std::vector<std::array<signed char, 6>> element_edge_along_;
+  // What an element's stiffness blocks are made of at the last linearisation, per tetrahedron.
+  struct ElementStiffness {
+    std::array<Vec3<Real>, 4> w;
+    Real k1 = 0, k2 = 0;
+  };
+  std::vector<ElementStiffness> element_stiffness_;
+  // Per mesh edge e, its elements in schedule order: entries [edge_incidence_begin_[e],
+  // edge_incidence_begin_[e + 1]) of edge_incidences_, each with its local edge (k, l) and whether
+  // that runs along the mesh edge (u, v) (+1) or against it (-1).
+  struct EdgeIncidence {
+    Index element = 0;
+    signed char local_edge = 0, along = 1;
+  };
+  std::vector<Index> edge_incidence_begin_;
+  std::vector<EdgeIncidence> edge_incidences_;
   // Per mesh edge (u, v): the entries of block (u, v) in row u and of block (v, u) in row v.
   std::vector<std::array<Index, 2>> edge_entries_;
   std::vector<Vec3<Real>> last_positions_;
