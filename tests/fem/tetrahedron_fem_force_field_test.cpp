@@ -424,6 +424,40 @@ TEST(TetrahedronFEMForceField, BatchedKernelsMatchTheElementByElementPath) {
   }
 }
 
+TEST(TetrahedronFEMForceField, PerTetrahedronPoissonRatiosMatchTheTextbookElements) {
+  // Elements of two Poisson ratios (whose blocks are made whole per element, where one ratio lets
+  // them be factored): the textbook matrix of each half of the mesh, summed.
+  const Block block = make_block();
+  std::mt19937 rng(11);
+  const Points x = deformed(block.rest, rng, 0.05);
+  const auto n = static_cast<std::size_t>(block.mesh->num_tetrahedra());
+  std::vector<Tetrahedron> halves[2];
+  Field::Parameters parameters;
+  parameters.young_modulus = {1234};
+  parameters.poisson_ratio.clear();
+  for (std::size_t t = 0; t < n; ++t) {
+    parameters.poisson_ratio.push_back(t % 2 == 0 ? 0.25 : 0.4);
+    halves[t % 2].push_back(block.mesh->tetrahedron(static_cast<Index>(t)));
+  }
+  for (const TetrahedronFEMMethod method : {TetrahedronFEMMethod::large, TetrahedronFEMMethod::polar}) {
+    parameters.method = method;
+    Field field(block.mesh, block.rest, parameters);
+    Points f(x.size(), Vec3<double>::Zero());
+    field.add_force(x, f);
+    const auto points = block.mesh->num_points();
+    const ReferenceLinearisation even = reference(TetMesh(points, halves[0]), block.rest, x, 1234, 0.25, method);
+    const ReferenceLinearisation odd = reference(TetMesh(points, halves[1]), block.rest, x, 1234, 0.4, method);
+    EXPECT_LT(relative_difference(flatten(f), even.force + odd.force), 1e-10);
+    const Eigen::MatrixXd expected = even.df_dx + odd.df_dx;
+    const Eigen::MatrixXd assembled(field.stiffness_matrix(1.0));
+    EXPECT_LT((assembled - expected).norm() / expected.norm(), 1e-10);
+    const Points dx = perturbed(Points(x.size(), Vec3<double>::Zero()), 1.0, rng);
+    Points df(x.size(), Vec3<double>::Zero());
+    field.add_dforce(dx, df, 1.0);
+    EXPECT_LT(relative_difference(flatten(df), assembled * flatten(dx)), 1e-12);
+  }
+}
+
 TEST(TetrahedronFEMForceField, PerTetrahedronYoungModulusAndLocalFactors) {
   const Block block = make_block();
   const auto n = static_cast<std::size_t>(block.mesh->num_tetrahedra());
