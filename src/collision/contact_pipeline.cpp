@@ -101,11 +101,15 @@ std::vector<typename ContactPipeline<Real>::Output> ContactPipeline<Real>::narro
   std::vector<std::vector<Output>> found(chunks.count);
   run_tasks(threads_, static_cast<int>(chunks.count), [&](int c) {
     const auto k = static_cast<std::size_t>(c);
-    for (std::size_t i = chunks.begin(k); i < chunks.end(k); ++i) {
-      const auto [e1, e2] = candidates[i];
-      if (one_node && (!can_collide_elements<Real>(models_, pair.first, e1, pair.second, e2) || elements_touch(m1, e1, m2, e2))) continue;
-      intersect_elements(parameters_, m1, e1, m2, e2, d, found[k]);
+    std::span<const std::pair<Index, Index>> chunk(candidates.data() + chunks.begin(k), chunks.end(k) - chunks.begin(k));
+    std::vector<std::pair<Index, Index>> kept;
+    if (one_node) {  // elements of one node: the pairs SOFA's canCollideWith lets through
+      for (const auto& [e1, e2] : chunk) {
+        if (can_collide_elements<Real>(models_, pair.first, e1, pair.second, e2) && !elements_touch(m1, e1, m2, e2)) kept.emplace_back(e1, e2);
+      }
+      chunk = kept;
     }
+    intersect_elements(parameters_, m1, m2, chunk, d, found[k]);
   });
   if (found.size() == 1) return std::move(found.front());
   std::vector<Output> outputs;

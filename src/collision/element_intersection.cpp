@@ -160,9 +160,12 @@ void local_min_distance(const IntersectionSettings<Real>& s, const Elements<Real
   if (found) outputs.push_back({e1, e2, id, *found});
 }
 
+// NewProximityIntersection's rules over a list of element pairs of the same two models: what the
+// models share (the pair's settings, the rule for their kinds) once for the list.
 template <class Real>
-void new_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a, Index e1, const Elements<Real>& b, Index e2,
-                   const ProximityDistances<Real>& d, std::vector<ElementOutput<Real>>& outputs) {
+void new_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a, const Elements<Real>& b,
+                   std::span<const std::pair<Index, Index>> pairs, const ProximityDistances<Real>& d,
+                   std::vector<ElementOutput<Real>>& outputs) {
   using E = CollisionElements;
   NewProximityPair<Real> pair;
   pair.distances = d;
@@ -170,28 +173,34 @@ void new_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a,
   pair.size2 = b.model.size();
   pair.same_model = &a.model == &b.model;
   pair.use_line_line = s.use_line_line;
-  thread_local std::vector<DetectionOutput<Real>> found;
-  found.clear();
+  std::vector<DetectionOutput<Real>> found;
+  const auto each = [&](auto first, auto second) {
+    for (const auto& [e1, e2] : pairs) {
+      found.clear();
+      new_proximity_intersection(first(e1), second(e2), pair, found);
+      for (const auto& o : found) outputs.push_back({e1, e2, o.id, static_cast<const ProximityOutput<Real>&>(o)});
+    }
+  };
+  const auto triangle = [&](const Elements<Real>& m) { return [&m](Index e) { return m.triangle_element(e); }; };
+  const auto line = [&](const Elements<Real>& m) { return [&m](Index e) { return m.line_element(e); }; };
+  const auto sphere = [&](const Elements<Real>& m) { return [&m](Index e) { return m.sphere_element(e); }; };
+  const auto point = [&](const Elements<Real>& m) { return [&m](Index e) { return m.point_element(e); }; };
   const E k1 = a.model.kind, k2 = b.model.kind;
   if (k1 == E::triangles) {
-    const auto t = a.triangle_element(e1);
-    if (k2 == E::triangles) new_proximity_intersection(t, b.triangle_element(e2), pair, found);
-    if (k2 == E::lines) new_proximity_intersection(t, b.line_element(e2), pair, found);
-    if (k2 == E::spheres) new_proximity_intersection(t, b.sphere_element(e2), pair, found);
-    if (k2 == E::points) new_proximity_intersection(t, b.point_element(e2), pair, found);
+    if (k2 == E::triangles) each(triangle(a), triangle(b));
+    if (k2 == E::lines) each(triangle(a), line(b));
+    if (k2 == E::spheres) each(triangle(a), sphere(b));
+    if (k2 == E::points) each(triangle(a), point(b));
   } else if (k1 == E::lines) {
-    const auto l = a.line_element(e1);
-    if (k2 == E::lines) new_proximity_intersection(l, b.line_element(e2), pair, found);
-    if (k2 == E::spheres) new_proximity_intersection(l, b.sphere_element(e2), pair, found);
-    if (k2 == E::points) new_proximity_intersection(l, b.point_element(e2), pair, found);
+    if (k2 == E::lines) each(line(a), line(b));
+    if (k2 == E::spheres) each(line(a), sphere(b));
+    if (k2 == E::points) each(line(a), point(b));
   } else if (k1 == E::spheres) {
-    const auto sphere = a.sphere_element(e1);
-    if (k2 == E::spheres) new_proximity_intersection(sphere, b.sphere_element(e2), pair, found);
-    if (k2 == E::points) new_proximity_intersection(sphere, b.point_element(e2), pair, found);
+    if (k2 == E::spheres) each(sphere(a), sphere(b));
+    if (k2 == E::points) each(sphere(a), point(b));
   } else {
-    new_proximity_intersection(a.point_element(e1), b.point_element(e2), pair, found);
+    each(point(a), point(b));
   }
-  for (const auto& o : found) outputs.push_back({e1, e2, o.id, static_cast<const ProximityOutput<Real>&>(o)});
 }
 
 // SOFA's DiscreteIntersection::computeIntersectionSphere for two Vec3 spheres: overlapping (the
@@ -226,14 +235,21 @@ void discrete(const Elements<Real>& a, Index e1, const Elements<Real>& b, Index 
 }  // namespace
 
 template <class Real>
-void intersect_elements(const IntersectionSettings<Real>& s, const CollisionModel<Real>& m1, Index e1, const CollisionModel<Real>& m2,
-                        Index e2, const ProximityDistances<Real>& d, std::vector<ElementOutput<Real>>& outputs) {
+void intersect_elements(const IntersectionSettings<Real>& s, const CollisionModel<Real>& m1, const CollisionModel<Real>& m2,
+                        std::span<const std::pair<Index, Index>> pairs, const ProximityDistances<Real>& d,
+                        std::vector<ElementOutput<Real>>& outputs) {
   const Elements<Real> a(m1), b(m2);
   switch (s.method) {
-    case IntersectionMethod::min_proximity: min_proximity(s, a, e1, b, e2, d, outputs); break;
-    case IntersectionMethod::local_min_distance: local_min_distance(s, a, e1, b, e2, d, outputs); break;
-    case IntersectionMethod::new_proximity: new_proximity(s, a, e1, b, e2, d, outputs); break;
-    case IntersectionMethod::discrete: discrete(a, e1, b, e2, outputs); break;
+    case IntersectionMethod::min_proximity:
+      for (const auto& [e1, e2] : pairs) min_proximity(s, a, e1, b, e2, d, outputs);
+      break;
+    case IntersectionMethod::local_min_distance:
+      for (const auto& [e1, e2] : pairs) local_min_distance(s, a, e1, b, e2, d, outputs);
+      break;
+    case IntersectionMethod::new_proximity: new_proximity(s, a, b, pairs, d, outputs); break;
+    case IntersectionMethod::discrete:
+      for (const auto& [e1, e2] : pairs) discrete(a, e1, b, e2, outputs);
+      break;
   }
 }
 
@@ -241,7 +257,8 @@ template bool has_rule(const IntersectionSettings<double>&, CollisionElements, C
 template bool has_rule(const IntersectionSettings<double>&, const CollisionModel<double>&, const CollisionModel<double>&);
 template ProximityDistances<double> pair_distances(const IntersectionSettings<double>&, const CollisionModel<double>&,
                                                    const CollisionModel<double>&);
-template void intersect_elements(const IntersectionSettings<double>&, const CollisionModel<double>&, Index, const CollisionModel<double>&,
-                                 Index, const ProximityDistances<double>&, std::vector<ElementOutput<double>>&);
+template void intersect_elements(const IntersectionSettings<double>&, const CollisionModel<double>&, const CollisionModel<double>&,
+                                 std::span<const std::pair<Index, Index>>, const ProximityDistances<double>&,
+                                 std::vector<ElementOutput<double>>&);
 
 }  // namespace fastcorot

@@ -13,6 +13,8 @@
 #include "fastcorot/collision/local_min_distance.h"
 
 #include <cstdint>
+#include <span>
+#include <utility>
 #include <vector>
 
 namespace fastcorot {
@@ -56,10 +58,11 @@ template <class Real>
 ProximityDistances<Real> pair_distances(const IntersectionSettings<Real>& settings, const CollisionModel<Real>& m1,
                                         const CollisionModel<Real>& m2);
 
-// Appends the outputs of element e1 of m1 against element e2 of m2 (m1's kind of rank ≥ m2's).
+// Appends the outputs of each pair (e1, e2), element e1 of m1 against element e2 of m2 (m1's kind of
+// rank ≥ m2's), pair after pair.
 template <class Real>
-void intersect_elements(const IntersectionSettings<Real>& settings, const CollisionModel<Real>& m1, Index e1,
-                        const CollisionModel<Real>& m2, Index e2, const ProximityDistances<Real>& d,
+void intersect_elements(const IntersectionSettings<Real>& settings, const CollisionModel<Real>& m1, const CollisionModel<Real>& m2,
+                        std::span<const std::pair<Index, Index>> pairs, const ProximityDistances<Real>& d,
                         std::vector<ElementOutput<Real>>& outputs);
 
 }  // namespace fastcorot
