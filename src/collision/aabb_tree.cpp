@@ -1,6 +1,7 @@
 #include "fastcorot/collision/aabb_tree.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/packed.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,14 +16,6 @@ constexpr Index kLeafSize = 4;
 constexpr Index kScannedLeaf = 8;
 // SOFA's CollisionPipeline depth (its default, 6): the levels of cells below the root.
 constexpr int kMaxDepth = 6;
-
-// Aabb::overlaps as one expression of bitwise ands (the same result), which compiles without
-// branches: for tests whose outcome a branch predictor cannot guess.
-template <class Real>
-bool overlaps_without_branches(const Aabb<Real>& a, const Aabb<Real>& b, Real margin) {
-  return (a.min.x() <= b.max.x() + margin) & (a.min.y() <= b.max.y() + margin) & (a.min.z() <= b.max.z() + margin) &
-         (b.min.x() <= a.max.x() + margin) & (b.min.y() <= a.max.y() + margin) & (b.min.z() <= a.max.z() + margin);
-}
 
 }  // namespace
 
@@ -80,6 +73,11 @@ void AabbTree<Real>::build(std::span<const Aabb<Real>> boxes) {
 
 template <class Real>
 void AabbTree<Real>::index_leaves() {
+  for (std::size_t r = 0; r < 6; ++r) {
+    auto& row = rows_[r];
+    row.assign(boxes_.size() + 3, Real(0));
+    for (std::size_t k = 0; k < boxes_.size(); ++k) row[k] = r < 3 ? boxes_[k].min[static_cast<Index>(r)] : boxes_[k].max[static_cast<Index>(r) - 3];
+  }
   by_x_.resize(order_.size());
   leaf_width_.assign(nodes_.size(), Real(0));
   for (std::size_t n = 0; n < nodes_.size(); ++n) {
@@ -219,18 +217,31 @@ void AabbTree<Real>::pairs(const AabbTree& a, const AabbTree& b, Real margin, st
       continue;
     }
     if (!ra.cells && !rb.cells) {
-      // Two element ranges (small leaves, or one element against a leaf): every pair tested
-      // without a branch on the outcome, about as often true as false; each pair is written
-      // and kept when its boxes overlap.
-      const Aabb<Real>* boxes_b = b.boxes_.data() + rb.first;
+      // Two element ranges (small leaves, or one element against a leaf): each box of ra against
+      // rb's four at a time (Aabb::overlaps' comparisons, lane by lane), without a
+      // branch on the outcome, about as often true as false; each pair is written and kept when
+      // its boxes overlap, in rb's order.
+      using P = Packed<Real>;
+      const auto first = static_cast<std::size_t>(rb.first);
+      const P m = broadcast(margin);
       for (Index i = 0; i < ra.count; ++i) {
         const Aabb<Real>& box_a = a.boxes_[static_cast<std::size_t>(ra.first + i)];
         const Index ea = a.order_[static_cast<std::size_t>(ra.first + i)];
+        const P a_max[3] = {broadcast(box_a.max.x()) + m, broadcast(box_a.max.y()) + m, broadcast(box_a.max.z()) + m};
         std::size_t kept = out.size();
         out.resize(kept + static_cast<std::size_t>(rb.count));
-        for (Index j = 0; j < rb.count; ++j) {
-          out[kept] = {ea, b.order_[static_cast<std::size_t>(rb.first + j)]};
-          kept += overlaps_without_branches(box_a, boxes_b[j], margin) ? 1 : 0;
+        for (Index j = 0; j < rb.count; j += 4) {
+          const auto at = first + static_cast<std::size_t>(j);
+          auto overlap = broadcast(box_a.min.x()) <= load_packed(b.rows_[3].data() + at) + m;
+          overlap &= broadcast(box_a.min.y()) <= load_packed(b.rows_[4].data() + at) + m;
+          overlap &= broadcast(box_a.min.z()) <= load_packed(b.rows_[5].data() + at) + m;
+          overlap &= load_packed(b.rows_[0].data() + at) <= a_max[0];
+          overlap &= load_packed(b.rows_[1].data() + at) <= a_max[1];
+          overlap &= load_packed(b.rows_[2].data() + at) <= a_max[2];
+          for (Index l = 0; l < 4 && j + l < rb.count; ++l) {
+            out[kept] = {ea, b.order_[at + static_cast<std::size_t>(l)]};
+            kept += overlap[l] ? 1 : 0;
+          }
         }
         out.resize(kept);
       }

@@ -12,6 +12,7 @@
 
 #include "fastcorot/core/types.h"
 
+#include <array>
 #include <limits>
 #include <span>
 #include <utility>
@@ -70,7 +71,7 @@ class AabbTree {
   // Beyond SOFA's cost (not its results): each leaf's positions sorted by their boxes' min x, and
   // its widest box along x, so that a leaf's elements overlapping a box are found without testing
   // all of them (SOFA's depth limit leaves about n / 64 elements in a leaf). Leaves of eight
-  // elements or fewer are scanned whole instead, and not indexed.
+  // elements or fewer are scanned whole instead, and not indexed. Also fills rows_.
   void index_leaves();
   // Positions p in leaf `node` (order_[p]) whose boxes overlap `box` within `margin`, appended to
   // `out` in increasing p.
@@ -82,6 +83,9 @@ class AabbTree {
   std::span<const Aabb<Real>> building_;  // during build only: the boxes by element
   std::vector<Index> by_x_;      // per leaf segment [first, first + count): positions sorted by min x
   std::vector<Real> leaf_width_;  // per node: its leaf's widest box along x (0 for inner nodes)
+  // boxes_ again as six rows (min x, y, z, max x, y, z; three spare values at the end of each), so
+  // that two scanned leaves are checked four boxes at a time.
+  std::array<std::vector<Real>, 6> rows_;
 };
 
 }  // namespace fastcorot
