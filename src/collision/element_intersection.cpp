@@ -186,8 +186,40 @@ void new_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a,
   const auto sphere = [&](const Elements<Real>& m) { return [&m](Index e) { return m.sphere_element(e); }; };
   const auto point = [&](const Elements<Real>& m) { return [&m](Index e) { return m.point_element(e); }; };
   const E k1 = a.model.kind, k2 = b.model.kind;
+  if (k1 == E::triangles && k2 == E::triangles) {
+    // Each triangle's element and plane made once for the list, when the list first meets it.
+    struct Made {
+      TriangleElement<Real> element;
+      TrianglePlane<Real> plane;
+    };
+    thread_local std::vector<Made> made_a, made_b;
+    thread_local std::vector<char> done_a, done_b;
+    const auto prepare = [](std::vector<Made>& made, std::vector<char>& done, const Elements<Real>& m) {
+      made.resize(m.model.size());
+      done.assign(m.model.size(), 0);
+    };
+    prepare(made_a, done_a, a);
+    prepare(made_b, done_b, b);
+    const auto get = [](std::vector<Made>& made, std::vector<char>& done, const Elements<Real>& m, Index e) -> const Made& {
+      const auto i = static_cast<std::size_t>(e);
+      if (!done[i]) {
+        made[i].element = m.triangle_element(e);
+        const auto& t = made[i].element;
+        made[i].plane = TrianglePlane<Real>(t.p1, t.p2, t.p3);
+        done[i] = 1;
+      }
+      return made[i];
+    };
+    for (const auto& [e1, e2] : pairs) {
+      const Made& t1 = get(made_a, done_a, a, e1);
+      const Made& t2 = get(made_b, done_b, b, e2);
+      found.clear();
+      new_proximity_intersection(t1.element, t1.plane, t2.element, t2.plane, pair, found);
+      for (const auto& o : found) outputs.push_back({e1, e2, o.id, static_cast<const ProximityOutput<Real>&>(o)});
+    }
+    return;
+  }
   if (k1 == E::triangles) {
-    if (k2 == E::triangles) each(triangle(a), triangle(b));
     if (k2 == E::lines) each(triangle(a), line(b));
     if (k2 == E::spheres) each(triangle(a), sphere(b));
     if (k2 == E::points) each(triangle(a), point(b));

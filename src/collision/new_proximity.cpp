@@ -177,23 +177,8 @@ std::optional<ProximityOutput<Real>> new_proximity_line_line(const Vec3<Real>& a
 
 namespace {
 
-// What the triangle rule computes from the triangle alone, made once for the points tested against it.
 template <class Real>
-struct TriangleSetup {
-  Vec3<Real> a, ab, ac, normal, low, high;
-  Real a00, a11, a01, det, normal2;
-  explicit TriangleSetup(const Vec3<Real>& pa, const Vec3<Real>& b, const Vec3<Real>& c)
-      : a(pa), ab(b - pa), ac(c - pa), normal(ab.cross(ac)), low(pa.cwiseMin(b).cwiseMin(c)), high(pa.cwiseMax(b).cwiseMax(c)) {
-    a00 = ab.dot(ab);
-    a11 = ac.dot(ac);
-    a01 = ab.dot(ac);
-    det = a00 * a11 - a01 * a01;
-    normal2 = normal.squaredNorm();
-  }
-};
-
-template <class Real>
-std::optional<ProximityOutput<Real>> triangle_point(const TriangleSetup<Real>& t, const Vec3<Real>& q, int flags,
+std::optional<ProximityOutput<Real>> triangle_point(const TrianglePlane<Real>& t, const Vec3<Real>& q, int flags,
                                                     const ProximityDistances<Real>& d, bool swap_elements) {
   const Vec3<Real>&a = t.a, &ab = t.ab, &ac = t.ac;
   const Real a00 = t.a00, a11 = t.a11, a01 = t.a01, det = t.det;
@@ -259,7 +244,7 @@ template <class Real>
 std::optional<ProximityOutput<Real>> new_proximity_triangle_point(const Vec3<Real>& a, const Vec3<Real>& b, const Vec3<Real>& c,
                                                                   const Vec3<Real>& q, int flags, const ProximityDistances<Real>& d,
                                                                   bool swap_elements) {
-  return triangle_point(TriangleSetup<Real>(a, b, c), q, flags, d, swap_elements);
+  return triangle_point(TrianglePlane<Real>(a, b, c), q, flags, d, swap_elements);
 }
 
 template <class Real>
@@ -408,9 +393,12 @@ int new_proximity_intersection(const TriangleElement<Real>& e1, const LineElemen
   return n;
 }
 
-template <class Real>
-int new_proximity_intersection(const TriangleElement<Real>& e1, const TriangleElement<Real>& e2, const NewProximityPair<Real>& pair,
-                               std::vector<DetectionOutput<Real>>& outputs) {
+namespace {
+
+// Triangle–Triangle with triangle 2's plane and a way to triangle 1's (made only when needed).
+template <class Real, class Plane1>
+int triangle_triangle(const TriangleElement<Real>& e1, const Plane1& plane1, const TriangleElement<Real>& e2,
+                      const TrianglePlane<Real>& t2, const NewProximityPair<Real>& pair, std::vector<DetectionOutput<Real>>& outputs) {
   if (pair.same_model) {
     for (const Index v : e1.vertices)
       for (const Index w : e2.vertices)
@@ -425,12 +413,11 @@ int new_proximity_intersection(const TriangleElement<Real>& e1, const TriangleEl
   int n = 0;
   // Triangle 1's vertices against triangle 2, swapped so that they stay point[0]; SOFA tests the
   // first one whatever its flag.
-  const TriangleSetup<Real> t2(*q[0], *q[1], *q[2]);
   for (int k = 0; k < 3; ++k)
     if (k == 0 || (f1 & (TriangleFlag::P1 << k)))
       n += append(triangle_point(t2, *p[k], f2, d, true), id1 + k, outputs);
   if (f2 & (TriangleFlag::P1 | TriangleFlag::P2 | TriangleFlag::P3)) {
-    const TriangleSetup<Real> t1(*p[0], *p[1], *p[2]);
+    const TrianglePlane<Real>& t1 = plane1();
     for (int k = 0; k < 3; ++k)
       if (f2 & (TriangleFlag::P1 << k))
         n += append(triangle_point(t1, *q[k], f1, d, false), id2 + k, outputs);
@@ -446,6 +433,23 @@ int new_proximity_intersection(const TriangleElement<Real>& e1, const TriangleEl
     }
   }
   return n;
+}
+
+}  // namespace
+
+template <class Real>
+int new_proximity_intersection(const TriangleElement<Real>& e1, const TriangleElement<Real>& e2, const NewProximityPair<Real>& pair,
+                               std::vector<DetectionOutput<Real>>& outputs) {
+  TrianglePlane<Real> t1;
+  const auto plane1 = [&]() -> const TrianglePlane<Real>& { return t1 = TrianglePlane<Real>(e1.p1, e1.p2, e1.p3); };
+  return triangle_triangle(e1, plane1, e2, TrianglePlane<Real>(e2.p1, e2.p2, e2.p3), pair, outputs);
+}
+
+template <class Real>
+int new_proximity_intersection(const TriangleElement<Real>& e1, const TrianglePlane<Real>& plane1, const TriangleElement<Real>& e2,
+                               const TrianglePlane<Real>& plane2, const NewProximityPair<Real>& pair,
+                               std::vector<DetectionOutput<Real>>& outputs) {
+  return triangle_triangle(e1, [&]() -> const TrianglePlane<Real>& { return plane1; }, e2, plane2, pair, outputs);
 }
 
 template <class Real>
@@ -499,6 +503,9 @@ int new_proximity_intersection(const TriangleElement<Real>& e1, const SphereElem
   FASTCOROT_NEW_PROXIMITY_PAIR(Real, TriangleElement, PointElement)                                                                 \
   FASTCOROT_NEW_PROXIMITY_PAIR(Real, TriangleElement, LineElement)                                                                  \
   FASTCOROT_NEW_PROXIMITY_PAIR(Real, TriangleElement, TriangleElement)                                                              \
+  template int new_proximity_intersection(const TriangleElement<Real>&, const TrianglePlane<Real>&, const TriangleElement<Real>&,    \
+                                          const TrianglePlane<Real>&, const NewProximityPair<Real>&,                                \
+                                          std::vector<DetectionOutput<Real>>&);                                                     \
   FASTCOROT_NEW_PROXIMITY_PAIR(Real, SphereElement, SphereElement)                                                                  \
   FASTCOROT_NEW_PROXIMITY_PAIR(Real, SphereElement, PointElement)                                                                   \
   FASTCOROT_NEW_PROXIMITY_PAIR(Real, LineElement, SphereElement)                                                                    \

@@ -142,6 +142,23 @@ struct SphereElement {
   Index index = 0;
 };
 
+// What the triangle rules compute from a triangle alone (its box, edges and plane), made once for
+// all the points tested against it: per element pair, or once per triangle for a list of pairs.
+template <class Real>
+struct TrianglePlane {
+  Vec3<Real> a, ab, ac, normal, low, high;
+  Real a00 = 0, a11 = 0, a01 = 0, det = 0, normal2 = 0;
+  TrianglePlane() = default;
+  TrianglePlane(const Vec3<Real>& pa, const Vec3<Real>& b, const Vec3<Real>& c)
+      : a(pa), ab(b - pa), ac(c - pa), normal(ab.cross(ac)), low(pa.cwiseMin(b).cwiseMin(c)), high(pa.cwiseMax(b).cwiseMax(c)) {
+    a00 = ab.dot(ab);
+    a11 = ac.dot(ac);
+    a01 = ab.dot(ac);
+    det = a00 * a11 - a01 * a01;
+    normal2 = normal.squaredNorm();
+  }
+};
+
 // What a pair rule needs of the two models.
 template <class Real>
 struct NewProximityPair {
@@ -181,6 +198,11 @@ int new_proximity_intersection(const TriangleElement<Real>& e1, const LineElemen
                                std::vector<DetectionOutput<Real>>& outputs);
 template <class Real>
 int new_proximity_intersection(const TriangleElement<Real>& e1, const TriangleElement<Real>& e2, const NewProximityPair<Real>& pair,
+                               std::vector<DetectionOutput<Real>>& outputs);
+// Triangle–Triangle with both triangles' planes made beforehand (the same outputs).
+template <class Real>
+int new_proximity_intersection(const TriangleElement<Real>& e1, const TrianglePlane<Real>& plane1, const TriangleElement<Real>& e2,
+                               const TrianglePlane<Real>& plane2, const NewProximityPair<Real>& pair,
                                std::vector<DetectionOutput<Real>>& outputs);
 template <class Real>
 int new_proximity_intersection(const SphereElement<Real>& e1, const SphereElement<Real>& e2, const NewProximityPair<Real>& pair,
