@@ -473,6 +473,34 @@ TEST(NewProximityPairs, TriangleTriangleListsVerticesBothWaysWithSofasIds) {
   EXPECT_EQ(new_proximity_intersection(flat1, flat, pair, out), 0);
 }
 
+TEST(NewProximityPairs, TriangleTriangleWithPlanesMadeBeforehandGivesTheSameOutputs) {
+  // Random triangle pairs close to one another, every flag combination: the rule that takes both
+  // triangles' planes (made once per triangle for a list of pairs) lists the same outputs, bit for bit.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto random_point = [&] { return V(u(rng), u(rng), u(rng)); };
+  int listed = 0;
+  for (int trial = 0; trial < 500; ++trial) {
+    const V shift = 0.3 * random_point();
+    const TriangleElement<double> t1{random_point(), random_point(), random_point(), {0, 1, 2}, trial % 64, 3};
+    const TriangleElement<double> t2{random_point() + shift, random_point() + shift, random_point() + shift, {3, 4, 5}, (trial / 3) % 64, 7};
+    const NewProximityPair<double> pair{{0.4, 0.05}, 9, 11, false, trial % 2 == 0};
+    Outputs plain, planned;
+    const int n = new_proximity_intersection(t1, t2, pair, plain);
+    const TrianglePlane<double> plane1(t1.p1, t1.p2, t1.p3), plane2(t2.p1, t2.p2, t2.p3);
+    ASSERT_EQ(new_proximity_intersection(t1, plane1, t2, plane2, pair, planned), n);
+    ASSERT_EQ(plain.size(), planned.size());
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      EXPECT_EQ(plain[i].id, planned[i].id);
+      EXPECT_EQ(plain[i].point[0], planned[i].point[0]);
+      EXPECT_EQ(plain[i].point[1], planned[i].point[1]);
+      EXPECT_EQ(plain[i].value, planned[i].value);
+    }
+    listed += n;
+  }
+  EXPECT_GT(listed, 100);  // the pairs do meet
+}
+
 TEST(NewProximityPairs, TriangleTriangleEdgesOnlyWithUseLineLine) {
   // Two triangles whose edges 1-2 cross 0.2 apart, in planes y = 0 (below z = 0) and x = 0 (above
   // z = 0.2); every vertex is farther than A = 0.5 from the other triangle.
