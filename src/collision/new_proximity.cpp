@@ -1,6 +1,7 @@
 #include "fastcorot/collision/new_proximity.h"
 
 #include "fastcorot/core/error.h"
+#include "fastcorot/core/packed.h"
 
 #include <cmath>
 #include <limits>
@@ -187,12 +188,15 @@ std::optional<ProximityOutput<Real>> triangle_point(const TrianglePlane<Real>& t
   // the triangle's box along each axis, then its distance to the triangle's plane, |aq · n| / |n|.
   // A point farther than the alarm distance by either (by more than rounding: the margins) is no
   // output. Most pairs the tree hands over end here.
-  const Real reach = d.alarm * Real(1 + 1e-6);
-  for (int axis = 0; axis < 3; ++axis) {
-    const Real slack =
-        8 * std::numeric_limits<Real>::epsilon() * (std::abs(q[axis]) + std::abs(t.low[axis]) + std::abs(t.high[axis]));
-    if (t.low[axis] - q[axis] > reach + slack || q[axis] - t.high[axis] > reach + slack) return std::nullopt;
-  }
+  // The box test runs on the three axes at once, each lane as the scalar formula.
+  using P = Packed<Real>;
+  const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
+  const auto abs = [](const P& v) { return v < Real(0) ? -v : v; };
+  const P pq = lanes(q), low = lanes(t.low), high = lanes(t.high);
+  const P reach = broadcast(d.alarm * Real(1 + 1e-6));
+  const P slack = broadcast(8 * std::numeric_limits<Real>::epsilon()) * ((abs(pq) + abs(low)) + abs(high));
+  const auto far = ((low - pq) > (reach + slack)) | ((pq - high) > (reach + slack));
+  if (far[0] | far[1] | far[2]) return std::nullopt;
   const Vec3<Real> aq = q - a;
   const Real height = aq.dot(t.normal);
   if (height * height > d.alarm * d.alarm * t.normal2 * Real(1 + 1e-6)) return std::nullopt;
