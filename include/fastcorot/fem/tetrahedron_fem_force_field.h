@@ -144,7 +144,11 @@ class TetrahedronFEMForceField final : public ForceField<Real> {
   void initialise_element(Index t);
   Real young_modulus_of(Index t) const;
   Real poisson_ratio_of(Index t) const;
+  // The elements' schedule and their constants in its order, then lay_out_blocks.
   void schedule();
+  // The rows of blocks, each edge's two entries in them and its elements in schedule order
+  // (tetrahedron_fem_stiffness_rows.cpp, with the assembly and the product).
+  void lay_out_blocks();
   void check_size(std::span<const Vec3<Real>> v, const char* what) const;
   // The element's frame at its points p (world to element, SOFA's R_0_2; identity for small).
   static Mat3<Real> frame(const Element& element, const TetPoints<Real>& p, TetrahedronFEMMethod method);
