@@ -174,12 +174,16 @@ void new_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a,
   pair.same_model = &a.model == &b.model;
   pair.use_line_line = s.use_line_line;
   std::vector<DetectionOutput<Real>> found;
-  const auto each = [&](auto first, auto second) {
+  // rule(e1, e2) appends a pair's outputs to `found`; they go to `outputs` with the pair's elements.
+  const auto each_pair = [&](const auto& rule) {
     for (const auto& [e1, e2] : pairs) {
       found.clear();
-      new_proximity_intersection(first(e1), second(e2), pair, found);
+      rule(e1, e2);
       for (const auto& o : found) outputs.push_back({e1, e2, o.id, static_cast<const ProximityOutput<Real>&>(o)});
     }
+  };
+  const auto each = [&](auto first, auto second) {
+    each_pair([&](Index e1, Index e2) { new_proximity_intersection(first(e1), second(e2), pair, found); });
   };
   const auto triangle = [&](const Elements<Real>& m) { return [&m](Index e) { return m.triangle_element(e); }; };
   const auto line = [&](const Elements<Real>& m) { return [&m](Index e) { return m.line_element(e); }; };
@@ -192,34 +196,27 @@ void new_proximity(const IntersectionSettings<Real>& s, const Elements<Real>& a,
       TriangleElement<Real> element;
       TrianglePlane<Real> plane;
     };
-    thread_local std::vector<Made> made_a, made_b;
-    thread_local std::vector<char> done_a, done_b;
-    const auto prepare = [](std::vector<Made>& made, std::vector<char>& done, const Elements<Real>& m) {
-      made.resize(m.model.size());
-      done.assign(m.model.size(), 0);
-    };
-    prepare(made_a, done_a, a);
-    prepare(made_b, done_b, b);
-    const auto get = [](std::vector<Made>& made, std::vector<char>& done, const Elements<Real>& m, Index e) -> const Made& {
-      const auto i = static_cast<std::size_t>(e);
-      if (!done[i]) {
-        made[i].element = m.triangle_element(e);
-        const auto& t = made[i].element;
-        made[i].plane = TrianglePlane<Real>(t.p1, t.p2, t.p3);
-        done[i] = 1;
-      }
-      return made[i];
-    };
-    for (const auto& [e1, e2] : pairs) {
-      const Made& t1 = get(made_a, done_a, a, e1);
-      const Made& t2 = get(made_b, done_b, b, e2);
-      found.clear();
-      new_proximity_intersection(t1.element, t1.plane, t2.element, t2.plane, pair, found);
-      for (const auto& o : found) outputs.push_back({e1, e2, o.id, static_cast<const ProximityOutput<Real>&>(o)});
+    thread_local std::vector<Made> made[2];
+    thread_local std::vector<char> done[2];
+    const Elements<Real>* models[2] = {&a, &b};
+    for (int side = 0; side < 2; ++side) {
+      made[side].resize(models[side]->model.size());
+      done[side].assign(models[side]->model.size(), 0);
     }
-    return;
-  }
-  if (k1 == E::triangles) {
+    const auto get = [&](int side, Index e) -> const Made& {
+      const auto i = static_cast<std::size_t>(e);
+      if (!done[side][i]) {
+        const TriangleElement<Real> t = models[side]->triangle_element(e);
+        made[side][i] = {t, TrianglePlane<Real>(t.p1, t.p2, t.p3)};
+        done[side][i] = 1;
+      }
+      return made[side][i];
+    };
+    each_pair([&](Index e1, Index e2) {
+      const Made &t1 = get(0, e1), &t2 = get(1, e2);
+      new_proximity_intersection(t1.element, t1.plane, t2.element, t2.plane, pair, found);
+    });
+  } else if (k1 == E::triangles) {
     if (k2 == E::lines) each(triangle(a), line(b));
     if (k2 == E::spheres) each(triangle(a), sphere(b));
     if (k2 == E::points) each(triangle(a), point(b));
