@@ -190,11 +190,10 @@ std::optional<ProximityOutput<Real>> triangle_point(const TrianglePlane<Real>& t
   // output. Most pairs the tree hands over end here.
   // The box test runs on the three axes at once, each lane as the scalar formula.
   using P = Packed<Real>;
-  const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
-  const auto abs = [](const P& v) { return v < Real(0) ? -v : v; };
-  const P pq = lanes(q), low = lanes(t.low), high = lanes(t.high);
+  const P pq = packed_point(q), low = packed_point(t.low), high = packed_point(t.high);
   const P reach = broadcast(d.alarm * Real(1 + 1e-6));
-  const P slack = broadcast(8 * std::numeric_limits<Real>::epsilon()) * ((abs(pq) + abs(low)) + abs(high));
+  const P slack =
+      broadcast(8 * std::numeric_limits<Real>::epsilon()) * ((packed_abs<Real>(pq) + packed_abs<Real>(low)) + packed_abs<Real>(high));
   const auto far = ((low - pq) > (reach + slack)) | ((pq - high) > (reach + slack));
   if (far[0] | far[1] | far[2]) return std::nullopt;
   const Vec3<Real> aq = q - a;

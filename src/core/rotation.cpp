@@ -140,18 +140,6 @@ struct FourMatrices {
 };
 
 template <class Real>
-Packed<Real> packed_abs(const Packed<Real>& v) {
-  using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
-  typedef Bits Mask __attribute__((vector_size(sizeof(Packed<Real>))));
-  Mask bits;
-  std::memcpy(&bits, &v, sizeof v);
-  bits &= std::numeric_limits<Bits>::max();  // the sign bit cleared, as std::abs does
-  Packed<Real> r;
-  std::memcpy(&r, &bits, sizeof r);
-  return r;
-}
-
-template <class Real>
 Packed<Real> packed_max(const Packed<Real>& a, const Packed<Real>& b) {
   return a > b ? a : b;
 }

@@ -90,7 +90,6 @@ void TetrahedronFEMForceField<Real>::assemble_blocks() {
   // edge's elements: a third of the arithmetic per element, and ρ Aᵀ and s I once per edge (the
   // same blocks up to rounding).
   using P = Packed<Real>;
-  const auto lanes = [](const Vec3<Real>& v) { return P{v[0], v[1], v[2], Real(0)}; };
   // The diagonal term is added to lane c of column c as a packet that is zero in the other lanes.
   const P unit[3] = {P{1, 0, 0, 0}, P{0, 1, 0, 0}, P{0, 0, 1, 0}};
   const bool factored = !poisson_per_tetrahedron_;
@@ -112,17 +111,17 @@ void TetrahedronFEMForceField<Real>::assemble_blocks() {
           // A's column c: k2 w_v w_u[c], (u, v) the mesh edge's orientation
           const Vec3<Real>& u = incidence.along > 0 ? a : b;
           const Vec3<Real>& v = incidence.along > 0 ? b : a;
-          const P k2v = lanes(k2 * v);
+          const P k2v = packed_point(k2 * v);
           for (int c = 0; c < 3; ++c) sum[c] = sum[c] + k2v * u[c];
           diagonal_sum = diagonal_sum + k2 * a.dot(b);
           continue;
         }
         const P diagonal = broadcast(k2 * a.dot(b));
         if (incidence.along > 0) {
-          const P k1a = lanes(k1 * a), k2b = lanes(k2 * b);
+          const P k1a = packed_point(k1 * a), k2b = packed_point(k2 * b);
           for (int c = 0; c < 3; ++c) sum[c] = sum[c] + ((k1a * b[c] + k2b * a[c]) + diagonal * unit[c]);
         } else {
-          const P pa = lanes(a), pb = lanes(b);
+          const P pa = packed_point(a), pb = packed_point(b);
           for (int c = 0; c < 3; ++c) sum[c] = sum[c] + ((pb * (k1 * a[c]) + pa * (k2 * b[c])) + diagonal * unit[c]);
         }
       }

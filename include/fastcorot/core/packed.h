@@ -4,7 +4,10 @@
 // library's sources and tests (not installed: cmake/install.cmake).
 #pragma once
 
+#include <cstdint>
 #include <cstring>
+#include <limits>
+#include <type_traits>
 
 namespace fastcorot {
 
@@ -37,6 +40,25 @@ inline void store_packed(Real* p, const Packed<Real>& v) {
 template <class Real>
 inline Packed<Real> broadcast(Real a) {
   return Packed<Real>{a, a, a, a};
+}
+
+// |v| lane by lane: the sign bit cleared, as std::abs does (so −0 gives +0).
+template <class Real>
+inline Packed<Real> packed_abs(const Packed<Real>& v) {
+  using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
+  typedef Bits Mask __attribute__((vector_size(sizeof(Packed<Real>))));
+  Mask bits;
+  std::memcpy(&bits, &v, sizeof v);
+  bits &= std::numeric_limits<Bits>::max();
+  Packed<Real> r;
+  std::memcpy(&r, &bits, sizeof r);
+  return r;
+}
+
+// A point's three values and a zero (any vector type with Scalar and operator[], such as Vec3).
+template <class Point>
+inline Packed<typename Point::Scalar> packed_point(const Point& v) {
+  return Packed<typename Point::Scalar>{v[0], v[1], v[2], typename Point::Scalar(0)};
 }
 
 // The lanes (v[i0], v[i1], v[i2], v[i3]) of a Packed v.
